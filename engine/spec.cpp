@@ -1,0 +1,324 @@
+#include "engine/spec.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "engine/units.hpp"
+
+namespace rockcal {
+namespace {
+
+using nlohmann::json;
+
+// Upper bound on the particles a spec may ask for: beyond this a typo (mm vs m) is likelier than intent.
+constexpr double kMaxParticles = 5.0e7;
+
+// Reads one JSON object, remembering which keys were consumed so unknown keys can be reported.
+class ObjectReader {
+ public:
+  ObjectReader(const json& obj, std::string path) : obj_(obj), path_(std::move(path)) {
+    if (!obj_.is_object()) throw SpecError(path_.empty() ? "(root)" : path_, "must be a JSON object");
+  }
+
+  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  const json* find(const std::string& key) {
+    seen_.insert(key);
+    auto it = obj_.find(key);
+    return it == obj_.end() ? nullptr : &*it;
+  }
+
+  // A finite number; `dt`-like fields that also accept strings are handled by the caller.
+  std::optional<double> number(const std::string& key) {
+    const json* v = find(key);
+    if (!v) return std::nullopt;
+    if (!v->is_number()) throw SpecError(field(key), "must be a number");
+    double x = v->get<double>();
+    if (!std::isfinite(x)) throw SpecError(field(key), "must be finite");
+    return x;
+  }
+
+  double positive(const std::string& key, double fallback) {
+    double x = number(key).value_or(fallback);
+    if (!(x > 0)) throw SpecError(field(key), "must be positive");
+    return x;
+  }
+
+  double in_range(const std::string& key, double fallback, double lo, double hi, bool hi_open) {
+    double x = number(key).value_or(fallback);
+    if (x < lo || x > hi || (hi_open && x == hi)) {
+      throw SpecError(field(key), "must be in [" + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]"));
+    }
+    return x;
+  }
+
+  std::optional<std::int64_t> integer(const std::string& key, std::int64_t lo, std::int64_t hi) {
+    const json* v = find(key);
+    if (!v) return std::nullopt;
+    if (!v->is_number_integer() && !v->is_number_unsigned()) {
+      throw SpecError(field(key), "must be an integer");
+    }
+    if (v->is_number_unsigned() && v->get<std::uint64_t>() > static_cast<std::uint64_t>(hi)) {
+      throw SpecError(field(key), "must be at most " + std::to_string(hi));
+    }
+    std::int64_t x = v->get<std::int64_t>();
+    if (x < lo || x > hi) {
+      throw SpecError(field(key),
+                      "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+    return x;
+  }
+
+  std::optional<bool> boolean(const std::string& key) {
+    const json* v = find(key);
+    if (!v) return std::nullopt;
+    if (!v->is_boolean()) throw SpecError(field(key), "must be true or false");
+    return v->get<bool>();
+  }
+
+  std::optional<std::string> string(const std::string& key) {
+    const json* v = find(key);
+    if (!v) return std::nullopt;
+    if (!v->is_string()) throw SpecError(field(key), "must be a string");
+    return v->get<std::string>();
+  }
+
+  void reject_unknown() const {
+    for (auto it = obj_.begin(); it != obj_.end(); ++it) {
+      if (!seen_.count(it.key())) throw SpecError(field(it.key()), "unknown field");
+    }
+  }
+
+  static std::string fmt(double x) {
+    json j = x;
+    return j.dump();
+  }
+
+ private:
+  const json& obj_;
+  std::string path_;
+  std::set<std::string> seen_;
+};
+
+SampleSpec parse_sample(ObjectReader& root) {
+  SampleSpec s;
+  const json* v = root.find("sample");
+  if (!v) return s;
+  ObjectReader r(*v, "sample");
+  s.diameter_m = r.positive("diameter", s.diameter_m);
+  s.height_m = r.positive("height", s.height_m);
+  if (auto t = r.number("thickness")) {
+    if (!(*t > 0)) throw SpecError("sample.thickness", "must be positive");
+    s.thickness_m = *t;
+  }
+  s.packing = r.string("packing").value_or(s.packing);
+  if (s.packing != "fcc") throw SpecError("sample.packing", "unknown packing '" + s.packing + "' (known: fcc)");
+  s.radius_m = r.positive("radius", s.radius_m);
+  if (auto seed = r.integer("seed", 0, std::numeric_limits<std::int64_t>::max())) s.seed = *seed;
+  r.reject_unknown();
+
+  // Sizes relative to the particle: a specimen must hold a few particles across, and not billions.
+  const double cells = 2.0 * s.radius_m;
+  if (s.diameter_m < 2.0 * cells) throw SpecError("sample.diameter", "must be at least 4 particle radii");
+  if (s.height_m < 2.0 * cells) throw SpecError("sample.height", "must be at least 4 particle radii");
+  if (s.btt_thickness() < cells) throw SpecError("sample.thickness", "must be at least 2 particle radii");
+  const double particle_volume = 4.0 * std::sqrt(2.0) * std::pow(s.radius_m, 3);  // FCC cell share
+  const double longest = std::max(s.height_m, s.btt_thickness());
+  const double estimate = M_PI * 0.25 * s.diameter_m * s.diameter_m * longest / particle_volume;
+  if (estimate > kMaxParticles) {
+    throw SpecError("sample.diameter", "specimen would hold about " + ObjectReader::fmt(std::round(estimate)) +
+                                           " particles (limit " + ObjectReader::fmt(kMaxParticles) + ")");
+  }
+  return s;
+}
+
+MaterialSpec parse_material(ObjectReader& root) {
+  MaterialSpec m;
+  const json* v = root.find("material");
+  if (!v) throw SpecError("material", "is required");
+  ObjectReader r(*v, "material");
+  m.density_kg_m3 = r.positive("density", m.density_kg_m3);
+  if (auto kr = r.number("kr")) {
+    if (!(*kr > 0)) throw SpecError("material.kr", "must be positive");
+    m.kr_n_m = *kr;
+  }
+  if (auto e = r.number("youngs_modulus")) {
+    if (!(*e > 0)) throw SpecError("material.youngs_modulus", "must be positive");
+    m.youngs_modulus_pa = *e;
+  }
+  if (m.kr_n_m && m.youngs_modulus_pa) {
+    throw SpecError("material.youngs_modulus", "give either kr or youngs_modulus, not both");
+  }
+  if (!m.kr_n_m && !m.youngs_modulus_pa) throw SpecError("material.kr", "kr or youngs_modulus is required");
+  // Eq. 3 gives positive K_s, K_b, K_t only for -1 < nu < 1/3 (and K_r needs nu < 1/2).
+  m.nu = r.number("nu").value_or(m.nu);
+  if (!(m.nu > -1.0 && m.nu < 1.0 / 3.0)) {
+    throw SpecError("material.nu", "must be in (-1, 1/3): eq. 3 gives non-positive shear stiffness otherwise");
+  }
+  r.reject_unknown();
+  return m;
+}
+
+BondSpec parse_bond(ObjectReader& root) {
+  BondSpec b;
+  const json* v = root.find("bond");
+  if (!v) throw SpecError("bond", "is required");
+  ObjectReader r(*v, "bond");
+  if (!r.find("fr0")) throw SpecError("bond.fr0", "is required");
+  if (!r.find("fs0")) throw SpecError("bond.fs0", "is required");
+  b.fr0_n = r.positive("fr0", b.fr0_n);
+  b.fs0_n = r.positive("fs0", b.fs0_n);
+  r.reject_unknown();
+  return b;
+}
+
+ContactSpec parse_contact(ObjectReader& root) {
+  ContactSpec c;
+  const json* v = root.find("contact");
+  if (!v) return c;
+  ObjectReader r(*v, "contact");
+  c.friction = r.in_range("friction", c.friction, 0.0, 10.0, false);
+  r.reject_unknown();
+  return c;
+}
+
+LoadingSpec parse_loading(ObjectReader& root) {
+  LoadingSpec l;
+  const json* v = root.find("loading");
+  if (!v) return l;
+  ObjectReader r(*v, "loading");
+  l.platen_velocity_m_s = r.positive("platen_velocity", l.platen_velocity_m_s);
+  if (const json* dt = r.find("dt")) {
+    if (dt->is_string()) {
+      if (dt->get<std::string>() != "auto") throw SpecError("loading.dt", "must be \"auto\" or a positive number");
+    } else {
+      l.dt_s = r.positive("dt", 1.0);
+    }
+  }
+  l.dt_safety = r.in_range("dt_safety", l.dt_safety, 0.01, 1.0, false);
+  l.ramp_fraction = r.in_range("ramp_fraction", l.ramp_fraction, 0.0, 1.0, false);
+  l.stop_load_fraction = r.in_range("stop_load_fraction", l.stop_load_fraction, 0.0, 1.0, true);
+  l.max_strain = r.in_range("max_strain", l.max_strain, 1e-9, 0.9, false);
+  l.max_steps = r.integer("max_steps", 1, 10'000'000'000LL);
+  l.platen_friction = r.in_range("platen_friction", l.platen_friction, 0.0, 10.0, false);
+  l.elastic_strain = r.in_range("elastic_strain", l.elastic_strain, 1e-9, 0.01, false);
+  r.reject_unknown();
+  return l;
+}
+
+DampingSpec parse_damping(ObjectReader& root) {
+  DampingSpec d;
+  const json* v = root.find("damping");
+  if (!v) return d;
+  ObjectReader r(*v, "damping");
+  d.local = r.in_range("local", d.local, 0.0, 1.0, true);
+  d.viscous = r.in_range("viscous", d.viscous, 0.0, 1e12, false);
+  r.reject_unknown();
+  return d;
+}
+
+OutputSpec parse_output(ObjectReader& root) {
+  OutputSpec o;
+  const json* v = root.find("output");
+  if (!v) return o;
+  ObjectReader r(*v, "output");
+  o.vtk = r.boolean("vtk").value_or(o.vtk);
+  o.vtk_frames = r.integer("vtk_frames", 1, 10'000).value_or(o.vtk_frames);
+  o.curve_points = r.integer("curve_points", 10, 10'000'000).value_or(o.curve_points);
+  o.progress_seconds = r.in_range("progress_seconds", o.progress_seconds, 0.0, 86400.0, false);
+  r.reject_unknown();
+  return o;
+}
+
+JobSpec parse_body(ObjectReader& r, TestKind test) {
+  JobSpec s;
+  s.test = test;
+  s.sample = parse_sample(r);
+  s.material = parse_material(r);
+  s.bond = parse_bond(r);
+  s.contact = parse_contact(r);
+  s.loading = parse_loading(r);
+  s.damping = parse_damping(r);
+  s.output = parse_output(r);
+  r.reject_unknown();
+  if (s.loading.dt_s) {
+    // An explicit step above the stability limit would blow up silently; refuse it up front.
+    const double limit = critical_time_step(s);
+    if (*s.loading.dt_s > limit) {
+      throw SpecError("loading.dt", "exceeds the stability limit " + ObjectReader::fmt(limit) + " s");
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+const char* to_string(TestKind test) {
+  switch (test) {
+    case TestKind::uct: return "uct";
+    case TestKind::btt: return "btt";
+    case TestKind::elastic: return "elastic";
+  }
+  return "?";
+}
+
+std::optional<TestKind> test_kind_from_string(const std::string& name) {
+  if (name == "uct") return TestKind::uct;
+  if (name == "btt") return TestKind::btt;
+  if (name == "elastic") return TestKind::elastic;
+  return std::nullopt;
+}
+
+JobSpec parse_job(const nlohmann::json& job) {
+  ObjectReader r(job, "");
+  auto name = r.string("test");
+  if (!name) throw SpecError("test", "is required (uct, btt or elastic)");
+  auto kind = test_kind_from_string(*name);
+  if (!kind) throw SpecError("test", "unknown test '" + *name + "' (known: uct, btt, elastic)");
+  return parse_body(r, *kind);
+}
+
+JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test) {
+  if (job_template.is_object() && job_template.contains("test")) {
+    throw SpecError("job.test", "a template must not name the test; the campaign does");
+  }
+  ObjectReader r(job_template, "");
+  return parse_body(r, test);
+}
+
+nlohmann::json to_json(const JobSpec& s) {
+  json j;
+  j["test"] = to_string(s.test);
+  j["sample"] = {{"diameter", s.sample.diameter_m},
+                 {"height", s.sample.height_m},
+                 {"thickness", s.sample.btt_thickness()},
+                 {"packing", s.sample.packing},
+                 {"radius", s.sample.radius_m},
+                 {"seed", s.sample.seed}};
+  json mat = {{"density", s.material.density_kg_m3}, {"nu", s.material.nu}};
+  if (s.material.kr_n_m) mat["kr"] = *s.material.kr_n_m;
+  if (s.material.youngs_modulus_pa) mat["youngs_modulus"] = *s.material.youngs_modulus_pa;
+  j["material"] = mat;
+  j["bond"] = {{"fr0", s.bond.fr0_n}, {"fs0", s.bond.fs0_n}};
+  j["contact"] = {{"friction", s.contact.friction}};
+  json l = {{"platen_velocity", s.loading.platen_velocity_m_s},
+            {"dt_safety", s.loading.dt_safety},
+            {"ramp_fraction", s.loading.ramp_fraction},
+            {"stop_load_fraction", s.loading.stop_load_fraction},
+            {"max_strain", s.loading.max_strain},
+            {"platen_friction", s.loading.platen_friction},
+            {"elastic_strain", s.loading.elastic_strain}};
+  if (s.loading.dt_s) l["dt"] = *s.loading.dt_s; else l["dt"] = "auto";
+  if (s.loading.max_steps) l["max_steps"] = *s.loading.max_steps;
+  j["loading"] = l;
+  j["damping"] = {{"local", s.damping.local}, {"viscous", s.damping.viscous}};
+  j["output"] = {{"vtk", s.output.vtk},
+                 {"vtk_frames", s.output.vtk_frames},
+                 {"curve_points", s.output.curve_points},
+                 {"progress_seconds", s.output.progress_seconds}};
+  return j;
+}
+
+const char* engine_version() { return "rockcal-dem 0.1.0"; }
+
+}  // namespace rockcal

@@ -1,0 +1,98 @@
+// The job spec: the only way anything talks to the engine. SI units throughout.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace rockcal {
+
+enum class TestKind { uct, btt, elastic };
+
+// An invalid spec. `field` is the dotted path of the offending key ("loading.dt").
+struct SpecError : std::runtime_error {
+  std::string field;
+  SpecError(std::string field_path, const std::string& message)
+      : std::runtime_error(field_path + ": " + message), field(std::move(field_path)) {}
+};
+
+struct SampleSpec {
+  double diameter_m = 10.0;
+  double height_m = 28.0;                 // UCT and elastic specimen length
+  std::optional<double> thickness_m;      // BTT disc thickness; default diameter / 2
+  std::string packing = "fcc";
+  double radius_m = 1.0;                  // particle radius (mean radius for random packings)
+  std::uint64_t seed = 1;
+  double btt_thickness() const { return thickness_m.value_or(0.5 * diameter_m); }
+};
+
+struct MaterialSpec {
+  double density_kg_m3 = 1.0;
+  std::optional<double> kr_n_m;            // normal bond stiffness given directly ...
+  std::optional<double> youngs_modulus_pa; // ... or derived from E by eq. 3 (exactly one of them)
+  double nu = 0.2;
+};
+
+struct BondSpec {
+  double fr0_n = 64.0;  // tensile strength
+  double fs0_n = 64.0;  // shear strength
+};
+
+struct ContactSpec {
+  double friction = 0.6;  // particle-particle Coulomb coefficient
+};
+
+struct LoadingSpec {
+  double platen_velocity_m_s = 0.05;   // each platen moves at this speed towards the centre
+  std::optional<double> dt_s;          // nullopt = "auto"
+  double dt_safety = 0.5;              // fraction of the critical step used by "auto"
+  double ramp_fraction = 0.01;         // platen speed ramps up over this fraction of max_strain
+  double stop_load_fraction = 0.7;     // stop once the load falls to this fraction of the peak
+  double max_strain = 0.05;            // stop at this platen strain (total closure / length)
+  std::optional<std::int64_t> max_steps;
+  double platen_friction = 0.0;        // Coulomb coefficient between platen and particles
+  double elastic_strain = 2e-4;        // elastic test: the applied axial strain
+};
+
+struct DampingSpec {
+  double local = 0.7;    // Cundall non-viscous coefficient, [0, 1)
+  double viscous = 0.0;  // mass-proportional viscous damping rate, 1/s
+};
+
+struct OutputSpec {
+  bool vtk = false;             // write particle and broken-bond VTK files
+  std::int64_t vtk_frames = 10; // number of VTK snapshots over the run
+  std::int64_t curve_points = 2000;  // approximate rows in curve.csv
+  double progress_seconds = 2.0;     // period of progress reports
+};
+
+struct JobSpec {
+  TestKind test = TestKind::uct;
+  SampleSpec sample;
+  MaterialSpec material;
+  BondSpec bond;
+  ContactSpec contact;
+  LoadingSpec loading;
+  DampingSpec damping;
+  OutputSpec output;
+};
+
+// Parses and validates a job. Throws SpecError naming the first offending field.
+JobSpec parse_job(const nlohmann::json& job);
+
+// Parses a job template that has no "test" key yet (the service adds it per job). Same checks.
+JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test);
+
+// The canonical form: every field present with its default, so that equal jobs serialise equally.
+nlohmann::json to_json(const JobSpec& spec);
+
+const char* to_string(TestKind test);
+std::optional<TestKind> test_kind_from_string(const std::string& name);
+
+// Engine version; part of a job's identity (a changed engine invalidates cached results).
+const char* engine_version();
+
+}  // namespace rockcal
