@@ -1,0 +1,120 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/loadtests/driver.hpp"
+#include "engine/loadtests/run_clock.hpp"
+#include "engine/loadtests/specimen.hpp"
+
+namespace rockcal {
+namespace {
+
+constexpr double kModulusLow = 0.2, kModulusHigh = 0.5;  // fraction of peak load for the E fit
+
+// Least-squares slope of stress against strain on the rising branch between the given fractions
+// of the peak load (ISRM-style average modulus).
+std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, double peak, double area_m2,
+                                      double length_m) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (const CurvePoint& c : curve) {
+    if (c.load_n >= peak) break;
+    if (c.load_n < kModulusLow * peak || c.load_n > kModulusHigh * peak) continue;
+    const double x = c.displacement_m / length_m, y = c.load_n / area_m2;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    ++n;
+  }
+  const double den = n * sxx - sx * sx;
+  if (n < 3 || den <= 0) return std::nullopt;
+  return (n * sxy - sx * sy) / den;
+}
+
+}  // namespace
+
+TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
+  Simulation sim = make_specimen(spec);
+  RunClock clock(hooks, spec.output.progress_seconds);
+  const LoadingSpec& ld = spec.loading;
+  const double length = loaded_length(spec);
+  const double speed = ld.platen_velocity_m_s;
+  const double t_max = ld.max_strain * length / (2.0 * speed);  // both platens move
+  const double t_ramp = ld.ramp_fraction * t_max;
+  const std::int64_t max_steps = ld.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
+  const std::int64_t expected = std::min<std::int64_t>(max_steps, static_cast<std::int64_t>(std::ceil(t_max / sim.dt)));
+  const std::int64_t curve_every = std::max<std::int64_t>(1, expected / spec.output.curve_points);
+  const std::int64_t frame_every = std::max<std::int64_t>(1, expected / spec.output.vtk_frames);
+
+  Wall& bottom = sim.walls[kBottomPlaten];
+  Wall& top = sim.walls[kTopPlaten];
+  const double gap0 = top.point.z() - bottom.point.z();
+
+  TestResult r;
+  r.test = spec.test;
+  r.particles = static_cast<std::int64_t>(sim.particles.size());
+  r.bonds = static_cast<std::int64_t>(sim.bonds.size());
+  r.dt_s = sim.dt;
+  double load = 0.0, closure = 0.0;
+  int frame = 0;
+  if (hooks.on_frame) hooks.on_frame(sim, frame++);
+
+  auto progress = [&](double elapsed) {
+    double f = std::max(closure / (ld.max_strain * length), double(sim.step) / double(max_steps));
+    if (r.peak_load_n > 0 && load < r.peak_load_n)  // past the peak: how far towards the stop load
+      f = std::max(f, (r.peak_load_n - load) / (r.peak_load_n * (1.0 - ld.stop_load_fraction)));
+    return Progress{sim.step, std::min(1.0, f), load, r.peak_load_n, std::int64_t(sim.broken.size()), elapsed};
+  };
+
+  while (true) {
+    const double ramp = t_ramp > 0 ? std::min(1.0, (sim.time + 0.5 * sim.dt) / t_ramp) : 1.0;
+    bottom.velocity = Vec3(0, 0, speed * ramp);
+    top.velocity = Vec3(0, 0, -speed * ramp);
+    sim.advance();
+
+    closure = gap0 - (top.point.z() - bottom.point.z());
+    load = 0.5 * (top.reaction.z() - bottom.reaction.z());
+    if (load > r.peak_load_n) {
+      r.peak_load_n = load;
+      r.peak_displacement_m = closure;
+    }
+    if (sim.step % curve_every == 0)
+      r.curve.push_back({sim.step, sim.time, closure, load, std::int64_t(sim.broken.size())});
+    if (hooks.on_frame && sim.step % frame_every == 0) hooks.on_frame(sim, frame++);
+    clock.maybe_report(progress);
+
+    // A peak only counts once the ramp is over and bonds have started to break.
+    const bool past_peak = sim.time > t_ramp && !sim.broken.empty() && load <= ld.stop_load_fraction * r.peak_load_n;
+    if (past_peak) r.stop_reason = "post_peak";
+    else if (closure >= ld.max_strain * length) r.stop_reason = "max_strain";
+    else if (sim.step >= max_steps) r.stop_reason = "max_steps";
+    else if (clock.stop_requested()) r.stop_reason = "cancelled";
+    if (!r.stop_reason.empty()) break;
+  }
+  if (r.curve.empty() || r.curve.back().step != sim.step)
+    r.curve.push_back({sim.step, sim.time, closure, load, std::int64_t(sim.broken.size())});
+  if (hooks.on_frame) hooks.on_frame(sim, frame++);
+  clock.maybe_report(progress, true);
+
+  const double d = spec.sample.diameter_m;
+  if (spec.test == TestKind::btt) {
+    r.strength_pa = 2.0 * r.peak_load_n / (M_PI * d * spec.sample.btt_thickness());
+  } else {
+    const double area = 0.25 * M_PI * d * d;
+    r.strength_pa = r.peak_load_n / area;
+    r.youngs_modulus_pa = prepeak_modulus(r.curve, r.peak_load_n, area, length);
+  }
+  r.steps = sim.step;
+  r.broken_bonds = static_cast<std::int64_t>(sim.broken.size());
+  for (const BreakEvent& e : sim.breaks) ++r.broken_by[static_cast<int>(e.mode)];
+  r.breaks = std::move(sim.breaks);
+  r.wall_seconds = clock.elapsed_s();
+  return r;
+}
+
+TestResult run_test(const JobSpec& spec, const RunHooks& hooks) {
+  return spec.test == TestKind::elastic ? run_elastic_test(spec, hooks) : run_compression_test(spec, hooks);
+}
+
+}  // namespace rockcal

@@ -1,0 +1,19 @@
+// Test drivers: each sets up the loading of a specimen, runs it and reduces the result.
+#pragma once
+
+#include "engine/loadtests/result.hpp"
+
+namespace rockcal {
+
+// UCT (cylinder along its axis) and BTT (disc across a diameter): platens close at the job's speed
+// until the load has fallen past the peak, or the strain or step limit.
+TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks);
+
+// Elastic test: the UCT specimen compressed by a small strain and relaxed; E and nu from the
+// stress and strain measured in the interior, away from the free surface and the platens.
+TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks);
+
+// Dispatches on spec.test.
+TestResult run_test(const JobSpec& spec, const RunHooks& hooks = {});
+
+}  // namespace rockcal

@@ -1,0 +1,59 @@
+// What a test run produces: the reduced figures and the curve a plot needs.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/bonds.hpp"
+#include "engine/spec.hpp"
+
+namespace rockcal {
+
+struct Simulation;
+
+struct CurvePoint {
+  std::int64_t step;
+  double time_s;
+  double displacement_m;  // platen closure
+  double load_n;
+  std::int64_t broken_bonds;
+};
+
+struct TestResult {
+  TestKind test = TestKind::uct;
+  double peak_load_n = 0.0;
+  double strength_pa = 0.0;                  // UCS = F/A or BTS = 2P/(pi D t); elastic: 0
+  std::optional<double> youngs_modulus_pa;   // UCT pre-peak slope, or elastic test
+  std::optional<double> poisson_ratio;       // elastic test
+  double peak_displacement_m = 0.0;
+  std::int64_t particles = 0, bonds = 0, broken_bonds = 0;
+  std::array<std::int64_t, 4> broken_by{};   // by BreakMode
+  std::int64_t steps = 0;
+  double dt_s = 0.0;
+  double wall_seconds = 0.0;
+  std::string stop_reason;
+  std::vector<CurvePoint> curve;
+  std::vector<BreakEvent> breaks;
+};
+
+struct Progress {
+  std::int64_t step;
+  double fraction;  // 0..1, an estimate
+  double load_n, peak_load_n;
+  std::int64_t broken_bonds;
+  double elapsed_s;
+};
+
+// Hooks a run calls; all optional. `stop` is polled each step (set by a signal handler).
+struct RunHooks {
+  std::function<void(const Progress&)> on_progress;
+  std::function<void(const Simulation&, int frame)> on_frame;  // VTK snapshots
+  const std::atomic<bool>* stop = nullptr;
+};
+
+}  // namespace rockcal

@@ -1,0 +1,150 @@
+#include "engine/output.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "engine/simulation.hpp"
+
+namespace rockcal {
+
+namespace fs = std::filesystem;
+
+nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int ranks) {
+  using nlohmann::json;
+  auto opt = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+  const double wall = std::max(r.wall_seconds, 1e-9);
+  json by;
+  for (int m = 0; m < 4; ++m) by[to_string(static_cast<BreakMode>(m))] = r.broken_by[m];
+  return json{{"test", to_string(r.test)},
+              {"peak_load", r.peak_load_n},
+              {"strength", r.strength_pa},
+              {"youngs_modulus", opt(r.youngs_modulus_pa)},
+              {"poisson_ratio", opt(r.poisson_ratio)},
+              {"peak_displacement", r.peak_displacement_m},
+              {"particles", r.particles},
+              {"bonds", r.bonds},
+              {"broken_bonds", r.broken_bonds},
+              {"broken_by", by},
+              {"steps", r.steps},
+              {"dt", r.dt_s},
+              {"wall_seconds", r.wall_seconds},
+              {"particle_steps_per_second", double(r.particles) * double(r.steps) / wall},
+              {"stop_reason", r.stop_reason},
+              {"engine_version", engine_version()},
+              {"ranks", ranks},
+              {"spec", to_json(spec)}};
+}
+
+void write_atomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+void write_curve_csv(const fs::path& path, const std::vector<CurvePoint>& curve) {
+  std::ofstream out(path);
+  out << "step,time_s,displacement_m,load_n,broken_bonds\n";
+  out.precision(10);
+  for (const CurvePoint& c : curve)
+    out << c.step << ',' << c.time_s << ',' << c.displacement_m << ',' << c.load_n << ',' << c.broken_bonds << '\n';
+}
+
+void write_breaks_csv(const fs::path& path, const std::vector<BreakEvent>& breaks) {
+  std::ofstream out(path);
+  out << "step,x,y,z,mode\n";
+  out.precision(10);
+  for (const BreakEvent& b : breaks)
+    out << b.step << ',' << b.where.x() << ',' << b.where.y() << ',' << b.where.z() << ',' << to_string(b.mode) << '\n';
+}
+
+nlohmann::json progress_to_json(const Progress& p) {
+  return {{"step", p.step},        {"fraction", p.fraction},         {"load", p.load_n},
+          {"peak_load", p.peak_load_n}, {"broken_bonds", p.broken_bonds}, {"elapsed_s", p.elapsed_s}};
+}
+
+namespace {
+
+// Minimal VTK XML unstructured grid of vertices with point data arrays (ASCII, ParaView reads it).
+class VtuWriter {
+ public:
+  explicit VtuWriter(const fs::path& path) : out_(path) {
+    if (!out_) throw std::runtime_error("cannot write " + path.string());
+    out_.precision(9);
+  }
+  void begin(std::size_t n) {
+    n_ = n;
+    out_ << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n";
+  }
+  template <class F>
+  void points(F point_at) {
+    out_ << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n_; ++k) {
+      const Vec3 x = point_at(k);
+      out_ << x.x() << ' ' << x.y() << ' ' << x.z() << '\n';
+    }
+    out_ << "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n_; ++k) out_ << k << '\n';
+    out_ << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n_; ++k) out_ << k + 1 << '\n';
+    out_ << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n_; ++k) out_ << "1\n";  // VTK_VERTEX
+    out_ << "</DataArray>\n</Cells>\n<PointData>\n";
+  }
+  template <class F>
+  void scalars(const char* name, F value_at) {
+    out_ << "<DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n_; ++k) out_ << value_at(k) << '\n';
+    out_ << "</DataArray>\n";
+  }
+  template <class F>
+  void vectors(const char* name, F value_at) {
+    out_ << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < n_; ++k) {
+      const Vec3 v = value_at(k);
+      out_ << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+    }
+    out_ << "</DataArray>\n";
+  }
+  void end() { out_ << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n"; }
+
+ private:
+  std::ofstream out_;
+  std::size_t n_ = 0;
+};
+
+}  // namespace
+
+void write_particles_vtu(const fs::path& path, const Simulation& sim) {
+  const Particles& p = sim.particles;
+  std::vector<int> broken_count(p.size(), 0);
+  for (const Bond& b : sim.broken) {
+    ++broken_count[b.i];
+    ++broken_count[b.j];
+  }
+  VtuWriter w(path);
+  w.begin(p.size());
+  w.points([&](std::size_t k) { return p.pos[k]; });
+  w.scalars("radius", [&](std::size_t k) { return p.radius[k]; });
+  w.scalars("id", [&](std::size_t k) { return double(p.id[k]); });
+  w.scalars("broken_bonds", [&](std::size_t k) { return double(broken_count[k]); });
+  w.vectors("velocity", [&](std::size_t k) { return p.vel[k]; });
+  w.end();
+}
+
+void write_breaks_vtu(const fs::path& path, const std::vector<BreakEvent>& breaks) {
+  VtuWriter w(path);
+  w.begin(breaks.size());
+  w.points([&](std::size_t k) { return breaks[k].where; });
+  w.scalars("step", [&](std::size_t k) { return double(breaks[k].step); });
+  w.scalars("mode", [&](std::size_t k) { return double(static_cast<int>(breaks[k].mode)); });
+  w.end();
+}
+
+}  // namespace rockcal
