@@ -1,0 +1,208 @@
+#include "orchestrator/calibration/campaign.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "engine/spec.hpp"
+#include "orchestrator/calibration/algorithms.hpp"
+#include "orchestrator/calibration/json_fields.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+using nlohmann::json;
+
+Range parse_range(JsonFields& bounds, const std::string& key) {
+  const std::string field = bounds.path_of(key);
+  const json& v = bounds.require(key);
+  if (!v.is_array() || v.size() != 2) throw CampaignError(field, "must be [lower, upper]");
+  Range r{finite_number(v[0], field + "[0]"), finite_number(v[1], field + "[1]")};
+  if (!(r.lo > 0)) throw CampaignError(field, "lower bound must be positive (log-space search)");
+  if (!(r.hi > r.lo)) throw CampaignError(field, "upper bound must exceed the lower bound");
+  return r;
+}
+
+TargetValue parse_target(JsonFields& targets, const std::string& test) {
+  JsonFields t(targets.require(test), targets.path_of(test));
+  auto load = t.positive("peak_load");
+  auto strength = t.positive("strength");
+  t.reject_unknown();
+  if (load && strength) throw CampaignError(t.path_of("strength"), "give peak_load or strength");
+  if (!load && !strength) throw CampaignError(t.path_of("peak_load"), "is required (or strength)");
+  return load ? TargetValue{TargetQuantity::peak_load, *load}
+              : TargetValue{TargetQuantity::strength, *strength};
+}
+
+double required_positive(JsonFields& f, const std::string& key) {
+  auto x = f.positive(key);
+  if (!x) throw CampaignError(f.path_of(key), "is required");
+  return *x;
+}
+
+Specimen parse_lab_specimen(JsonFields& lab) {
+  JsonFields s(lab.require("specimen"), lab.path_of("specimen"));
+  Specimen specimen{required_positive(s, "diameter"), required_positive(s, "height"), 0.0};
+  // A Brazilian disc of t = D/2 unless stated (shared/data/README.md; ISRM proportion).
+  specimen.thickness_m = s.positive("thickness").value_or(0.5 * specimen.diameter_m);
+  s.reject_unknown();
+  return specimen;
+}
+
+LabMaterial parse_lab_material(JsonFields& lab) {
+  JsonFields m(lab.require("material"), lab.path_of("material"));
+  LabMaterial material{required_positive(m, "youngs_modulus"), 0.0, required_positive(m, "density"),
+                       required_positive(m, "grain_radius")};
+  const auto nu = m.number("nu");
+  if (!nu) throw CampaignError(m.path_of("nu"), "is required");
+  if (!(*nu > -1.0 && *nu < 0.5)) throw CampaignError(m.path_of("nu"), "must be in (-1, 0.5)");
+  material.nu = *nu;
+  m.reject_unknown();
+  return material;
+}
+
+// The model's scale is the job template's own K_r, R and rho; "model_scale" may restate them (as the
+// paper does) but must agree, and adds the length ratio x2/x1.
+LabCase parse_lab_case(JsonFields& targets, const JobSpec& model) {
+  JsonFields lab(targets.require("lab"), targets.path_of("lab"));
+  LabCase c{parse_lab_specimen(lab), parse_lab_material(lab), {}, std::nullopt};
+  lab.reject_unknown();
+  const double kr = model.material.kr_n_m.value_or(kr_from_youngs_modulus(
+      model.material.youngs_modulus_pa.value_or(0.0), model.material.nu, model.sample.radius_m));
+  c.model = {kr, model.sample.radius_m, model.material.density_kg_m3};
+  if (const json* v = targets.get("model_scale")) {
+    JsonFields s(*v, targets.path_of("model_scale"));
+    auto agree = [&](const std::string& key, double from_job, const std::string& job_field) {
+      auto given = s.positive(key);
+      if (given && std::abs(*given - from_job) > 1e-9 * from_job) {
+        throw CampaignError(s.path_of(key), "differs from the job template's " + job_field);
+      }
+    };
+    agree("kr", kr, "material.kr");
+    agree("radius", c.model.radius_m, "sample.radius");
+    agree("density", c.model.density_kg_m3, "material.density");
+    c.length_ratio = s.positive("length_ratio");
+    s.reject_unknown();
+  }
+  return c;
+}
+
+Targets parse_targets(JsonFields& root, const JobSpec& model, const Specimen& model_specimen) {
+  JsonFields t(root.require("targets"), "targets");
+  const std::string units = t.string("units").value_or("model");
+  if (units != "model" && units != "lab") {
+    throw CampaignError("targets.units", "must be \"model\" or \"lab\"");
+  }
+  const TargetValue uct = parse_target(t, "uct");
+  const TargetValue btt = parse_target(t, "btt");
+  std::optional<LabCase> lab;
+  if (units == "lab") {
+    lab = parse_lab_case(t, model);
+  } else if (t.get("lab") || t.get("model_scale")) {
+    throw CampaignError("targets.units", "must be \"lab\" when lab and model_scale are given");
+  }
+  t.reject_unknown();
+  return resolve_targets(uct, btt, model_specimen, lab);
+}
+
+// The template through the engine's own validation, for both tests; the bond block is the
+// search's to set, so it is filled with a placeholder inside the bounds for this check.
+JobSpec validate_template(const json& job_template, const Range& fr0, const Range& fs0) {
+  if (!job_template.is_object()) throw CampaignError("job", "must be a JSON object");
+  if (job_template.contains("bond")) {
+    throw CampaignError("job.bond", "is set by the calibration; leave it out of the template");
+  }
+  json probe = job_template;
+  probe["bond"] = {{"fr0", std::sqrt(fr0.lo * fr0.hi)}, {"fs0", std::sqrt(fs0.lo * fs0.hi)}};
+  try {
+    parse_job_template(probe, TestKind::btt);
+    return parse_job_template(probe, TestKind::uct);
+  } catch (const SpecError& e) {
+    const bool prefixed = e.field.rfind("job.", 0) == 0;
+    const std::string message = std::string(e.what()).substr(e.field.size() + 2);
+    throw CampaignError(prefixed ? e.field : "job." + e.field, message);
+  }
+}
+
+Strategy parse_strategy(JsonFields& root) {
+  const std::string name = root.string("strategy").value_or("auto");
+  if (name == "auto") return Strategy::automatic;
+  if (name == "ratio_scale") return Strategy::ratio_scale;
+  if (name == "direct_2d") return Strategy::direct_2d;
+  throw CampaignError("strategy", "must be auto, ratio_scale or direct_2d");
+}
+
+std::vector<std::uint64_t> parse_seeds(JsonFields& root) {
+  std::vector<std::uint64_t> seeds;
+  const json* v = root.get("seeds");
+  if (!v) return seeds;
+  if (!v->is_array() || v->size() > 16) throw CampaignError("seeds", "must be a list of at most 16 seeds");
+  std::set<std::uint64_t> seen;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const json& s = (*v)[i];
+    const std::string field = "seeds[" + std::to_string(i) + "]";
+    if (!s.is_number_unsigned()) throw CampaignError(field, "must be a non-negative integer");
+    if (!seen.insert(s.get<std::uint64_t>()).second) throw CampaignError(field, "is repeated");
+    seeds.push_back(s.get<std::uint64_t>());
+  }
+  return seeds;
+}
+
+void parse_weights(JsonFields& root, CalibrationCampaign& c) {
+  const json* v = root.get("weights");
+  if (!v) return;
+  JsonFields w(*v, "weights");
+  c.weight_uct = w.positive("uct").value_or(c.weight_uct);
+  c.weight_btt = w.positive("btt").value_or(c.weight_btt);
+  w.reject_unknown();
+}
+
+}  // namespace
+
+CalibrationCampaign parse_calibration_campaign(const json& campaign) {
+  JsonFields root(campaign, "");
+  CalibrationCampaign c;
+  if (root.string("kind").value_or("") != "calibration") {
+    throw CampaignError("kind", "must be \"calibration\"");
+  }
+  c.name = root.string("name").value_or("");
+  {
+    JsonFields bounds(root.require("bounds"), "bounds");
+    c.fr0_n = parse_range(bounds, "fr0");
+    c.fs0_n = parse_range(bounds, "fs0");
+    bounds.reject_unknown();
+  }
+  c.job_template = root.require("job");
+  const JobSpec model = validate_template(c.job_template, c.fr0_n, c.fs0_n);
+  c.model_specimen = {model.sample.diameter_m, model.sample.height_m, model.sample.btt_thickness()};
+  c.sample_seed = model.sample.seed;
+  c.targets = parse_targets(root, model, c.model_specimen);
+  c.max_evaluations = int(root.integer("max_evaluations", 4, 10'000).value_or(c.max_evaluations));
+  c.tolerance = root.positive("tolerance").value_or(c.tolerance);
+  if (c.tolerance >= 1.0) throw CampaignError("tolerance", "must be below 1 (a relative error)");
+  parse_weights(root, c);
+  c.algorithm = root.string("algorithm").value_or(c.algorithm);
+  if (!nlopt_algorithm(c.algorithm)) {
+    std::string known;
+    for (const auto& n : algorithm_names()) known += (known.empty() ? "" : ", ") + n;
+    throw CampaignError("algorithm", "unknown algorithm '" + c.algorithm + "' (known: " + known + ")");
+  }
+  c.strategy = parse_strategy(root);
+  c.initial_points = int(root.integer("initial_points", 0, 64).value_or(c.initial_points));
+  c.random_seed = std::uint64_t(
+      root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));
+  c.homogeneity_tolerance = root.positive("homogeneity_tolerance").value_or(c.homogeneity_tolerance);
+  c.scatter_seeds = parse_seeds(root);
+  root.reject_unknown();
+  return c;
+}
+
+const char* to_string(Strategy strategy) {
+  switch (strategy) {
+    case Strategy::automatic: return "auto";
+    case Strategy::ratio_scale: return "ratio_scale";
+    case Strategy::direct_2d: return "direct_2d";
+  }
+  return "?";
+}
+
+}  // namespace rockcal::calibration

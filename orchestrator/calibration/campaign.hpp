@@ -1,0 +1,50 @@
+// A campaign of kind "calibration": what to match, where to search, how long, how.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "orchestrator/calibration/campaign_error.hpp"
+#include "orchestrator/calibration/specimen.hpp"
+#include "orchestrator/calibration/targets.hpp"
+
+namespace rockcal::calibration {
+
+// auto: ratio-then-scale when the measured homogeneity holds, else the 2-D search.
+enum class Strategy { automatic, ratio_scale, direct_2d };
+
+struct Range {
+  double lo;
+  double hi;
+};
+
+struct CalibrationCampaign {
+  std::string name;
+  nlohmann::json job_template;  // the "job" block: no "test", no "bond" (the search sets both)
+  Specimen model_specimen;      // the template's sample, for strengths in model units
+  std::uint64_t sample_seed = 1;  // the template's packing seed, used by the search
+  Targets targets;
+  Range fr0_n{1, 1000};
+  Range fs0_n{1, 1000};
+  int max_evaluations = 40;  // points evaluated by the search (each = one UCT + one BTT job)
+  double tolerance = 0.02;   // relative, on each peak load
+  double weight_uct = 1.0;
+  double weight_btt = 1.0;
+  std::string algorithm = "bobyqa";
+  Strategy strategy = Strategy::automatic;
+  int initial_points = 4;     // Latin hypercube points of the space-filling start
+  std::uint64_t random_seed = 1;  // Latin hypercube and nlopt::srand
+  double homogeneity_tolerance = 0.1;  // accepted |exponent_uct - exponent_btt|
+  std::vector<std::uint64_t> scatter_seeds;  // extra packing seeds for the best point
+};
+
+// Parses and validates the whole campaign (the job template through the engine's validation for
+// both tests). Throws CampaignError naming the first offending field.
+CalibrationCampaign parse_calibration_campaign(const nlohmann::json& campaign);
+
+const char* to_string(Strategy strategy);
+
+}  // namespace rockcal::calibration

@@ -1,0 +1,144 @@
+#include "orchestrator/calibration/driver.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <nlopt.hpp>
+
+#include "orchestrator/calibration/local_search.hpp"
+#include "orchestrator/calibration/ratio_scale.hpp"
+#include "orchestrator/calibration/start_design.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+std::string format(const char* pattern, double a, double b = 0, double c = 0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+  return buffer;
+}
+
+bool ratio_out_of_reach(const Ledger& ledger) {
+  const auto range = ratio_range(ledger.history(), ledger.targets());
+  return range && !range->target_inside;
+}
+
+void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& report) {
+  report.strategy_used = "none";
+  const std::vector<EvaluationRecord> start = ledger.evaluate(start_design(c), "start");
+  report.homogeneity = measure_homogeneity(start[0], start[1], c.homogeneity_tolerance);
+  const bool ratio_first = c.strategy == Strategy::ratio_scale ||
+                           (c.strategy == Strategy::automatic && report.homogeneity.holds);
+  if (ratio_first) {
+    report.strategy_used = "ratio_scale";
+    const double degree =
+        report.homogeneity.measured ? std::clamp(report.homogeneity.degree(), 0.5, 2.0) : 1.0;
+    ratio_then_scale(ledger, c, degree);
+    // The ratio search has mapped the reachable ratios; a 2-D search cannot leave them either.
+    if (ratio_out_of_reach(ledger) && report.homogeneity.holds) return;
+    report.strategy_used = "ratio_scale+direct_2d";
+  } else {
+    report.strategy_used = "direct_2d";
+  }
+  const EvaluationRecord* best = ledger.best();
+  local_search(ledger, c, best ? best->point : start[0].point);
+}
+
+SeedScatter scatter_best(const CalibrationCampaign& c, Evaluator& evaluator,
+                         const EvaluationRecord& best) {
+  std::vector<ScatterRun> runs = {{best.sample_seed, best.loads, best.error}};
+  std::vector<EvaluationRequest> requests;
+  for (std::uint64_t seed : c.scatter_seeds) {
+    if (seed != best.sample_seed) requests.push_back({best.point, seed});
+  }
+  const std::vector<EvaluationOutcome> outcomes = evaluator.evaluate_batch(requests);
+  for (std::size_t i = 0; i < requests.size() && i < outcomes.size(); ++i) {
+    runs.push_back({requests[i].sample_seed, outcomes[i].loads, outcomes[i].error});
+  }
+  return seed_scatter(std::move(runs));
+}
+
+void judge(CalibrationReport& r, const CalibrationCampaign& c) {
+  if (!r.best) {
+    r.verdict = Verdict::failed;
+    r.verdict_reason = "no evaluation succeeded";
+    return;
+  }
+  if (r.best->within_tolerance) {
+    r.verdict = Verdict::feasible;
+    r.verdict_reason = format("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
+    return;
+  }
+  if (r.stop_reason == StopReason::cancelled) {
+    r.verdict = Verdict::incomplete;
+    r.verdict_reason = "cancelled before both peak loads were within tolerance";
+    return;
+  }
+  r.verdict = Verdict::compromise;
+  if (r.ratio && !r.ratio->target_inside) {
+    r.verdict_reason = format(
+        "the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] the model reached: "
+        "both loads cannot be met; best is the weighted log-misfit compromise",
+        r.ratio->target, r.ratio->min, r.ratio->max);
+  } else if (r.stop_reason == StopReason::budget_exhausted) {
+    r.verdict_reason = format("the budget of %.0f evaluations ran out before both loads were within %.3g%%",
+                              c.max_evaluations, 100 * c.tolerance);
+  } else {
+    r.verdict_reason = format("the optimiser converged without both loads within %.3g%% (noise, or "
+                              "the targets are barely reachable)", 100 * c.tolerance);
+  }
+}
+
+}  // namespace
+
+CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evaluator,
+                                  const RunOptions& options) {
+  nlopt::srand(c.random_seed);  // NLopt's generator is per thread: seed it in the optimising one
+  Ledger ledger(c, evaluator, options.stop, options.on_evaluation);
+  CalibrationReport report;
+  bool cancelled = false;
+  try {
+    search(ledger, c, report);
+  } catch (const SearchDone&) {
+  } catch (const EvaluationCancelled&) {
+    cancelled = true;
+  }
+  report.history = ledger.history();
+  if (const EvaluationRecord* best = ledger.best()) report.best = *best;
+  report.ratio = ratio_range(report.history, ledger.targets());
+  if (cancelled) report.stop_reason = StopReason::cancelled;
+  else if (ledger.target_met()) report.stop_reason = StopReason::tolerance_met;
+  else if (ledger.remaining() <= 0) report.stop_reason = StopReason::budget_exhausted;
+  else report.stop_reason = StopReason::converged;
+
+  if (!cancelled && report.best && !options.stop.stop_requested()) {
+    try {
+      report.scatter = scatter_best(c, evaluator, *report.best);
+    } catch (const EvaluationCancelled&) {
+      report.stop_reason = StopReason::cancelled;
+    }
+  }
+  judge(report, c);
+  return report;
+}
+
+CalibrationThread::CalibrationThread(CalibrationCampaign campaign, Evaluator& evaluator,
+                                     RecordCallback on_evaluation)
+    : campaign_(std::move(campaign)), result_(promise_.get_future()) {
+  thread_ = std::jthread([this, &evaluator, on_evaluation](std::stop_token stop) {
+    try {
+      promise_.set_value(run_calibration(campaign_, evaluator, {stop, on_evaluation}));
+    } catch (...) {
+      promise_.set_exception(std::current_exception());
+    }
+  });
+}
+
+CalibrationThread::~CalibrationThread() {
+  thread_.request_stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+CalibrationReport CalibrationThread::wait() { return result_.get(); }
+
+}  // namespace rockcal::calibration

@@ -1,0 +1,69 @@
+// The calibration's only view of the engine: "run the UCT and the BTT of these bond strengths".
+// The orchestrator implements it on its worker pool; the tests implement it with formulas.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/spec.hpp"
+
+namespace rockcal::calibration {
+
+// Bond strengths in model units (N).
+struct BondPoint {
+  double fr0_n;  // tensile
+  double fs0_n;  // shear
+  bool operator==(const BondPoint&) const = default;
+};
+
+// Peak loads of the two tests of one point, model units (N).
+struct PeakLoads {
+  double uct_n;
+  double btt_n;
+};
+
+// One evaluation: a point run on a sample packed with `sample_seed` (the search uses the job
+// template's seed; the final uncertainty scatter re-runs the best point with other seeds).
+struct EvaluationRequest {
+  BondPoint point;
+  std::uint64_t sample_seed;
+};
+
+// A failed evaluation (job failed after its retries, crash, timeout) carries no loads and a
+// message; the driver turns it into a penalty, never a NaN for NLopt.
+struct EvaluationOutcome {
+  std::optional<PeakLoads> loads;
+  std::string error;
+  bool ok() const { return loads.has_value(); }
+};
+
+// Thrown by an evaluator (or the driver) when the campaign is cancelled; the driver stops the
+// optimiser and reports what it has.
+struct EvaluationCancelled : std::runtime_error {
+  EvaluationCancelled() : std::runtime_error("calibration cancelled") {}
+};
+
+class Evaluator {
+ public:
+  virtual ~Evaluator() = default;
+  // Runs the UCT and the BTT of every request, blocking until all have finished, and returns one
+  // outcome per request in request order. Implementations should run the requests (and the two
+  // tests of each) concurrently: the space-filling start and the seed scatter come as one batch.
+  // Asking again for a request already run must give the same outcome (the job cache does this),
+  // which is what lets a restarted campaign replay its history. May throw EvaluationCancelled.
+  virtual std::vector<EvaluationOutcome> evaluate_batch(
+      std::span<const EvaluationRequest> requests) = 0;
+};
+
+// The full job (test, bond strengths, seed filled in) that evaluates one test of a request:
+// what the orchestrator submits to its pool. `job_template` is the campaign's "job" block.
+nlohmann::json job_for(const nlohmann::json& job_template, const EvaluationRequest& request,
+                       TestKind test);
+
+}  // namespace rockcal::calibration

@@ -1,0 +1,77 @@
+#include "orchestrator/calibration/json_fields.hpp"
+
+#include <cmath>
+
+#include "orchestrator/calibration/campaign_error.hpp"
+
+namespace rockcal::calibration {
+
+JsonFields::JsonFields(const nlohmann::json& object, std::string path)
+    : object_(object), path_(std::move(path)) {
+  if (!object_.is_object()) {
+    throw CampaignError(path_.empty() ? "(root)" : path_, "must be a JSON object");
+  }
+}
+
+std::string JsonFields::path_of(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+const nlohmann::json* JsonFields::get(const std::string& key) {
+  read_.insert(key);
+  auto it = object_.find(key);
+  return it == object_.end() ? nullptr : &*it;
+}
+
+const nlohmann::json& JsonFields::require(const std::string& key) {
+  const nlohmann::json* v = get(key);
+  if (!v) throw CampaignError(path_of(key), "is required");
+  return *v;
+}
+
+double finite_number(const nlohmann::json& value, const std::string& field) {
+  if (!value.is_number()) throw CampaignError(field, "must be a number");
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) throw CampaignError(field, "must be finite");
+  return x;
+}
+
+std::optional<double> JsonFields::number(const std::string& key) {
+  const nlohmann::json* v = get(key);
+  if (!v) return std::nullopt;
+  return finite_number(*v, path_of(key));
+}
+
+std::optional<double> JsonFields::positive(const std::string& key) {
+  auto x = number(key);
+  if (x && !(*x > 0)) throw CampaignError(path_of(key), "must be positive");
+  return x;
+}
+
+std::optional<std::int64_t> JsonFields::integer(const std::string& key, std::int64_t lo,
+                                                std::int64_t hi) {
+  const nlohmann::json* v = get(key);
+  if (!v) return std::nullopt;
+  const bool fits = v->is_number_integer() &&
+                    !(v->is_number_unsigned() && v->get<std::uint64_t>() > std::uint64_t(hi));
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!fits) throw CampaignError(path_of(key), "must be an integer in " + range);
+  const std::int64_t x = v->get<std::int64_t>();
+  if (x < lo || x > hi) throw CampaignError(path_of(key), "must be in " + range);
+  return x;
+}
+
+std::optional<std::string> JsonFields::string(const std::string& key) {
+  const nlohmann::json* v = get(key);
+  if (!v) return std::nullopt;
+  if (!v->is_string()) throw CampaignError(path_of(key), "must be a string");
+  return v->get<std::string>();
+}
+
+void JsonFields::reject_unknown() const {
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (!read_.count(it.key())) throw CampaignError(path_of(it.key()), "unknown field");
+  }
+}
+
+}  // namespace rockcal::calibration

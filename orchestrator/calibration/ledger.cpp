@@ -1,0 +1,96 @@
+#include "orchestrator/calibration/ledger.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "orchestrator/calibration/search_space.hpp"
+
+namespace rockcal::calibration {
+
+Ledger::Ledger(const CalibrationCampaign& campaign, Evaluator& evaluator, std::stop_token stop,
+               RecordCallback on_record)
+    : campaign_(campaign), evaluator_(evaluator), stop_(stop), on_record_(std::move(on_record)) {}
+
+std::vector<EvaluationRecord> Ledger::evaluate(const std::vector<BondPoint>& points,
+                                               const std::string& phase) {
+  if (stop_.stop_requested()) throw EvaluationCancelled();
+  std::vector<BondPoint> clipped;
+  std::vector<BondPoint> fresh;
+  for (const BondPoint& p : points) {
+    clipped.push_back(clip_to_bounds(p, campaign_));
+    const bool known = index_of_point_.count({clipped.back().fr0_n, clipped.back().fs0_n}) ||
+                       std::find(fresh.begin(), fresh.end(), clipped.back()) != fresh.end();
+    if (!known) fresh.push_back(clipped.back());
+  }
+  const bool truncated = int(fresh.size()) > remaining();
+  if (truncated) fresh.resize(std::max(0, remaining()));
+  if (!fresh.empty()) {
+    std::vector<EvaluationRequest> requests;
+    for (const BondPoint& p : fresh) requests.push_back({p, campaign_.sample_seed});
+    const std::vector<EvaluationOutcome> outcomes = evaluator_.evaluate_batch(requests);
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+      const EvaluationOutcome missing{std::nullopt, "the evaluator returned no outcome"};
+      history_.push_back(record(fresh[i], i < outcomes.size() ? outcomes[i] : missing, phase));
+      index_of_point_[{fresh[i].fr0_n, fresh[i].fs0_n}] = history_.back().index;
+      if (on_record_) on_record_(history_.back());
+    }
+  }
+  if (truncated || target_met()) throw SearchDone{};
+  std::vector<EvaluationRecord> records;
+  for (const BondPoint& p : clipped) records.push_back(history_[index_of_point_.at({p.fr0_n, p.fs0_n})]);
+  return records;
+}
+
+EvaluationRecord Ledger::evaluate_one(const BondPoint& point, const std::string& phase) {
+  return evaluate({point}, phase).front();
+}
+
+EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome& outcome,
+                                const std::string& phase) {
+  EvaluationRecord r;
+  r.index = int(history_.size());
+  r.phase = phase;
+  r.point = point;
+  r.sample_seed = campaign_.sample_seed;
+  r.error = outcome.error;
+  // A zero or non-finite peak load has no log-ratio: it is a failed run, not a data point.
+  const bool usable = outcome.loads && std::isfinite(outcome.loads->uct_n) &&
+                      std::isfinite(outcome.loads->btt_n) && outcome.loads->uct_n > 0 &&
+                      outcome.loads->btt_n > 0;
+  if (usable) {
+    r.loads = outcome.loads;
+    r.misfit = misfit(log_errors(*r.loads, targets()), weights());
+    r.within_tolerance = within_tolerance(*r.loads, targets(), campaign_.tolerance);
+  } else {
+    if (outcome.loads) r.error = "non-positive or non-finite peak load";
+    if (r.error.empty()) r.error = "evaluation failed";
+    r.misfit = failure_penalty();
+  }
+  return r;
+}
+
+// NLopt cannot handle NaN: a failure costs twice the worst misfit seen (at least that of being a
+// factor 10 off on both loads), so the optimiser steps away from it but its models stay finite.
+double Ledger::failure_penalty() const {
+  const Weights w = weights();
+  double worst = (w.uct + w.btt) * std::pow(std::log(10.0), 2);
+  for (const EvaluationRecord& r : history_) {
+    if (r.loads) worst = std::max(worst, r.misfit);
+  }
+  return 2.0 * worst;
+}
+
+const EvaluationRecord* Ledger::best() const {
+  const EvaluationRecord* best = nullptr;
+  for (const EvaluationRecord& r : history_) {
+    if (r.loads && (!best || r.misfit < best->misfit)) best = &r;
+  }
+  return best;
+}
+
+bool Ledger::target_met() const {
+  return std::any_of(history_.begin(), history_.end(),
+                     [](const EvaluationRecord& r) { return r.within_tolerance; });
+}
+
+}  // namespace rockcal::calibration

@@ -1,0 +1,73 @@
+// What a calibration found: the GET /api/v1/campaigns/{id} payload of a calibration campaign.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "orchestrator/calibration/campaign.hpp"
+#include "orchestrator/calibration/homogeneity.hpp"
+#include "orchestrator/calibration/ledger.hpp"
+
+namespace rockcal::calibration {
+
+enum class StopReason { tolerance_met, budget_exhausted, converged, cancelled };
+// feasible: both loads within tolerance. compromise: the search ended without that (the reason
+// says whether the target ratio is out of the model's reach). incomplete: cancelled first.
+// failed: no evaluation succeeded.
+enum class Verdict { feasible, compromise, incomplete, failed };
+
+// UCT/BTT load ratios the model reached over all successful evaluations, vs the target's: the
+// first fact of the sim-to-real gap when the target lies outside.
+struct RatioRange {
+  double target = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  bool target_inside = false;
+};
+
+struct ScatterRun {
+  std::uint64_t seed = 0;
+  std::optional<PeakLoads> loads;
+  std::string error;
+};
+
+struct LoadStats {
+  double mean_n = 0.0;
+  double stddev_n = 0.0;  // sample standard deviation over the seeds
+  int runs = 0;
+};
+
+// The best point re-run on other packings: an uncertainty, not a single lucky run.
+struct SeedScatter {
+  std::vector<ScatterRun> runs;  // the search's own seed first
+  std::optional<LoadStats> uct;
+  std::optional<LoadStats> btt;
+};
+
+struct CalibrationReport {
+  StopReason stop_reason = StopReason::converged;
+  Verdict verdict = Verdict::failed;
+  std::string verdict_reason;
+  std::string strategy_used;  // ratio_scale | ratio_scale+direct_2d | direct_2d | none
+  Homogeneity homogeneity;
+  std::optional<EvaluationRecord> best;
+  std::vector<EvaluationRecord> history;
+  std::optional<RatioRange> ratio;  // absent without a successful evaluation
+  SeedScatter scatter;
+};
+
+std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& history,
+                                      const PeakLoads& targets_n);
+SeedScatter seed_scatter(std::vector<ScatterRun> runs);
+
+const char* to_string(StopReason reason);
+const char* to_string(Verdict verdict);
+
+// The report as JSON: model units throughout, plus "lab" blocks when the targets were in lab units.
+nlohmann::json to_json(const CalibrationReport& report, const CalibrationCampaign& campaign);
+
+}  // namespace rockcal::calibration

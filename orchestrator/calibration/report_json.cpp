@@ -1,0 +1,153 @@
+// to_json of the report. JSON has no NaN: quantities that do not exist are null, never NaN.
+#include <cmath>
+
+#include "orchestrator/calibration/objective.hpp"
+#include "orchestrator/calibration/report.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+using nlohmann::json;
+
+json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+// One test's result on one specimen: load, strength, target and relative error.
+json test_result(double load_n, double target_n, double strength_pa) {
+  return {{"peak_load", load_n},
+          {"target", target_n},
+          {"relative_error", relative_error(load_n, target_n)},
+          {"strength", strength_pa}};
+}
+
+json loads_json(const PeakLoads& loads, const PeakLoads& targets, const Specimen& specimen) {
+  return {{"uct", test_result(loads.uct_n, targets.uct_n, uct_strength_pa(loads.uct_n, specimen))},
+          {"btt", test_result(loads.btt_n, targets.btt_n, btt_strength_pa(loads.btt_n, specimen))}};
+}
+
+json best_json(const EvaluationRecord& best, const CalibrationCampaign& c) {
+  const PeakLoads& targets = c.targets.model_loads_n;
+  json j = loads_json(*best.loads, targets, c.model_specimen);
+  j["fr0"] = best.point.fr0_n;
+  j["fs0"] = best.point.fs0_n;
+  j["misfit"] = best.misfit;
+  j["evaluation"] = best.index;
+  j["within_tolerance"] = best.within_tolerance;
+  if (c.targets.scaling) {
+    const Scaling& s = *c.targets.scaling;
+    const BondPoint bonds = bonds_to_lab(best.point, s);
+    json lab = loads_json(loads_to_lab(*best.loads, s), loads_to_lab(targets, s), c.targets.lab->specimen);
+    lab["fr0"] = bonds.fr0_n;
+    lab["fs0"] = bonds.fs0_n;
+    j["lab"] = lab;
+  }
+  return j;
+}
+
+json targets_json(const CalibrationCampaign& c) {
+  const PeakLoads& t = c.targets.model_loads_n;
+  json j = {{"units", c.targets.lab ? "lab" : "model"},
+            {"uct", {{"peak_load", t.uct_n}, {"strength", uct_strength_pa(t.uct_n, c.model_specimen)}}},
+            {"btt", {{"peak_load", t.btt_n}, {"strength", btt_strength_pa(t.btt_n, c.model_specimen)}}}};
+  if (c.targets.scaling) {
+    const Scaling& s = *c.targets.scaling;
+    const LabCase& lab = *c.targets.lab;
+    const PeakLoads l = loads_to_lab(t, s);
+    j["lab"] = {{"uct", {{"peak_load", l.uct_n}, {"strength", uct_strength_pa(l.uct_n, lab.specimen)}}},
+                {"btt", {{"peak_load", l.btt_n}, {"strength", btt_strength_pa(l.btt_n, lab.specimen)}}}};
+    // The lab specimen as the model would have to be to match loads one to one; a model sample of
+    // another size matches the mapped loads but not the lab's strengths.
+    j["scaling"] = {{"length", s.length}, {"force", s.force},   {"stress", s.stress},
+                    {"time", s.time},     {"mass", s.mass},     {"velocity", s.velocity},
+                    {"kr_lab", s.kr_lab_n_m},
+                    {"lab_specimen_in_model_units",
+                     {{"diameter", s.length_to_model(lab.specimen.diameter_m)},
+                      {"height", s.length_to_model(lab.specimen.height_m)},
+                      {"thickness", s.length_to_model(lab.specimen.thickness_m)}}}};
+  }
+  return j;
+}
+
+json history_json(const std::vector<EvaluationRecord>& history) {
+  json rows = json::array();
+  double best_so_far = INFINITY;
+  for (const EvaluationRecord& r : history) {
+    if (r.loads) best_so_far = std::min(best_so_far, r.misfit);
+    rows.push_back({{"index", r.index},
+                    {"phase", r.phase},
+                    {"fr0", r.point.fr0_n},
+                    {"fs0", r.point.fs0_n},
+                    {"seed", r.sample_seed},
+                    {"ok", r.loads.has_value()},
+                    {"uct", r.loads ? json(r.loads->uct_n) : json(nullptr)},
+                    {"btt", r.loads ? json(r.loads->btt_n) : json(nullptr)},
+                    {"misfit", r.misfit},
+                    {"best_misfit_so_far", number_or_null(best_so_far)},
+                    {"within_tolerance", r.within_tolerance},
+                    {"error", r.error}});
+  }
+  return rows;
+}
+
+json stats_json(const std::optional<LoadStats>& s) {
+  if (!s) return nullptr;
+  return {{"mean", s->mean_n},
+          {"stddev", s->stddev_n},
+          {"cv", s->mean_n > 0 ? s->stddev_n / s->mean_n : 0.0},
+          {"runs", s->runs}};
+}
+
+json scatter_json(const SeedScatter& s) {
+  json runs = json::array();
+  for (const ScatterRun& r : s.runs) {
+    runs.push_back({{"seed", r.seed},
+                    {"uct", r.loads ? json(r.loads->uct_n) : json(nullptr)},
+                    {"btt", r.loads ? json(r.loads->btt_n) : json(nullptr)},
+                    {"error", r.error}});
+  }
+  return {{"runs", runs}, {"uct", stats_json(s.uct)}, {"btt", stats_json(s.btt)}};
+}
+
+json homogeneity_json(const Homogeneity& h) {
+  return {{"measured", h.measured},
+          {"base", {{"fr0", h.base.fr0_n}, {"fs0", h.base.fs0_n}}},
+          {"scale_factor", h.scale_factor},
+          {"exponent_uct", number_or_null(h.exponent_uct)},
+          {"exponent_btt", number_or_null(h.exponent_btt)},
+          {"holds", h.holds}};
+}
+
+}  // namespace
+
+json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
+  int failed = 0;
+  for (const EvaluationRecord& e : r.history) failed += e.loads ? 0 : 1;
+  json j = {{"kind", "calibration"},
+            {"name", c.name},
+            {"stop_reason", to_string(r.stop_reason)},
+            {"verdict", to_string(r.verdict)},
+            {"verdict_reason", r.verdict_reason},
+            {"strategy", {{"requested", to_string(c.strategy)},
+                          {"used", r.strategy_used},
+                          {"algorithm", c.algorithm}}},
+            {"homogeneity", homogeneity_json(r.homogeneity)},
+            {"tolerance", c.tolerance},
+            {"evaluations", r.history.size()},
+            {"failed_evaluations", failed},
+            {"max_evaluations", c.max_evaluations},
+            {"targets", targets_json(c)},
+            {"best", r.best ? best_json(*r.best, c) : json(nullptr)},
+            {"history", history_json(r.history)},
+            {"scatter", scatter_json(r.scatter)}};
+  if (r.ratio) {
+    j["ratio"] = {{"target", r.ratio->target},
+                  {"min", r.ratio->min},
+                  {"max", r.ratio->max},
+                  {"target_inside", r.ratio->target_inside},
+                  {"best", r.best ? json(r.best->loads->uct_n / r.best->loads->btt_n) : json(nullptr)}};
+  } else {
+    j["ratio"] = nullptr;
+  }
+  return j;
+}
+
+}  // namespace rockcal::calibration

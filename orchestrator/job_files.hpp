@@ -1,0 +1,34 @@
+// The files of one job in the data directory: <data>/jobs/<job id>/{job.json, result.json,
+// curve.csv, progress.json, log}. Paths come from the numeric job id only, never from a request.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "db/records.hpp"
+
+namespace rockcal::orch {
+
+std::filesystem::path job_dir(const std::filesystem::path& data_dir, std::int64_t job_id);
+
+// Clears what an earlier attempt left (except the log, which keeps every attempt) and writes
+// job.json. Returns the directory.
+std::filesystem::path prepare_job_dir(const std::filesystem::path& data_dir, const db::JobRow& job);
+
+// Reads result.json and curve.csv of a finished run into a result row for `job`.
+// Throws std::runtime_error when result.json is missing or malformed.
+db::ResultRow read_result(const std::filesystem::path& dir, const db::JobRow& job);
+
+// The run's progress fraction (0..1) from progress.json, if it has written one.
+std::optional<double> read_progress(const std::filesystem::path& dir);
+
+// The last `max_lines` lines (at most `max_bytes`) of a text file; "" if it does not exist.
+std::string tail_file(const std::filesystem::path& file, std::size_t max_lines,
+                      std::size_t max_bytes);
+
+// Whole small file, or nullopt if missing.
+std::optional<std::string> read_text(const std::filesystem::path& file);
+
+}  // namespace rockcal::orch

@@ -1,0 +1,180 @@
+#include "orchestrator/job_service.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <iostream>
+
+#include "orchestrator/campaign_status.hpp"
+#include "orchestrator/job_identity.hpp"
+#include "orchestrator/request_error.hpp"
+#include "orchestrator/sweep.hpp"
+
+namespace rockcal::orch {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+JobService::JobService(ServiceConfig config, std::unique_ptr<Executor> executor)
+    : config_(std::move(config)), executor_(std::move(executor)) {
+  if (config_.data_dir.empty()) config_.data_dir = config_.db_path.string() + ".d";
+  config_.data_dir = fs::absolute(config_.data_dir);
+  fs::create_directories(config_.data_dir / "jobs");
+  // One server per database: a second one would re-queue and kill the first one's jobs.
+  auto lock_path = config_.data_dir / "server.lock";
+  lock_fd_ = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0 || flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (lock_fd_ >= 0) close(lock_fd_);
+    throw std::runtime_error("another rockcal server is using " + config_.data_dir.string());
+  }
+  store_ = std::make_unique<db::Store>(config_.db_path.string());
+  kinds_.add(sweep_kind());
+  recover();
+  PoolConfig pool;
+  pool.workers = config_.workers;
+  pool.max_attempts = config_.max_attempts;
+  pool.job_timeout = config_.job_timeout;
+  pool.data_dir = config_.data_dir;
+  pool_ = std::make_unique<WorkerPool>(*store_, *executor_, pool,
+                                       [this](std::int64_t id) { job_done(id); });
+}
+
+JobService::~JobService() {
+  stop();
+  if (lock_fd_ >= 0) close(lock_fd_);
+}
+
+void JobService::recover() {
+  // Every job still marked running belongs to a server that died: nothing else runs jobs of
+  // this database (the lock above). Stop what it left behind, then run the job again.
+  for (const auto& job : store_->running_jobs()) {
+    if (job.handle && job.executor == executor_->name()) {
+      try {
+        if (executor_->stop_orphan(*job.handle)) ++stopped_orphans_;
+      } catch (const std::exception& e) {
+        std::cerr << "rockcal: stopping orphan of job " << job.id << ": " << e.what() << "\n";
+      }
+    }
+    store_->requeue(job.id, "re-queued after a server restart");
+    ++recovered_jobs_;
+  }
+}
+
+void JobService::start() {
+  if (started_) return;
+  started_ = true;
+  pool_->start();
+  for (const auto& c : store_->campaigns(1 << 30, 0)) {
+    if (c.driver_status != std::optional<std::string>("running")) continue;
+    if (const auto* kind = kinds_.find(c.kind); kind && kind->driver) {
+      start_driver(c.id, *kind, json::parse(c.request));
+    }
+  }
+}
+
+void JobService::stop() {
+  {
+    std::lock_guard lock(drivers_mutex_);
+    for (auto& [id, t] : drivers_) t.request_stop();
+  }
+  done_cv_.notify_all();
+  std::map<std::int64_t, std::jthread> drivers;
+  {
+    std::lock_guard lock(drivers_mutex_);
+    drivers.swap(drivers_);
+  }
+  drivers.clear();  // joins
+  if (pool_) pool_->stop();
+  started_ = false;
+}
+
+std::int64_t JobService::create_campaign(const json& request) {
+  if (!request.is_object()) throw RequestError("(body)", "must be a JSON object");
+  auto it = request.find("kind");
+  if (it == request.end()) throw RequestError("kind", "is required");
+  if (!it->is_string()) throw RequestError("kind", "must be a string");
+  const CampaignKind* kind = kinds_.find(it->get<std::string>());
+  if (!kind) {
+    std::string known;
+    for (const auto& n : kinds_.names()) known += (known.empty() ? "" : ", ") + n;
+    throw RequestError("kind",
+                       "unknown kind '" + it->get<std::string>() + "' (known: " + known + ")");
+  }
+  CampaignPlan plan = kind->plan(request, config_.limits);
+  std::int64_t id = store_->create_campaign(kind->name, plan.name, request.dump(),
+                                            static_cast<bool>(kind->driver), plan.jobs);
+  pool_->wake();
+  if (kind->driver && started_) start_driver(id, *kind, request);
+  return id;
+}
+
+db::CancelOutcome JobService::cancel_campaign(std::int64_t campaign_id) {
+  auto outcome = store_->cancel_campaign(campaign_id);
+  if (outcome == db::CancelOutcome::cancelled) {
+    std::lock_guard lock(drivers_mutex_);
+    if (auto it = drivers_.find(campaign_id); it != drivers_.end()) it->second.request_stop();
+  }
+  job_done(0);  // wake waiters: their jobs may have been cancelled
+  return outcome;
+}
+
+void JobService::start_driver(std::int64_t campaign_id, const CampaignKind& kind, json request) {
+  std::lock_guard lock(drivers_mutex_);
+  drivers_[campaign_id] = std::jthread([this, campaign_id, &kind, request](std::stop_token stop) {
+    DriverContext ctx{*this, campaign_id, request, stop};
+    try {
+      json summary = kind.driver(ctx);
+      // Stopped for a shutdown: leave it running so the next start resumes it.
+      if (stop.stop_requested() && !store_->campaign(campaign_id)->cancel_requested) return;
+      if (!store_->campaign(campaign_id)->cancel_requested) {
+        store_->set_driver_status(campaign_id, "done", summary.dump());
+      }
+    } catch (const std::exception& e) {
+      if (stop.stop_requested()) return;
+      store_->set_driver_status(campaign_id, "failed", json{{"error", e.what()}}.dump());
+    }
+  });
+}
+
+void JobService::job_done(std::int64_t) {
+  {
+    std::lock_guard lock(done_mutex_);
+    ++done_generation_;
+  }
+  done_cv_.notify_all();
+}
+
+std::int64_t JobService::submit_job(std::int64_t campaign_id, const json& job_spec) {
+  db::NewJob job = make_job(job_spec);
+  std::int64_t id = store_->add_job(campaign_id, job);
+  pool_->wake();
+  return id;
+}
+
+JobOutcome JobService::wait_job(std::int64_t job_id, std::stop_token stop) {
+  while (true) {
+    std::uint64_t generation;
+    {
+      std::lock_guard lock(done_mutex_);
+      generation = done_generation_;
+    }
+    auto job = store_->job(job_id);
+    if (!job) throw std::invalid_argument("no job " + std::to_string(job_id));
+    if (is_terminal_job_state(job->state) || stop.stop_requested()) {
+      JobOutcome out{job_id, job->state, job->cached, std::nullopt, job->error};
+      if (job->state == db::kSucceeded) out.result = store_->result(job->hash);
+      return out;
+    }
+    std::unique_lock lock(done_mutex_);
+    // The timeout is a safety net only; job_done() wakes us when any job ends.
+    done_cv_.wait_for(lock, stop, std::chrono::seconds(2),
+                      [&] { return done_generation_ != generation; });
+  }
+}
+
+JobOutcome JobService::submit_and_wait(std::int64_t campaign_id, const json& job_spec,
+                                       std::stop_token stop) {
+  return wait_job(submit_job(campaign_id, job_spec), stop);
+}
+
+}  // namespace rockcal::orch

@@ -1,0 +1,92 @@
+#include "orchestrator/sweep.hpp"
+
+#include <utility>
+
+#include "orchestrator/job_identity.hpp"
+#include "orchestrator/request_error.hpp"
+#include "orchestrator/request_fields.hpp"
+
+namespace rockcal::orch {
+namespace {
+
+using nlohmann::json;
+using Point = std::pair<double, double>;
+
+std::vector<Point> grid_points(const json& grid, std::size_t cap) {
+  if (!grid.is_object())
+    throw RequestError("grid", "must be an object {\"fr0\": [...], \"fs0\": [...]}");
+  reject_unknown_keys(grid, {"fr0", "fs0"}, "grid.");
+  if (!grid.contains("fr0")) throw RequestError("grid.fr0", "is required");
+  if (!grid.contains("fs0")) throw RequestError("grid.fs0", "is required");
+  auto fr0 = positive_numbers(grid["fr0"], "grid.fr0", cap);
+  auto fs0 = positive_numbers(grid["fs0"], "grid.fs0", cap);
+  // Both sizes are <= cap, so the product cannot overflow.
+  if (fr0.size() * fs0.size() > cap) {
+    throw RequestError("grid", "has " + std::to_string(fr0.size() * fs0.size()) +
+                                   " points; the cap is " + std::to_string(cap));
+  }
+  std::vector<Point> out;
+  for (double r : fr0) {
+    for (double s : fs0) out.emplace_back(r, s);
+  }
+  return out;
+}
+
+std::vector<Point> listed_points(const json& points, std::size_t cap) {
+  if (!points.is_array() || points.empty()) {
+    throw RequestError("points", "must be a non-empty array of [fr0, fs0] pairs");
+  }
+  if (points.size() > cap) {
+    throw RequestError("points", "has " + std::to_string(points.size()) + " points; the cap is " +
+                                     std::to_string(cap));
+  }
+  std::vector<Point> out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    std::string field = "points[" + std::to_string(i) + "]";
+    const json& p = points[i];
+    if (!p.is_array() || p.size() != 2) throw RequestError(field, "must be a pair [fr0, fs0]");
+    out.emplace_back(positive_number(p[0], field + "[0]"), positive_number(p[1], field + "[1]"));
+  }
+  return out;
+}
+
+}  // namespace
+
+CampaignPlan plan_sweep(const json& request, const Limits& limits) {
+  reject_unknown_keys(request, {"kind", "name", "tests", "job", "grid", "points"}, "");
+  CampaignPlan plan;
+  plan.name = campaign_name(request, "sweep");
+  auto tests = test_names(request);
+  const json& tmpl = job_template(request);
+  if (request.contains("grid") == request.contains("points")) {
+    throw RequestError("grid", "give exactly one of \"grid\" and \"points\"");
+  }
+  std::size_t cap = limits.max_jobs_per_campaign;
+  auto points = request.contains("grid") ? grid_points(request["grid"], cap)
+                                         : listed_points(request["points"], cap);
+  if (points.size() * tests.size() > cap) {
+    throw RequestError(request.contains("grid") ? "grid" : "points",
+                       std::to_string(points.size() * tests.size()) + " jobs exceed the cap of " +
+                           std::to_string(cap) + " per campaign");
+  }
+  // Every job goes through the engine's validation before anything is stored.
+  for (const auto& test : tests) {
+    for (auto [fr0, fs0] : points) {
+      json spec = tmpl;
+      spec["test"] = test;
+      if (!spec.contains("bond")) spec["bond"] = json::object();
+      if (spec["bond"].is_object()) {
+        spec["bond"]["fr0"] = fr0;
+        spec["bond"]["fs0"] = fs0;
+      }
+      plan.jobs.push_back(make_job(spec, "job."));
+    }
+  }
+  return plan;
+}
+
+CampaignKind sweep_kind() {
+  return {"sweep", plan_sweep, nullptr};
+}
+
+}  // namespace rockcal::orch

@@ -1,0 +1,14 @@
+// The `sweep` campaign kind: one job per (fr0, fs0) point and test.
+#pragma once
+
+#include "orchestrator/campaign_kinds.hpp"
+
+namespace rockcal::orch {
+
+// {"kind": "sweep", "name": "...", "tests": ["uct", "btt"], "job": {template},
+//  "grid": {"fr0": [...], "fs0": [...]}} or "points": [[fr0, fs0], ...].
+CampaignPlan plan_sweep(const nlohmann::json& request, const Limits& limits);
+
+CampaignKind sweep_kind();
+
+}  // namespace rockcal::orch

@@ -1,0 +1,146 @@
+#include "orchestrator/worker_pool.hpp"
+
+#include <iostream>
+
+#include "orchestrator/job_files.hpp"
+
+namespace rockcal::orch {
+
+using Clock = std::chrono::steady_clock;
+
+WorkerPool::WorkerPool(db::Store& store, Executor& executor, PoolConfig config,
+                       std::function<void(std::int64_t)> on_job_done)
+    : store_(store),
+      executor_(executor),
+      config_(std::move(config)),
+      on_job_done_(std::move(on_job_done)) {}
+
+void WorkerPool::start() {
+  for (int i = 0; i < config_.workers; ++i) {
+    threads_.emplace_back([this](std::stop_token stop) { work(stop); });
+  }
+}
+
+void WorkerPool::stop() {
+  for (auto& t : threads_) t.request_stop();
+  wake();
+  threads_.clear();  // joins
+}
+
+void WorkerPool::wake() {
+  {
+    std::lock_guard lock(mutex_);
+    ++wake_count_;
+  }
+  wake_cv_.notify_all();
+}
+
+void WorkerPool::work(std::stop_token stop) {
+  while (!stop.stop_requested()) {
+    std::uint64_t seen;
+    {
+      std::lock_guard lock(mutex_);
+      seen = wake_count_;
+    }
+    std::optional<db::JobRow> job;
+    try {
+      job = store_.claim_job(executor_.name());
+    } catch (const std::exception& e) {
+      std::cerr << "rockcal: claiming a job failed: " << e.what() << "\n";
+    }
+    if (job) {
+      execute(*job, stop);
+      continue;
+    }
+    // Nothing queued: sleep until woken (new campaign, retry) or a periodic re-check.
+    std::unique_lock lock(mutex_);
+    wake_cv_.wait_for(lock, stop, std::chrono::seconds(1), [&] { return wake_count_ != seen; });
+  }
+}
+
+namespace {
+
+std::string failure_text(const std::string& what, const std::filesystem::path& dir) {
+  std::string tail = tail_file(dir / "log", 20, 4000);
+  return tail.empty() ? what : what + "; last log lines:\n" + tail;
+}
+
+}  // namespace
+
+void WorkerPool::execute(const db::JobRow& job, std::stop_token stop) {
+  std::filesystem::path dir;
+  std::string handle;
+  try {
+    dir = prepare_job_dir(config_.data_dir, job);
+    LaunchRequest request{
+        dir, dir / "log", {"run", (dir / "job.json").string(), "--out", dir.string()}};
+    handle = executor_.launch(request);
+    store_.set_handle(job.id, handle);
+  } catch (const std::exception& e) {
+    if (!handle.empty()) executor_.cancel(handle);
+    store_.finish_failure(job.id, std::string("could not start: ") + e.what(), true,
+                          config_.max_attempts);
+    on_job_done_(job.id);
+    wake();  // it may have been re-queued
+    return;
+  }
+
+  const auto started = Clock::now();
+  auto next_cancel_check = started + config_.cancel_check_interval;
+  auto next_progress = started + config_.progress_interval;
+  std::optional<double> last_progress;
+  bool timed_out = false;
+  ExitStatus status;
+  while (true) {
+    status = executor_.poll(handle);
+    if (status.finished) break;
+    auto now = Clock::now();
+    if (stop.stop_requested()) {
+      executor_.cancel(handle);
+      store_.requeue(job.id, "server stopped while the job ran");
+      return;
+    }
+    if (now >= next_cancel_check) {
+      next_cancel_check = now + config_.cancel_check_interval;
+      if (store_.job_state(job.id) != db::kRunning) {  // cancelled with its campaign
+        executor_.cancel(handle);
+        on_job_done_(job.id);
+        return;
+      }
+    }
+    if (now >= next_progress) {
+      next_progress = now + config_.progress_interval;
+      auto p = read_progress(dir);
+      if (p && p != last_progress) store_.set_progress(job.id, *p);
+      last_progress = p;
+    }
+    if (now - started > config_.job_timeout) {
+      status = executor_.cancel(handle);
+      timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(config_.poll_interval);
+  }
+
+  if (timed_out) {
+    auto seconds = std::chrono::duration_cast<std::chrono::seconds>(config_.job_timeout).count();
+    store_.finish_failure(job.id,
+                          failure_text("timed out after " + std::to_string(seconds) + " s", dir),
+                          true, config_.max_attempts);
+  } else if (status.exit_code == 0 && status.signal == 0) {
+    try {
+      store_.finish_success(job.id, read_result(dir, job));
+    } catch (const std::exception& e) {
+      store_.finish_failure(job.id, failure_text(std::string("exit 0 but ") + e.what(), dir), true,
+                            config_.max_attempts);
+    }
+  } else {
+    // Exit 2 is an invalid spec: running it again cannot help.
+    bool retryable = !(status.signal == 0 && status.exit_code == 2);
+    store_.finish_failure(job.id, failure_text("engine " + status.describe(), dir), retryable,
+                          config_.max_attempts);
+  }
+  on_job_done_(job.id);
+}
+
+}  // namespace rockcal::orch

@@ -1,0 +1,55 @@
+// The worker pool: N threads, each claiming a queued job from the store, running it through the
+// executor and recording its outcome (result, retry, or failure with the last log lines).
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "db/store.hpp"
+#include "orchestrator/executor.hpp"
+
+namespace rockcal::orch {
+
+struct PoolConfig {
+  int workers = 1;
+  int max_attempts = 3;  // first run + retries
+  std::chrono::milliseconds job_timeout{std::chrono::hours(6)};
+  std::filesystem::path data_dir;  // absolute
+  std::chrono::milliseconds poll_interval{100};
+  std::chrono::milliseconds cancel_check_interval{300};
+  std::chrono::milliseconds progress_interval{1000};
+};
+
+class WorkerPool {
+ public:
+  // `on_job_done` is called after a job reached an end state (or was re-queued).
+  WorkerPool(db::Store& store, Executor& executor, PoolConfig config,
+             std::function<void(std::int64_t job_id)> on_job_done);
+  ~WorkerPool() { stop(); }
+
+  void start();
+  // Stops every worker; jobs still running are stopped and put back in the queue.
+  void stop();
+  // Tells idle workers there may be new work.
+  void wake();
+
+ private:
+  void work(std::stop_token stop);
+  void execute(const db::JobRow& job, std::stop_token stop);
+
+  db::Store& store_;
+  Executor& executor_;
+  PoolConfig config_;
+  std::function<void(std::int64_t)> on_job_done_;
+  std::mutex mutex_;
+  std::condition_variable_any wake_cv_;
+  std::uint64_t wake_count_ = 0;
+  std::vector<std::jthread> threads_;
+};
+
+}  // namespace rockcal::orch
