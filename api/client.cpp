@@ -1,0 +1,183 @@
+#include "api/client.hpp"
+
+#include <httplib.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "api/server.hpp"
+
+namespace rockcal::api {
+
+using nlohmann::json;
+
+namespace {
+
+struct Http {
+  httplib::Client client;
+  httplib::Headers headers;
+
+  explicit Http(const ClientOptions& o) : client(o.server) {
+    client.set_connection_timeout(5, 0);
+    client.set_read_timeout(60, 0);
+    std::string token;
+    if (!o.token_file.empty()) {
+      token = read_token_file(o.token_file);
+    } else if (const char* env = std::getenv("ROCKCAL_TOKEN")) {
+      token = env;
+    }
+    if (!token.empty()) headers.emplace("Authorization", "Bearer " + token);
+  }
+};
+
+// Prints the server's error (or the transport error) and returns the exit code to use.
+int report(const httplib::Result& r) {
+  if (!r) {
+    std::cerr << "rockcal: cannot reach the server: " << httplib::to_string(r.error()) << "\n";
+    return 2;
+  }
+  json body = json::parse(r->body, nullptr, false);
+  std::string msg =
+      body.is_object() && body.contains("error") ? body["error"].get<std::string>() : r->body;
+  std::cerr << "rockcal: HTTP " << r->status << ": " << msg;
+  if (body.is_object() && body.contains("field")) std::cerr << " (field " << body["field"] << ")";
+  std::cerr << "\n";
+  return 1;
+}
+
+std::string path_of(std::int64_t id, const std::string& rest = "") {
+  return "/api/v1/campaigns/" + std::to_string(id) + rest;
+}
+
+std::string duration_text(double seconds) {
+  long s = std::lround(seconds);
+  std::ostringstream out;
+  if (s >= 3600) out << s / 3600 << "h";
+  if (s >= 60) out << (s / 60) % 60 << "m";
+  out << s % 60 << "s";
+  return out.str();
+}
+
+std::string status_line(const json& c) {
+  const json& p = c["progress"];
+  std::ostringstream out;
+  out << "campaign " << c["id"] << " " << c["state"].get<std::string>() << " "
+      << progress_bar(p["fraction"].get<double>(), 30) << " " << p["succeeded"] << "/" << p["total"]
+      << " done";
+  if (p["cached"].get<std::int64_t>() > 0) out << " (" << p["cached"] << " cached)";
+  out << ", " << p["running"] << " running, " << p["queued"] << " queued";
+  if (p["failed"].get<std::int64_t>() > 0) out << ", " << p["failed"] << " failed";
+  if (p["cancelled"].get<std::int64_t>() > 0) out << ", " << p["cancelled"] << " cancelled";
+  if (!p["eta_seconds"].is_null() &&
+      p["queued"].get<std::int64_t>() + p["running"].get<std::int64_t>() > 0) {
+    out << ", ETA " << duration_text(p["eta_seconds"].get<double>());
+  }
+  return out.str();
+}
+
+bool finished(const std::string& state) {
+  return state == "succeeded" || state == "failed" || state == "cancelled";
+}
+
+}  // namespace
+
+std::string progress_bar(double fraction, int width) {
+  fraction = std::clamp(std::isfinite(fraction) ? fraction : 0.0, 0.0, 1.0);
+  int filled = static_cast<int>(std::lround(fraction * width));
+  return "[" + std::string(filled, '#') + std::string(width - filled, '.') + "] " +
+         std::to_string(static_cast<int>(std::lround(fraction * 100))) + "%";
+}
+
+int client_submit(const ClientOptions& o, const std::string& file) {
+  std::ostringstream body;
+  if (file == "-") {
+    body << std::cin.rdbuf();
+  } else {
+    std::ifstream in(file);
+    if (!in) {
+      std::cerr << "rockcal: cannot read " << file << "\n";
+      return 2;
+    }
+    body << in.rdbuf();
+  }
+  Http http(o);
+  auto r = http.client.Post("/api/v1/campaigns", http.headers, body.str(), "application/json");
+  if (!r || r->status != 201) return report(r);
+  std::cout << json::parse(r->body)["id"] << "\n";
+  return 0;
+}
+
+int client_status(const ClientOptions& o, std::int64_t id, bool wait) {
+  Http http(o);
+  bool tty = isatty(1);
+  while (true) {
+    auto r = http.client.Get(path_of(id), http.headers);
+    if (!r || r->status != 200) return report(r);
+    json c = json::parse(r->body);
+    std::string line = status_line(c);
+    bool done = finished(c["state"].get<std::string>());
+    if (!wait || done || !tty) {
+      if (wait && !done) {
+        std::cout << line << std::endl;
+      } else {
+        std::cout << (tty && wait ? "\r\033[K" : "") << line << std::endl;
+        return c["state"] == "succeeded" || !wait ? 0 : 1;
+      }
+    } else {
+      std::cout << "\r\033[K" << line << std::flush;
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+  }
+}
+
+int client_results(const ClientOptions& o, std::int64_t id, bool csv) {
+  Http http(o);
+  auto r = http.client.Get(path_of(id, csv ? "/results?format=csv" : "/results"), http.headers);
+  if (!r || r->status != 200) return report(r);
+  if (csv) {
+    std::cout << r->body;
+    return 0;
+  }
+  json body = json::parse(r->body);
+  std::printf("%8s %5s %12s %12s %14s %14s %14s %10s %10s\n", "job", "test", "fr0", "fs0",
+              "peak_load", "strength", "youngs_mod", "particles", "state");
+  auto num = [](const json& v) { return v.is_number() ? v.get<double>() : NAN; };
+  for (const auto& row : body["results"]) {
+    std::printf("%8lld %5s %12.5g %12.5g %14.6g %14.6g %14.6g %10lld %10s\n",
+                static_cast<long long>(row["job_id"].get<std::int64_t>()),
+                row["test"].get<std::string>().c_str(), num(row["fr0"]), num(row["fs0"]),
+                num(row["peak_load"]), num(row["strength"]), num(row["youngs_modulus"]),
+                row["particles"].is_number()
+                    ? static_cast<long long>(row["particles"].get<std::int64_t>())
+                    : -1LL,
+                row["state"].get<std::string>().c_str());
+  }
+  return 0;
+}
+
+int client_cancel(const ClientOptions& o, std::int64_t id) {
+  Http http(o);
+  auto r = http.client.Delete(path_of(id), http.headers);
+  if (!r || r->status != 200) return report(r);
+  std::cout << status_line(json::parse(r->body)) << "\n";
+  return 0;
+}
+
+int client_list(const ClientOptions& o) {
+  Http http(o);
+  auto r = http.client.Get("/api/v1/campaigns?limit=100", http.headers);
+  if (!r || r->status != 200) return report(r);
+  for (const auto& c : json::parse(r->body)["campaigns"]) {
+    std::cout << status_line(c) << "  " << c["kind"].get<std::string>() << " \""
+              << c["name"].get<std::string>() << "\"\n";
+  }
+  return 0;
+}
+
+}  // namespace rockcal::api

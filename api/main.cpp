@@ -1,0 +1,71 @@
+// rockcal: the calibration service (`serve`) and its command-line client, in one binary.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "api/client.hpp"
+#include "api/serve.hpp"
+
+int main(int argc, char** argv) {
+  using namespace rockcal::api;
+  CLI::App app{"rockcal: calibrates bonded-particle DEM models of rock"};
+  app.require_subcommand(1);
+
+  ServeOptions serve;
+  auto* s = app.add_subcommand("serve", "run the service (HTTP API, store and worker pool)");
+  s->add_option("--db", serve.db, "SQLite database file")->capture_default_str();
+  s->add_option("--data-dir", serve.data_dir, "job files (default: <db>.d)");
+  s->add_option("--listen", serve.listen, "HOST:PORT (port 0: any free port)")
+      ->capture_default_str();
+  s->add_option("--workers", serve.workers, "jobs run at once (default: cores / ranks)");
+  s->add_option("--ranks-per-job", serve.ranks_per_job, "MPI ranks per job; 0 runs without mpirun")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4096));
+  s->add_option("--token-file", serve.token_file, "require this bearer token on mutating routes")
+      ->check(CLI::ExistingFile);
+  s->add_option("--engine", serve.engine, "rockcal-dem executable");
+  s->add_option("--mpirun", serve.mpirun, "MPI launcher")->capture_default_str();
+  s->add_option("--retries", serve.retries, "re-runs of a failed job")->capture_default_str();
+  s->add_option("--job-timeout", serve.job_timeout_s, "seconds before a job is stopped")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  s->add_option("--max-jobs", serve.max_jobs, "cap on jobs per campaign")->capture_default_str();
+  s->add_option("--max-body", serve.max_body, "cap on request body bytes")->capture_default_str();
+  s->add_option("--http-threads", serve.http_threads, "HTTP worker threads")->capture_default_str();
+  s->add_option("--port-file", serve.port_file, "write the bound port here once listening");
+
+  ClientOptions client;
+  std::string file;
+  std::int64_t id = 0;
+  bool csv = false, wait = false;
+  auto add_common = [&](CLI::App* sub) {
+    sub->add_option("--server", client.server, "server URL")->capture_default_str();
+    sub->add_option("--token-file", client.token_file, "bearer token (or $ROCKCAL_TOKEN)");
+  };
+  auto* submit = app.add_subcommand("submit", "submit a campaign (JSON file, - for stdin)");
+  submit->add_option("file", file)->required();
+  auto* status = app.add_subcommand("status", "show a campaign's progress");
+  status->add_option("id", id)->required();
+  status->add_flag("--wait", wait, "redraw until the campaign has finished");
+  auto* results = app.add_subcommand("results", "print a campaign's results");
+  results->add_option("id", id)->required();
+  results->add_flag("--csv", csv, "CSV instead of a table");
+  auto* cancel = app.add_subcommand("cancel", "cancel a campaign");
+  cancel->add_option("id", id)->required();
+  auto* list = app.add_subcommand("list", "list campaigns");
+  for (auto* sub : {submit, status, results, cancel, list}) add_common(sub);
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*s) return run_serve(serve, argv[0]);
+    if (*submit) return client_submit(client, file);
+    if (*status) return client_status(client, id, wait);
+    if (*results) return client_results(client, id, csv);
+    if (*cancel) return client_cancel(client, id);
+    if (*list) return client_list(client);
+  } catch (const std::exception& e) {
+    std::cerr << "rockcal: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

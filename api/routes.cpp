@@ -1,0 +1,194 @@
+#include "api/routes.hpp"
+
+#include "api/http_util.hpp"
+#include "api/metrics.hpp"
+#include "api/views.hpp"
+#include "engine/spec.hpp"
+#include "orchestrator/job_files.hpp"
+
+namespace rockcal::api {
+
+using nlohmann::json;
+using Req = httplib::Request;
+using Res = httplib::Response;
+
+std::string path_regex(const std::string& path_template) {
+  std::string out;
+  bool in_param = false;
+  for (char ch : path_template) {
+    if (ch == '{') {
+      in_param = true;
+      out += "([^/]+)";
+    } else if (ch == '}') {
+      in_param = false;
+    } else if (!in_param) {
+      out += ch;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+json parse_body(const Req& req) {
+  try {
+    return json::parse(req.body);
+  } catch (const json::parse_error& e) {
+    throw HttpError(400, std::string("malformed JSON: ") + e.what(), "(body)");
+  }
+}
+
+db::CampaignRow campaign_or_404(orch::JobService& svc, const Req& req) {
+  auto id = parse_id(req.matches[1], "campaign id");
+  auto c = svc.store().campaign(id);
+  if (!c) throw HttpError(404, "no campaign " + std::to_string(id));
+  return *c;
+}
+
+db::JobRow job_or_404(orch::JobService& svc, const Req& req) {
+  auto id = parse_id(req.matches[1], "job id");
+  auto j = svc.store().job(id);
+  if (!j) throw HttpError(404, "no job " + std::to_string(id));
+  return *j;
+}
+
+std::optional<db::ResultRow> result_of(orch::JobService& svc, const db::JobRow& j) {
+  if (j.state != db::kSucceeded) return std::nullopt;
+  return svc.store().result(j.hash);
+}
+
+void create_campaign(ApiContext& ctx, const Req& req, Res& res) {
+  json request = parse_body(req);
+  auto id = ctx.service.create_campaign(request);
+  auto c = ctx.service.store().campaign(id);
+  json body = campaign_json(*c, orch::campaign_status(ctx.service.store(), *c, ctx.workers));
+  res.set_header("Location", "/api/v1/campaigns/" + std::to_string(id));
+  send_json(res, body, 201);
+}
+
+void list_campaigns(ApiContext& ctx, const Req& req, Res& res) {
+  reject_unknown_params(req, {"limit", "offset"});
+  auto limit = query_int(req, "limit", 50, 1, 500);
+  auto offset = query_int(req, "offset", 0, 0, INT64_MAX / 2);
+  auto& store = ctx.service.store();
+  json items = json::array();
+  for (const auto& c : store.campaigns(limit, offset)) {
+    items.push_back(campaign_json(c, orch::campaign_status(store, c, ctx.workers)));
+  }
+  send_json(res, {{"campaigns", items},
+                  {"total", store.campaign_count()},
+                  {"limit", limit},
+                  {"offset", offset}});
+}
+
+void get_campaign(ApiContext& ctx, const Req& req, Res& res) {
+  auto c = campaign_or_404(ctx.service, req);
+  send_json(res, campaign_json(c, orch::campaign_status(ctx.service.store(), c, ctx.workers)));
+}
+
+void cancel_campaign(ApiContext& ctx, const Req& req, Res& res) {
+  auto id = parse_id(req.matches[1], "campaign id");
+  switch (ctx.service.cancel_campaign(id)) {
+    case db::CancelOutcome::not_found:
+      throw HttpError(404, "no campaign " + std::to_string(id));
+    case db::CancelOutcome::already_finished:
+      throw HttpError(409, "campaign " + std::to_string(id) + " has already finished");
+    case db::CancelOutcome::cancelled:
+      break;
+  }
+  auto c = ctx.service.store().campaign(id);
+  send_json(res, campaign_json(*c, orch::campaign_status(ctx.service.store(), *c, ctx.workers)));
+}
+
+void campaign_results(ApiContext& ctx, const Req& req, Res& res) {
+  reject_unknown_params(req, {"format"});
+  auto c = campaign_or_404(ctx.service, req);
+  std::string format = req.has_param("format") ? req.get_param_value("format") : "json";
+  if (format != "json" && format != "csv") {
+    throw HttpError(400, "format must be json or csv", "format");
+  }
+  auto rows = ctx.service.store().campaign_results(c.id);
+  if (format == "csv") {
+    res.set_content(results_csv(rows), "text/csv");
+    return;
+  }
+  json items = json::array();
+  for (const auto& row : rows) items.push_back(result_row_json(row));
+  send_json(res, {{"campaign_id", c.id}, {"results", items}});
+}
+
+void get_job(ApiContext& ctx, const Req& req, Res& res) {
+  auto j = job_or_404(ctx.service, req);
+  send_json(res, job_json(j, result_of(ctx.service, j), true));
+}
+
+void job_log(ApiContext& ctx, const Req& req, Res& res) {
+  auto j = job_or_404(ctx.service, req);
+  // The path is built from the numeric id the store returned, never from the request text.
+  auto file = orch::job_dir(ctx.service.data_dir(), j.id) / "log";
+  if (!std::filesystem::exists(file)) {
+    throw HttpError(
+        404, j.cached ? "job was answered from the store and never ran" : "job has no log yet");
+  }
+  res.set_content(orch::tail_file(file, 1u << 30, 1u << 20), "text/plain");
+}
+
+void job_curve(ApiContext& ctx, const Req& req, Res& res) {
+  auto j = job_or_404(ctx.service, req);
+  auto r = result_of(ctx.service, j);
+  if (!r || !r->curve) throw HttpError(404, "job " + std::to_string(j.id) + " has no load curve");
+  res.set_content(*r->curve, "text/csv");
+}
+
+void query_results(ApiContext& ctx, const Req& req, Res& res) {
+  reject_unknown_params(req,
+                        {"test", "fr0_min", "fr0_max", "fs0_min", "fs0_max", "limit", "offset"});
+  db::ResultFilter f;
+  if (req.has_param("test")) {
+    f.test = req.get_param_value("test");
+    if (!rockcal::test_kind_from_string(*f.test)) {
+      throw HttpError(400, "test must be uct, btt or elastic", "test");
+    }
+  }
+  f.fr0_min = query_number(req, "fr0_min");
+  f.fr0_max = query_number(req, "fr0_max");
+  f.fs0_min = query_number(req, "fs0_min");
+  f.fs0_max = query_number(req, "fs0_max");
+  f.limit = query_int(req, "limit", 1000, 1, 10000);
+  f.offset = query_int(req, "offset", 0, 0, INT64_MAX / 2);
+  json items = json::array();
+  for (const auto& r : ctx.service.store().results(f)) items.push_back(stored_result_json(r));
+  send_json(res, {{"results", items}});
+}
+
+}  // namespace
+
+std::vector<Route> api_routes(ApiContext& ctx) {
+  auto bind = [&ctx](void (*fn)(ApiContext&, const Req&, Res&)) {
+    return [&ctx, fn](const Req& req, Res& res) { fn(ctx, req, res); };
+  };
+  return {
+      {"GET", "/healthz",
+       [&ctx](const Req&, Res& res) {
+         send_json(res, {{"status", "ok"},
+                         {"engine_version", rockcal::engine_version()},
+                         {"workers", ctx.workers}});
+       }},
+      {"GET", "/metrics",
+       [&ctx](const Req&, Res& res) {
+         res.set_content(metrics_text(ctx.service.store(), ctx.workers),
+                         "text/plain; version=0.0.4");
+       }},
+      {"POST", "/api/v1/campaigns", bind(create_campaign)},
+      {"GET", "/api/v1/campaigns", bind(list_campaigns)},
+      {"GET", "/api/v1/campaigns/{id}", bind(get_campaign)},
+      {"DELETE", "/api/v1/campaigns/{id}", bind(cancel_campaign)},
+      {"GET", "/api/v1/campaigns/{id}/results", bind(campaign_results)},
+      {"GET", "/api/v1/jobs/{id}", bind(get_job)},
+      {"GET", "/api/v1/jobs/{id}/log", bind(job_log)},
+      {"GET", "/api/v1/jobs/{id}/curve", bind(job_curve)},
+      {"GET", "/api/v1/results", bind(query_results)},
+  };
+}
+
+}  // namespace rockcal::api

@@ -1,0 +1,27 @@
+// `rockcal serve`: the service process (store + workers + HTTP) until SIGINT/SIGTERM.
+#pragma once
+
+#include <string>
+
+namespace rockcal::api {
+
+struct ServeOptions {
+  std::string db = "rockcal.db";
+  std::string data_dir;  // default "<db>.d"
+  std::string listen = "127.0.0.1:8080";
+  int workers = 0;        // 0: cores / ranks
+  int ranks_per_job = 1;  // 0: run the engine without mpirun
+  std::string token_file;
+  std::string engine;  // default: rockcal-dem next to this binary, else PATH
+  std::string mpirun = "mpirun";
+  int retries = 2;
+  double job_timeout_s = 6 * 3600;
+  std::size_t max_jobs = 10000;
+  std::size_t max_body = 1 << 20;
+  int http_threads = 32;
+  std::string port_file;  // written with the bound port once listening
+};
+
+int run_serve(const ServeOptions& options, const std::string& argv0);
+
+}  // namespace rockcal::api

@@ -1,0 +1,112 @@
+#include "api/views.hpp"
+
+#include "api/http_util.hpp"
+
+namespace rockcal::api {
+
+using nlohmann::json;
+
+namespace {
+
+template <typename T>
+json or_null(const std::optional<T>& v) {
+  return v ? json(*v) : json(nullptr);
+}
+
+json parsed_or_null(const std::optional<std::string>& text) {
+  if (!text) return nullptr;
+  json j = json::parse(*text, nullptr, false);
+  return j.is_discarded() ? json(nullptr) : j;
+}
+
+}  // namespace
+
+json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s) {
+  json progress = {{"total", s.counts.total()},
+                   {"queued", s.counts.queued},
+                   {"running", s.counts.running},
+                   {"succeeded", s.counts.succeeded},
+                   {"failed", s.counts.failed},
+                   {"cancelled", s.counts.cancelled},
+                   {"cached", s.counts.cached},
+                   {"fraction", s.fraction},
+                   {"eta_seconds", or_null(s.eta_seconds)}};
+  json j = {{"id", c.id},          {"kind", c.kind},
+            {"name", c.name},      {"created_at", c.created_at},
+            {"state", s.state},    {"cancel_requested", c.cancel_requested},
+            {"progress", progress}};
+  if (c.driver_status) j["driver_status"] = *c.driver_status;
+  if (c.summary) j["summary"] = parsed_or_null(c.summary);
+  return j;
+}
+
+json job_json(const db::JobRow& j, const std::optional<db::ResultRow>& r, bool detail) {
+  json out = {{"id", j.id},
+              {"campaign_id", j.campaign_id},
+              {"test", j.test},
+              {"fr0", j.fr0},
+              {"fs0", j.fs0},
+              {"state", j.state},
+              {"cached", j.cached},
+              {"attempts", j.attempts},
+              {"hash", j.hash},
+              {"error", or_null(j.error)},
+              {"progress", or_null(j.progress)},
+              {"created_at", j.created_at},
+              {"started_at", or_null(j.started_at)},
+              {"finished_at", or_null(j.finished_at)}};
+  if (detail) {
+    out["spec"] = parsed_or_null(j.spec);
+    out["result"] = r ? parsed_or_null(r->result) : json(nullptr);
+  }
+  return out;
+}
+
+json result_row_json(const db::JobResultRow& row) {
+  const auto& j = row.job;
+  const auto& r = row.result;
+  return {{"job_id", j.id},
+          {"fr0", j.fr0},
+          {"fs0", j.fs0},
+          {"test", j.test},
+          {"peak_load", r ? or_null(r->peak_load) : json(nullptr)},
+          {"strength", r ? or_null(r->strength) : json(nullptr)},
+          {"youngs_modulus", r ? or_null(r->youngs_modulus) : json(nullptr)},
+          {"particles", r ? or_null(r->particles) : json(nullptr)},
+          {"wall_seconds", r ? or_null(r->wall_seconds) : json(nullptr)},
+          {"state", j.state},
+          {"cached", j.cached}};
+}
+
+json stored_result_json(const db::ResultRow& r) {
+  return {{"job_id", r.job_id},
+          {"hash", r.hash},
+          {"test", r.test},
+          {"fr0", r.fr0},
+          {"fs0", r.fs0},
+          {"peak_load", or_null(r.peak_load)},
+          {"strength", or_null(r.strength)},
+          {"youngs_modulus", or_null(r.youngs_modulus)},
+          {"poisson_ratio", or_null(r.poisson_ratio)},
+          {"particles", or_null(r.particles)},
+          {"wall_seconds", or_null(r.wall_seconds)},
+          {"engine_version", r.engine_version}};
+}
+
+std::string results_csv(const std::vector<db::JobResultRow>& rows) {
+  std::string out =
+      "fr0,fs0,test,peak_load,strength,youngs_modulus,particles,wall_seconds,state,job_id\n";
+  auto num = [](const std::optional<double>& v) { return v ? number_text(*v) : std::string(); };
+  for (const auto& row : rows) {
+    const auto& r = row.result;
+    out += number_text(row.job.fr0) + "," + number_text(row.job.fs0) + "," + row.job.test + ",";
+    out += (r ? num(r->peak_load) : "") + "," + (r ? num(r->strength) : "") + ",";
+    out += (r ? num(r->youngs_modulus) : "") + ",";
+    out += (r && r->particles ? std::to_string(*r->particles) : "") + ",";
+    out += (r ? num(r->wall_seconds) : "") + "," + row.job.state + "," + std::to_string(row.job.id);
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace rockcal::api

@@ -1,0 +1,21 @@
+// JSON and CSV renderings of store rows, as the API returns them.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "db/records.hpp"
+#include "orchestrator/campaign_status.hpp"
+
+namespace rockcal::api {
+
+nlohmann::json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s);
+// With `detail`, the spec and the full result.json are included.
+nlohmann::json job_json(const db::JobRow& j, const std::optional<db::ResultRow>& r, bool detail);
+// One row of a results table: fr0, fs0, test, peak_load, strength, youngs_modulus, particles,
+// wall_seconds, state (and job id, cached).
+nlohmann::json result_row_json(const db::JobResultRow& row);
+nlohmann::json stored_result_json(const db::ResultRow& r);
+
+std::string results_csv(const std::vector<db::JobResultRow>& rows);
+
+}  // namespace rockcal::api
