@@ -6,16 +6,20 @@ namespace rockcal {
 
 const char* to_string(BreakMode mode) {
   switch (mode) {
-    case BreakMode::tension: return "tension";
-    case BreakMode::shear: return "shear";
-    case BreakMode::twist: return "twist";
-    case BreakMode::bending: return "bending";
+    case BreakMode::tension:
+      return "tension";
+    case BreakMode::shear:
+      return "shear";
+    case BreakMode::twist:
+      return "twist";
+    case BreakMode::bending:
+      return "bending";
   }
   return "?";
 }
 
-Bond make_bond(std::int32_t i, std::int32_t j, const Vec3& x_i, double r_i, const Vec3& x_j, double r_j,
-               double kr, double ks, double kb, double kt, double fr0, double fs0) {
+Bond make_bond(std::int32_t i, std::int32_t j, const Vec3& x_i, double r_i, const Vec3& x_j,
+               double r_j, double kr, double ks, double kb, double kt, double fr0, double fs0) {
   Bond b;
   b.i = i;
   b.j = j;
@@ -35,7 +39,8 @@ Bond make_bond(std::int32_t i, std::int32_t j, const Vec3& x_i, double r_i, cons
   return b;
 }
 
-BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& x_j, const Quat& q_j) {
+BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& x_j,
+                   const Quat& q_j) {
   BondLoad out;
   const Vec3 d = x_j - x_i;
   const double len = d.norm();
@@ -85,7 +90,8 @@ BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& 
   return out;
 }
 
-double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule, BreakMode* dominant) {
+double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule,
+                      BreakMode* dominant) {
   const double f_r = load.f_r >= 0 ? load.f_r : rule.compression_coupling * load.f_r;
   const double terms[4] = {f_r / b.fr0, load.f_s / b.fs0, load.tau_t / b.gt0, load.tau_b / b.gb0};
   if (dominant) {
@@ -98,7 +104,8 @@ double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule
 }
 
 void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakRule& rule,
-                            std::int64_t step, std::vector<Bond>& broken, std::vector<BreakEvent>& events) {
+                            std::int64_t step, std::vector<Bond>& broken,
+                            std::vector<BreakEvent>& events) {
   std::size_t k = 0;
   while (k < bonds.size()) {
     const Bond& b = bonds[k];
@@ -121,7 +128,8 @@ void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakR
 
 double bond_energy(const std::vector<Bond>& bonds, const Particles& p) {
   double e = 0.0;
-  for (const Bond& b : bonds) e += bond_load(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]).energy;
+  for (const Bond& b : bonds)
+    e += bond_load(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]).energy;
   return e;
 }
 

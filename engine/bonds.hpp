@@ -6,8 +6,8 @@
 //   direction m is their radius-weighted mean in the world frame, and the shear displacement is
 //   r0 times the component of the current direction n off m. Rigid rotation leaves it zero;
 // - twist and bending: the relative rotation q_j q_i^-1 is split about the current bond axis into
-//   twist (about n) and swing (about an axis normal to n). The split is unique, so it does not depend
-//   on whether twist or bending was applied first, and it rotates with the pair.
+//   twist (about n) and swing (about an axis normal to n). The split is unique, so it does not
+//   depend on whether twist or bending was applied first, and it rotates with the pair.
 // Bonds are created when orientations are the identity, so n0 is the same in both body frames.
 #pragma once
 
@@ -49,14 +49,16 @@ struct BreakRule {
   double compression_coupling = 1.0;
 };
 
-BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& x_j, const Quat& q_j);
+BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& x_j,
+                   const Quat& q_j);
 
 // Left-hand side of eq. 2 and its dominant term.
-double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule, BreakMode* dominant);
+double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule,
+                      BreakMode* dominant);
 
 // Creates a bond between two particles at their current (rest) configuration.
-Bond make_bond(std::int32_t i, std::int32_t j, const Vec3& x_i, double r_i, const Vec3& x_j, double r_j,
-               double kr, double ks, double kb, double kt, double fr0, double fs0);
+Bond make_bond(std::int32_t i, std::int32_t j, const Vec3& x_i, double r_i, const Vec3& x_j,
+               double r_j, double kr, double ks, double kb, double kt, double fr0, double fs0);
 
 struct BreakEvent {
   std::int64_t step;
@@ -68,7 +70,8 @@ struct BreakEvent {
 // Adds every intact bond's forces and torques to the particles; bonds that satisfy eq. 2 break
 // (are removed from `bonds`) and are appended to `broken` and `events`.
 void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakRule& rule,
-                            std::int64_t step, std::vector<Bond>& broken, std::vector<BreakEvent>& events);
+                            std::int64_t step, std::vector<Bond>& broken,
+                            std::vector<BreakEvent>& events);
 
 double bond_energy(const std::vector<Bond>& bonds, const Particles& p);
 

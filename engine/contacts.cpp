@@ -30,7 +30,8 @@ void accumulate_contact_forces(NeighbourList& nl, Particles& p, const ContactLaw
     const double mu = c.bond == PairBond::broken ? law.broken_friction : law.friction;
     const double limit = mu * fn;
     const double ft_norm = ft.norm();
-    if (ft_norm > limit) {  // sliding: the spring stretches no further than the Coulomb limit allows
+    if (ft_norm >
+        limit) {  // sliding: the spring stretches no further than the Coulomb limit allows
       ft *= limit / ft_norm;
       s = -ft / law.ks_n_m;
     }

@@ -7,10 +7,10 @@
 namespace rockcal {
 
 struct ContactLaw {
-  double kn_n_m;             // normal stiffness (the bond's K_r)
-  double ks_n_m;             // tangential stiffness (the bond's K_s)
-  double friction;           // Coulomb coefficient between particles never bonded
-  double broken_friction;    // ... between particles whose bond broke
+  double kn_n_m;           // normal stiffness (the bond's K_r)
+  double ks_n_m;           // tangential stiffness (the bond's K_s)
+  double friction;         // Coulomb coefficient between particles never bonded
+  double broken_friction;  // ... between particles whose bond broke
 };
 
 void accumulate_contact_forces(NeighbourList& nl, Particles& p, const ContactLaw& law, double dt);

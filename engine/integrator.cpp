@@ -20,7 +20,9 @@ void drift(Particles& p, double dt) {
 }
 
 namespace {
-inline double sign(double x) { return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0); }
+inline double sign(double x) {
+  return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
+}
 
 inline void damp(Vec3& f, const Vec3& v, double alpha) {
   for (int a = 0; a < 3; ++a) f[a] -= alpha * std::abs(f[a]) * sign(v[a]);

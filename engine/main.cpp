@@ -14,7 +14,9 @@
 namespace {
 
 std::atomic<bool> g_stop{false};
-extern "C" void on_signal(int) { g_stop.store(true); }
+extern "C" void on_signal(int) {
+  g_stop.store(true);
+}
 
 constexpr int kExitOk = 0, kExitFailure = 1, kExitInvalid = 2, kExitStopped = 3;
 
@@ -50,7 +52,8 @@ int main(int argc, char** argv) {
   CLI::App app{"rockcal-dem: bonded-particle DEM runs of rock tests (UCT, BTT, elastic)"};
   app.require_subcommand(1);
   std::string job_path, out_dir = ".";
-  auto* validate = app.add_subcommand("validate", "check a job spec; print the canonical spec or the error");
+  auto* validate =
+      app.add_subcommand("validate", "check a job spec; print the canonical spec or the error");
   validate->add_option("job", job_path, "job spec (JSON)")->required();
   auto* run = app.add_subcommand("run", "run a job; write result.json, curve.csv, ... into --out");
   run->add_option("job", job_path, "job spec (JSON)")->required();
@@ -68,11 +71,15 @@ int main(int argc, char** argv) {
   if (!spec) {
     code = kExitInvalid;
   } else if (validate->parsed()) {
-    if (rank == 0) std::cout << nlohmann::json{{"valid", true}, {"spec", rockcal::to_json(*spec)}}.dump() << std::endl;
+    if (rank == 0)
+      std::cout << nlohmann::json{{"valid", true}, {"spec", rockcal::to_json(*spec)}}.dump()
+                << std::endl;
   } else if (ranks > 1) {
     if (rank == 0)
-      std::cerr << "rockcal-dem: runs on more than one rank need the domain decomposition, which this "
-                   "version does not have yet; use -np 1" << std::endl;
+      std::cerr
+          << "rockcal-dem: runs on more than one rank need the domain decomposition, which this "
+             "version does not have yet; use -np 1"
+          << std::endl;
     code = kExitFailure;
   } else {
     std::signal(SIGTERM, on_signal);

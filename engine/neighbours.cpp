@@ -49,7 +49,8 @@ bool NeighbourList::needs_rebuild(const Particles& p) const {
   return false;
 }
 
-void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact, const std::vector<Bond>& broken) {
+void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
+                          const std::vector<Bond>& broken) {
   const std::size_t n = p.size();
   std::vector<ContactPair> old;
   old.swap(pairs);
@@ -66,7 +67,8 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact, c
   }
   const double cell = 2.0 * r_max + skin;
   std::array<std::int64_t, 3> dims;
-  for (int a = 0; a < 3; ++a) dims[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>((hi[a] - lo[a]) / cell) + 1);
+  for (int a = 0; a < 3; ++a)
+    dims[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>((hi[a] - lo[a]) / cell) + 1);
   auto cell_of = [&](const Vec3& x, int a) {
     return std::min<std::int64_t>(dims[a] - 1, static_cast<std::int64_t>((x[a] - lo[a]) / cell));
   };
@@ -89,10 +91,14 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact, c
   std::size_t o = 0;  // cursor into the old (sorted) list, to carry tangential history over
   for (std::size_t i = 0; i < n; ++i) {
     row.clear();
-    const std::int64_t cx = cell_of(p.pos[i], 0), cy = cell_of(p.pos[i], 1), cz = cell_of(p.pos[i], 2);
-    for (std::int64_t z = std::max<std::int64_t>(0, cz - 1); z <= std::min(dims[2] - 1, cz + 1); ++z)
-      for (std::int64_t y = std::max<std::int64_t>(0, cy - 1); y <= std::min(dims[1] - 1, cy + 1); ++y)
-        for (std::int64_t x = std::max<std::int64_t>(0, cx - 1); x <= std::min(dims[0] - 1, cx + 1); ++x) {
+    const std::int64_t cx = cell_of(p.pos[i], 0), cy = cell_of(p.pos[i], 1),
+                       cz = cell_of(p.pos[i], 2);
+    for (std::int64_t z = std::max<std::int64_t>(0, cz - 1); z <= std::min(dims[2] - 1, cz + 1);
+         ++z)
+      for (std::int64_t y = std::max<std::int64_t>(0, cy - 1); y <= std::min(dims[1] - 1, cy + 1);
+           ++y)
+        for (std::int64_t x = std::max<std::int64_t>(0, cx - 1); x <= std::min(dims[0] - 1, cx + 1);
+             ++x) {
           const std::size_t c = static_cast<std::size_t>((z * dims[1] + y) * dims[0] + x);
           for (std::int32_t m = start[c]; m < start[c + 1]; ++m) {
             const std::int32_t j = members[m];
@@ -103,7 +109,8 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact, c
         }
     std::sort(row.begin(), row.end());
     for (std::int32_t j : row) {
-      ContactPair cp{static_cast<std::int32_t>(i), j, adj.lookup(static_cast<std::int32_t>(i), j), Vec3::Zero()};
+      ContactPair cp{static_cast<std::int32_t>(i), j, adj.lookup(static_cast<std::int32_t>(i), j),
+                     Vec3::Zero()};
       while (o < old.size() && (old[o].i < cp.i || (old[o].i == cp.i && old[o].j < cp.j))) ++o;
       if (o < old.size() && old[o].i == cp.i && old[o].j == cp.j) cp.spring = old[o].spring;
       pairs.push_back(cp);
@@ -113,9 +120,10 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact, c
 
 void NeighbourList::mark_broken(std::int32_t i, std::int32_t j) {
   if (i > j) std::swap(i, j);
-  auto it = std::lower_bound(pairs.begin(), pairs.end(), std::pair{i, j}, [](const ContactPair& a, const auto& key) {
-    return a.i < key.first || (a.i == key.first && a.j < key.second);
-  });
+  auto it = std::lower_bound(pairs.begin(), pairs.end(), std::pair{i, j},
+                             [](const ContactPair& a, const auto& key) {
+                               return a.i < key.first || (a.i == key.first && a.j < key.second);
+                             });
   if (it != pairs.end() && it->i == i && it->j == j) it->bond = PairBond::broken;
 }
 

@@ -13,9 +13,9 @@ namespace rockcal {
 enum class PairBond : std::uint8_t { none, intact, broken };
 
 struct ContactPair {
-  std::int32_t i, j;      // i < j
-  PairBond bond;          // an intact bond excludes the pair from contact forces
-  Vec3 spring;            // tangential spring displacement (history), m
+  std::int32_t i, j;  // i < j
+  PairBond bond;      // an intact bond excludes the pair from contact forces
+  Vec3 spring;        // tangential spring displacement (history), m
 };
 
 struct NeighbourList {

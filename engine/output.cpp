@@ -30,6 +30,7 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
               {"wall_seconds", r.wall_seconds},
               {"particle_steps_per_second", double(r.particles) * double(r.steps) / wall},
               {"stop_reason", r.stop_reason},
+              {"peak_reached", r.stop_reason == "post_peak"},
               {"engine_version", engine_version()},
               {"ranks", ranks},
               {"spec", to_json(spec)}};
@@ -52,7 +53,8 @@ void write_curve_csv(const fs::path& path, const std::vector<CurvePoint>& curve)
   out << "step,time_s,displacement_m,load_n,broken_bonds\n";
   out.precision(10);
   for (const CurvePoint& c : curve)
-    out << c.step << ',' << c.time_s << ',' << c.displacement_m << ',' << c.load_n << ',' << c.broken_bonds << '\n';
+    out << c.step << ',' << c.time_s << ',' << c.displacement_m << ',' << c.load_n << ','
+        << c.broken_bonds << '\n';
 }
 
 void write_breaks_csv(const fs::path& path, const std::vector<BreakEvent>& breaks) {
@@ -60,12 +62,17 @@ void write_breaks_csv(const fs::path& path, const std::vector<BreakEvent>& break
   out << "step,x,y,z,mode\n";
   out.precision(10);
   for (const BreakEvent& b : breaks)
-    out << b.step << ',' << b.where.x() << ',' << b.where.y() << ',' << b.where.z() << ',' << to_string(b.mode) << '\n';
+    out << b.step << ',' << b.where.x() << ',' << b.where.y() << ',' << b.where.z() << ','
+        << to_string(b.mode) << '\n';
 }
 
 nlohmann::json progress_to_json(const Progress& p) {
-  return {{"step", p.step},        {"fraction", p.fraction},         {"load", p.load_n},
-          {"peak_load", p.peak_load_n}, {"broken_bonds", p.broken_bonds}, {"elapsed_s", p.elapsed_s}};
+  return {{"step", p.step},
+          {"fraction", p.fraction},
+          {"load", p.load_n},
+          {"peak_load", p.peak_load_n},
+          {"broken_bonds", p.broken_bonds},
+          {"elapsed_s", p.elapsed_s}};
 }
 
 namespace {
@@ -79,8 +86,10 @@ class VtuWriter {
   }
   void begin(std::size_t n) {
     n_ = n;
-    out_ << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n";
+    out_ << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+            "byte_order=\"LittleEndian\">\n"
+         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
+         << "\">\n";
   }
   template <class F>
   void points(F point_at) {
@@ -89,7 +98,8 @@ class VtuWriter {
       const Vec3 x = point_at(k);
       out_ << x.x() << ' ' << x.y() << ' ' << x.z() << '\n';
     }
-    out_ << "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    out_ << "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+            "format=\"ascii\">\n";
     for (std::size_t k = 0; k < n_; ++k) out_ << k << '\n';
     out_ << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
     for (std::size_t k = 0; k < n_; ++k) out_ << k + 1 << '\n';
@@ -105,7 +115,8 @@ class VtuWriter {
   }
   template <class F>
   void vectors(const char* name, F value_at) {
-    out_ << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    out_ << "<DataArray type=\"Float64\" Name=\"" << name
+         << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (std::size_t k = 0; k < n_; ++k) {
       const Vec3 v = value_at(k);
       out_ << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';

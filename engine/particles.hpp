@@ -9,16 +9,16 @@
 namespace rockcal {
 
 struct Particles {
-  std::vector<Vec3> pos;        // m
-  std::vector<Vec3> vel;        // m/s
-  std::vector<Quat> orient;     // body -> world
-  std::vector<Vec3> omega;      // angular velocity in the world frame, rad/s
-  std::vector<Vec3> force;      // N, accumulated each step
-  std::vector<Vec3> torque;     // N m, accumulated each step
-  std::vector<double> radius;   // m
-  std::vector<double> mass;     // kg
-  std::vector<double> inertia;  // kg m^2 (spheres: isotropic)
-  std::vector<std::int64_t> id; // stable identity (survives reordering and, later, migration)
+  std::vector<Vec3> pos;         // m
+  std::vector<Vec3> vel;         // m/s
+  std::vector<Quat> orient;      // body -> world
+  std::vector<Vec3> omega;       // angular velocity in the world frame, rad/s
+  std::vector<Vec3> force;       // N, accumulated each step
+  std::vector<Vec3> torque;      // N m, accumulated each step
+  std::vector<double> radius;    // m
+  std::vector<double> mass;      // kg
+  std::vector<double> inertia;   // kg m^2 (spheres: isotropic)
+  std::vector<std::int64_t> id;  // stable identity (survives reordering and, later, migration)
 
   std::size_t size() const { return pos.size(); }
 

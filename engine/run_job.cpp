@@ -18,7 +18,8 @@ nlohmann::json run_job(const JobSpec& spec, const fs::path& dir, const std::atom
   hooks.on_progress = [&](const Progress& p) {
     write_atomically(dir / "progress.json", progress_to_json(p).dump() + "\n");
     if (progress_on_stderr) {
-      std::fprintf(stderr, "[rockcal-dem] %5.1f%%  step %lld  load %.6g  peak %.6g  broken %lld  %.1f s\n",
+      std::fprintf(stderr,
+                   "[rockcal-dem] %5.1f%%  step %lld  load %.6g  peak %.6g  broken %lld  %.1f s\n",
                    100.0 * p.fraction, static_cast<long long>(p.step), p.load_n, p.peak_load_n,
                    static_cast<long long>(p.broken_bonds), p.elapsed_s);
     }

@@ -11,8 +11,9 @@
 namespace rockcal {
 
 // Returns the result JSON (also written to dir/result.json). `stop` aborts the run early: then the
-// curve is kept and no result.json is written, and the returned JSON has "stop_reason": "cancelled".
-nlohmann::json run_job(const JobSpec& spec, const std::filesystem::path& dir, const std::atomic<bool>* stop,
-                       bool progress_on_stderr);
+// curve is kept and no result.json is written, and the returned JSON has "stop_reason":
+// "cancelled".
+nlohmann::json run_job(const JobSpec& spec, const std::filesystem::path& dir,
+                       const std::atomic<bool>* stop, bool progress_on_stderr);
 
 }  // namespace rockcal

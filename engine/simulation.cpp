@@ -53,7 +53,8 @@ double auto_time_step(const Simulation& sim, double safety) {
   for (std::size_t k = 0; k < p.size(); ++k) {
     const double lever = p.radius[k];
     const double kt = std::max(k_trans[k], contact_k) + wall_k;
-    const double kr = std::max(k_rot[k], sim.contact.ks_n_m * lever * lever) + wall_k * lever * lever;
+    const double kr =
+        std::max(k_rot[k], sim.contact.ks_n_m * lever * lever) + wall_k * lever * lever;
     dt = std::min(dt, critical_time_step(p.mass[k], p.inertia[k], kt, kr));
   }
   return safety * dt;

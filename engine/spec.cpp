@@ -10,17 +10,21 @@ namespace {
 
 using nlohmann::json;
 
-// Upper bound on the particles a spec may ask for: beyond this a typo (mm vs m) is likelier than intent.
+// Upper bound on the particles a spec may ask for: beyond this a typo (mm vs m) is likelier than
+// intent.
 constexpr double kMaxParticles = 5.0e7;
 
 // Reads one JSON object, remembering which keys were consumed so unknown keys can be reported.
 class ObjectReader {
  public:
   ObjectReader(const json& obj, std::string path) : obj_(obj), path_(std::move(path)) {
-    if (!obj_.is_object()) throw SpecError(path_.empty() ? "(root)" : path_, "must be a JSON object");
+    if (!obj_.is_object())
+      throw SpecError(path_.empty() ? "(root)" : path_, "must be a JSON object");
   }
 
-  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  std::string field(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
 
   const json* find(const std::string& key) {
     seen_.insert(key);
@@ -47,7 +51,8 @@ class ObjectReader {
   double in_range(const std::string& key, double fallback, double lo, double hi, bool hi_open) {
     double x = number(key).value_or(fallback);
     if (x < lo || x > hi || (hi_open && x == hi)) {
-      throw SpecError(field(key), "must be in [" + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]"));
+      throw SpecError(field(key),
+                      "must be in [" + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]"));
     }
     return x;
   }
@@ -112,22 +117,27 @@ SampleSpec parse_sample(ObjectReader& root) {
     s.thickness_m = *t;
   }
   s.packing = r.string("packing").value_or(s.packing);
-  if (s.packing != "fcc") throw SpecError("sample.packing", "unknown packing '" + s.packing + "' (known: fcc)");
+  if (s.packing != "fcc")
+    throw SpecError("sample.packing", "unknown packing '" + s.packing + "' (known: fcc)");
   s.radius_m = r.positive("radius", s.radius_m);
   if (auto seed = r.integer("seed", 0, std::numeric_limits<std::int64_t>::max())) s.seed = *seed;
   r.reject_unknown();
 
   // Sizes relative to the particle: a specimen must hold a few particles across, and not billions.
   const double cells = 2.0 * s.radius_m;
-  if (s.diameter_m < 2.0 * cells) throw SpecError("sample.diameter", "must be at least 4 particle radii");
-  if (s.height_m < 2.0 * cells) throw SpecError("sample.height", "must be at least 4 particle radii");
-  if (s.btt_thickness() < cells) throw SpecError("sample.thickness", "must be at least 2 particle radii");
+  if (s.diameter_m < 2.0 * cells)
+    throw SpecError("sample.diameter", "must be at least 4 particle radii");
+  if (s.height_m < 2.0 * cells)
+    throw SpecError("sample.height", "must be at least 4 particle radii");
+  if (s.btt_thickness() < cells)
+    throw SpecError("sample.thickness", "must be at least 2 particle radii");
   const double particle_volume = 4.0 * std::sqrt(2.0) * std::pow(s.radius_m, 3);  // FCC cell share
   const double longest = std::max(s.height_m, s.btt_thickness());
   const double estimate = M_PI * 0.25 * s.diameter_m * s.diameter_m * longest / particle_volume;
   if (estimate > kMaxParticles) {
-    throw SpecError("sample.diameter", "specimen would hold about " + ObjectReader::fmt(std::round(estimate)) +
-                                           " particles (limit " + ObjectReader::fmt(kMaxParticles) + ")");
+    throw SpecError("sample.diameter",
+                    "specimen would hold about " + ObjectReader::fmt(std::round(estimate)) +
+                        " particles (limit " + ObjectReader::fmt(kMaxParticles) + ")");
   }
   return s;
 }
@@ -149,11 +159,13 @@ MaterialSpec parse_material(ObjectReader& root) {
   if (m.kr_n_m && m.youngs_modulus_pa) {
     throw SpecError("material.youngs_modulus", "give either kr or youngs_modulus, not both");
   }
-  if (!m.kr_n_m && !m.youngs_modulus_pa) throw SpecError("material.kr", "kr or youngs_modulus is required");
+  if (!m.kr_n_m && !m.youngs_modulus_pa)
+    throw SpecError("material.kr", "kr or youngs_modulus is required");
   // Eq. 3 gives positive K_s, K_b, K_t only for -1 < nu < 1/3 (and K_r needs nu < 1/2).
   m.nu = r.number("nu").value_or(m.nu);
   if (!(m.nu > -1.0 && m.nu < 1.0 / 3.0)) {
-    throw SpecError("material.nu", "must be in (-1, 1/3): eq. 3 gives non-positive shear stiffness otherwise");
+    throw SpecError("material.nu",
+                    "must be in (-1, 1/3): eq. 3 gives non-positive shear stiffness otherwise");
   }
   r.reject_unknown();
   return m;
@@ -190,7 +202,8 @@ LoadingSpec parse_loading(ObjectReader& root) {
   l.platen_velocity_m_s = r.positive("platen_velocity", l.platen_velocity_m_s);
   if (const json* dt = r.find("dt")) {
     if (dt->is_string()) {
-      if (dt->get<std::string>() != "auto") throw SpecError("loading.dt", "must be \"auto\" or a positive number");
+      if (dt->get<std::string>() != "auto")
+        throw SpecError("loading.dt", "must be \"auto\" or a positive number");
     } else {
       l.dt_s = r.positive("dt", 1.0);
     }
@@ -245,7 +258,8 @@ JobSpec parse_body(ObjectReader& r, TestKind test) {
     // An explicit step above the stability limit would blow up silently; refuse it up front.
     const double limit = critical_time_step(s);
     if (*s.loading.dt_s > limit) {
-      throw SpecError("loading.dt", "exceeds the stability limit " + ObjectReader::fmt(limit) + " s");
+      throw SpecError("loading.dt",
+                      "exceeds the stability limit " + ObjectReader::fmt(limit) + " s");
     }
   }
   return s;
@@ -255,9 +269,12 @@ JobSpec parse_body(ObjectReader& r, TestKind test) {
 
 const char* to_string(TestKind test) {
   switch (test) {
-    case TestKind::uct: return "uct";
-    case TestKind::btt: return "btt";
-    case TestKind::elastic: return "elastic";
+    case TestKind::uct:
+      return "uct";
+    case TestKind::btt:
+      return "btt";
+    case TestKind::elastic:
+      return "elastic";
   }
   return "?";
 }
@@ -289,12 +306,9 @@ JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test) {
 nlohmann::json to_json(const JobSpec& s) {
   json j;
   j["test"] = to_string(s.test);
-  j["sample"] = {{"diameter", s.sample.diameter_m},
-                 {"height", s.sample.height_m},
-                 {"thickness", s.sample.btt_thickness()},
-                 {"packing", s.sample.packing},
-                 {"radius", s.sample.radius_m},
-                 {"seed", s.sample.seed}};
+  j["sample"] = {{"diameter", s.sample.diameter_m},       {"height", s.sample.height_m},
+                 {"thickness", s.sample.btt_thickness()}, {"packing", s.sample.packing},
+                 {"radius", s.sample.radius_m},           {"seed", s.sample.seed}};
   json mat = {{"density", s.material.density_kg_m3}, {"nu", s.material.nu}};
   if (s.material.kr_n_m) mat["kr"] = *s.material.kr_n_m;
   if (s.material.youngs_modulus_pa) mat["youngs_modulus"] = *s.material.youngs_modulus_pa;
@@ -308,7 +322,10 @@ nlohmann::json to_json(const JobSpec& s) {
             {"max_strain", s.loading.max_strain},
             {"platen_friction", s.loading.platen_friction},
             {"elastic_strain", s.loading.elastic_strain}};
-  if (s.loading.dt_s) l["dt"] = *s.loading.dt_s; else l["dt"] = "auto";
+  if (s.loading.dt_s)
+    l["dt"] = *s.loading.dt_s;
+  else
+    l["dt"] = "auto";
   if (s.loading.max_steps) l["max_steps"] = *s.loading.max_steps;
   j["loading"] = l;
   j["damping"] = {{"local", s.damping.local}, {"viscous", s.damping.viscous}};
@@ -319,6 +336,8 @@ nlohmann::json to_json(const JobSpec& s) {
   return j;
 }
 
-const char* engine_version() { return "rockcal-dem 0.1.0"; }
+const char* engine_version() {
+  return "rockcal-dem 0.1.0";
+}
 
 }  // namespace rockcal

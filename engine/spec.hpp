@@ -21,18 +21,18 @@ struct SpecError : std::runtime_error {
 
 struct SampleSpec {
   double diameter_m = 10.0;
-  double height_m = 28.0;                 // UCT and elastic specimen length
-  std::optional<double> thickness_m;      // BTT disc thickness; default diameter / 2
+  double height_m = 28.0;             // UCT and elastic specimen length
+  std::optional<double> thickness_m;  // BTT disc thickness; default diameter / 2
   std::string packing = "fcc";
-  double radius_m = 1.0;                  // particle radius (mean radius for random packings)
+  double radius_m = 1.0;  // particle radius (mean radius for random packings)
   std::uint64_t seed = 1;
   double btt_thickness() const { return thickness_m.value_or(0.5 * diameter_m); }
 };
 
 struct MaterialSpec {
   double density_kg_m3 = 1.0;
-  std::optional<double> kr_n_m;            // normal bond stiffness given directly ...
-  std::optional<double> youngs_modulus_pa; // ... or derived from E by eq. 3 (exactly one of them)
+  std::optional<double> kr_n_m;             // normal bond stiffness given directly ...
+  std::optional<double> youngs_modulus_pa;  // ... or derived from E by eq. 3 (exactly one of them)
   double nu = 0.2;
 };
 
@@ -46,15 +46,15 @@ struct ContactSpec {
 };
 
 struct LoadingSpec {
-  double platen_velocity_m_s = 0.05;   // each platen moves at this speed towards the centre
-  std::optional<double> dt_s;          // nullopt = "auto"
-  double dt_safety = 0.5;              // fraction of the critical step used by "auto"
-  double ramp_fraction = 0.01;         // platen speed ramps up over this fraction of max_strain
-  double stop_load_fraction = 0.7;     // stop once the load falls to this fraction of the peak
-  double max_strain = 0.05;            // stop at this platen strain (total closure / length)
+  double platen_velocity_m_s = 0.05;  // each platen moves at this speed towards the centre
+  std::optional<double> dt_s;         // nullopt = "auto"
+  double dt_safety = 0.5;             // fraction of the critical step used by "auto"
+  double ramp_fraction = 0.01;        // platen speed ramps up over this fraction of max_strain
+  double stop_load_fraction = 0.7;    // stop once the load falls to this fraction of the peak
+  double max_strain = 0.05;           // stop at this platen strain (total closure / length)
   std::optional<std::int64_t> max_steps;
-  double platen_friction = 0.0;        // Coulomb coefficient between platen and particles
-  double elastic_strain = 2e-4;        // elastic test: the applied axial strain
+  double platen_friction = 0.0;  // Coulomb coefficient between platen and particles
+  double elastic_strain = 2e-4;  // elastic test: the applied axial strain
 };
 
 struct DampingSpec {
@@ -63,8 +63,8 @@ struct DampingSpec {
 };
 
 struct OutputSpec {
-  bool vtk = false;             // write particle and broken-bond VTK files
-  std::int64_t vtk_frames = 10; // number of VTK snapshots over the run
+  bool vtk = false;                  // write particle and broken-bond VTK files
+  std::int64_t vtk_frames = 10;      // number of VTK snapshots over the run
   std::int64_t curve_points = 2000;  // approximate rows in curve.csv
   double progress_seconds = 2.0;     // period of progress reports
 };

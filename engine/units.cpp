@@ -26,7 +26,8 @@ BondStiffness stiffness_from_youngs_modulus(double e, double nu, double radius) 
 }
 
 BondStiffness bond_stiffness(const JobSpec& spec, double radius) {
-  if (spec.material.kr_n_m) return stiffness_from_kr(*spec.material.kr_n_m, spec.material.nu, radius);
+  if (spec.material.kr_n_m)
+    return stiffness_from_kr(*spec.material.kr_n_m, spec.material.nu, radius);
   return stiffness_from_youngs_modulus(*spec.material.youngs_modulus_pa, spec.material.nu, radius);
 }
 
@@ -34,7 +35,9 @@ double sphere_mass(double density, double radius) {
   return density * 4.0 / 3.0 * M_PI * radius * radius * radius;
 }
 
-double sphere_inertia(double mass, double radius) { return 0.4 * mass * radius * radius; }
+double sphere_inertia(double mass, double radius) {
+  return 0.4 * mass * radius * radius;
+}
 
 double critical_time_step(double mass, double inertia, double sum_k, double sum_k_rot) {
   double ratio = std::numeric_limits<double>::infinity();
@@ -53,9 +56,10 @@ double critical_time_step(const JobSpec& spec) {
   return critical_time_step(m, sphere_inertia(m, r), sum_k, sum_k_rot);
 }
 
-Scaling make_scaling(const LabMaterial& lab, const ModelChoice& model, std::optional<double> length_ratio) {
-  if (!(lab.youngs_modulus_pa > 0 && lab.density_kg_m3 > 0 && lab.grain_radius_m > 0 && model.kr_n_m > 0 &&
-        model.radius_m > 0 && model.density_kg_m3 > 0)) {
+Scaling make_scaling(const LabMaterial& lab, const ModelChoice& model,
+                     std::optional<double> length_ratio) {
+  if (!(lab.youngs_modulus_pa > 0 && lab.density_kg_m3 > 0 && lab.grain_radius_m > 0 &&
+        model.kr_n_m > 0 && model.radius_m > 0 && model.density_kg_m3 > 0)) {
     throw std::invalid_argument("scaling needs positive lab and model quantities");
   }
   Scaling s;

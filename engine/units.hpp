@@ -9,13 +9,14 @@ namespace rockcal {
 struct JobSpec;
 
 struct BondStiffness {
-  double kr_n_m;    // normal
-  double ks_n_m;    // each shear direction
-  double kb_nm_rad; // each bending direction (torque per radian)
-  double kt_nm_rad; // twisting
+  double kr_n_m;     // normal
+  double ks_n_m;     // each shear direction
+  double kb_nm_rad;  // each bending direction (torque per radian)
+  double kt_nm_rad;  // twisting
 };
 
-// Eq. 3 ratios applied to a given normal stiffness: K_s, K_b, K_t from K_r, nu and the bond radius R.
+// Eq. 3 ratios applied to a given normal stiffness: K_s, K_b, K_t from K_r, nu and the bond radius
+// R.
 BondStiffness stiffness_from_kr(double kr_n_m, double nu, double radius_m);
 // Eq. 3 in full: K_r = sqrt(2) E R / (2 (1 - 2 nu)).
 double kr_from_youngs_modulus(double youngs_modulus_pa, double nu, double radius_m);
@@ -28,8 +29,10 @@ double sphere_mass(double density_kg_m3, double radius_m);
 double sphere_inertia(double mass_kg, double radius_m);
 
 // Stability limit of a particle with the given summed translational and rotational stiffnesses:
-// dt_crit = sqrt(2) * sqrt(min(m / sum_k, I / sum_k_rot)) (mass-spring chain; YADE uses the same bound).
-double critical_time_step(double mass_kg, double inertia_kg_m2, double sum_k_n_m, double sum_k_rot_nm);
+// dt_crit = sqrt(2) * sqrt(min(m / sum_k, I / sum_k_rot)) (mass-spring chain; YADE uses the same
+// bound).
+double critical_time_step(double mass_kg, double inertia_kg_m2, double sum_k_n_m,
+                          double sum_k_rot_nm);
 // The same for a particle of the job's FCC packing (12 bonds, plus one platen contact).
 double critical_time_step(const JobSpec& spec);
 
@@ -49,13 +52,13 @@ struct ModelChoice {
 };
 
 struct Scaling {
-  double kr_lab_n_m;    // K_r1 of the lab grains by eq. 3
-  double length;        // x2 / x1
-  double mass;          // m2 / m1
-  double force;         // F2 / F1
-  double time;          // t2 / t1
-  double velocity;      // V2 / V1
-  double stress;        // sigma2 / sigma1 = force / length^2
+  double kr_lab_n_m;  // K_r1 of the lab grains by eq. 3
+  double length;      // x2 / x1
+  double mass;        // m2 / m1
+  double force;       // F2 / F1
+  double time;        // t2 / t1
+  double velocity;    // V2 / V1
+  double stress;      // sigma2 / sigma1 = force / length^2
 
   double force_to_model(double f_lab_n) const { return f_lab_n * force; }
   double force_to_lab(double f_model_n) const { return f_model_n / force; }

@@ -2,7 +2,8 @@
 
 namespace rockcal {
 
-Wall make_wall(const Vec3& normal, const Vec3& point, double kn, double ks, double friction, std::size_t n) {
+Wall make_wall(const Vec3& normal, const Vec3& point, double kn, double ks, double friction,
+               std::size_t n) {
   Wall w;
   w.normal = normal.normalized();
   w.point = point;

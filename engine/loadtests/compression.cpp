@@ -13,8 +13,8 @@ constexpr double kModulusLow = 0.2, kModulusHigh = 0.5;  // fraction of peak loa
 
 // Least-squares slope of stress against strain on the rising branch between the given fractions
 // of the peak load (ISRM-style average modulus).
-std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, double peak, double area_m2,
-                                      double length_m) {
+std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, double peak,
+                                      double area_m2, double length_m) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
   for (const CurvePoint& c : curve) {
@@ -43,7 +43,8 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
   const double t_max = ld.max_strain * length / (2.0 * speed);  // both platens move
   const double t_ramp = ld.ramp_fraction * t_max;
   const std::int64_t max_steps = ld.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
-  const std::int64_t expected = std::min<std::int64_t>(max_steps, static_cast<std::int64_t>(std::ceil(t_max / sim.dt)));
+  const std::int64_t expected =
+      std::min<std::int64_t>(max_steps, static_cast<std::int64_t>(std::ceil(t_max / sim.dt)));
   const std::int64_t curve_every = std::max<std::int64_t>(1, expected / spec.output.curve_points);
   const std::int64_t frame_every = std::max<std::int64_t>(1, expected / spec.output.vtk_frames);
 
@@ -64,7 +65,8 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     double f = std::max(closure / (ld.max_strain * length), double(sim.step) / double(max_steps));
     if (r.peak_load_n > 0 && load < r.peak_load_n)  // past the peak: how far towards the stop load
       f = std::max(f, (r.peak_load_n - load) / (r.peak_load_n * (1.0 - ld.stop_load_fraction)));
-    return Progress{sim.step, std::min(1.0, f), load, r.peak_load_n, std::int64_t(sim.broken.size()), elapsed};
+    return Progress{
+        sim.step, std::min(1.0, f), load, r.peak_load_n, std::int64_t(sim.broken.size()), elapsed};
   };
 
   while (true) {
@@ -85,11 +87,16 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     clock.maybe_report(progress);
 
     // A peak only counts once the ramp is over and bonds have started to break.
-    const bool past_peak = sim.time > t_ramp && !sim.broken.empty() && load <= ld.stop_load_fraction * r.peak_load_n;
-    if (past_peak) r.stop_reason = "post_peak";
-    else if (closure >= ld.max_strain * length) r.stop_reason = "max_strain";
-    else if (sim.step >= max_steps) r.stop_reason = "max_steps";
-    else if (clock.stop_requested()) r.stop_reason = "cancelled";
+    const bool past_peak =
+        sim.time > t_ramp && !sim.broken.empty() && load <= ld.stop_load_fraction * r.peak_load_n;
+    if (past_peak)
+      r.stop_reason = "post_peak";
+    else if (closure >= ld.max_strain * length)
+      r.stop_reason = "max_strain";
+    else if (sim.step >= max_steps)
+      r.stop_reason = "max_steps";
+    else if (clock.stop_requested())
+      r.stop_reason = "cancelled";
     if (!r.stop_reason.empty()) break;
   }
   if (r.curve.empty() || r.curve.back().step != sim.step)
@@ -114,7 +121,8 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
 }
 
 TestResult run_test(const JobSpec& spec, const RunHooks& hooks) {
-  return spec.test == TestKind::elastic ? run_elastic_test(spec, hooks) : run_compression_test(spec, hooks);
+  return spec.test == TestKind::elastic ? run_elastic_test(spec, hooks)
+                                        : run_compression_test(spec, hooks);
 }
 
 }  // namespace rockcal

@@ -32,7 +32,8 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
   const double transit_s = length / std::sqrt(e_lattice / rho_bulk);
   const double t_load = kLoadTransits * transit_s;
   const double t_hold_min = kHoldTransits * transit_s;
-  const std::int64_t max_steps = spec.loading.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
+  const std::int64_t max_steps =
+      spec.loading.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
 
   const std::vector<Vec3> reference = sim.particles.pos;
   Wall& bottom = sim.walls[kBottomPlaten];
@@ -47,21 +48,28 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
   r.dt_s = sim.dt;
   double load = 0.0, closure = 0.0;
   auto progress = [&](double elapsed) {
-    return Progress{sim.step, std::min(1.0, sim.time / (t_load + t_hold_min)), load, r.peak_load_n,
-                    std::int64_t(sim.broken.size()), elapsed};
+    return Progress{sim.step,
+                    std::min(1.0, sim.time / (t_load + t_hold_min)),
+                    load,
+                    r.peak_load_n,
+                    std::int64_t(sim.broken.size()),
+                    elapsed};
   };
 
   while (true) {
     // Half-cosine closure profile: zero speed at both ends, so the platens stop without a jolt.
     const double t_mid = sim.time + 0.5 * sim.dt;
-    const double speed = t_mid < t_load ? 0.5 * closure_target * M_PI / t_load * std::sin(M_PI * t_mid / t_load) : 0.0;
+    const double speed =
+        t_mid < t_load ? 0.5 * closure_target * M_PI / t_load * std::sin(M_PI * t_mid / t_load)
+                       : 0.0;
     bottom.velocity = Vec3(0, 0, 0.5 * speed);
     top.velocity = Vec3(0, 0, -0.5 * speed);
     sim.advance();
     closure = gap0 - (top.point.z() - bottom.point.z());
     load = 0.5 * (top.reaction.z() - bottom.reaction.z());
     r.peak_load_n = std::max(r.peak_load_n, load);
-    if (sim.step % 50 == 0) r.curve.push_back({sim.step, sim.time, closure, load, std::int64_t(sim.broken.size())});
+    if (sim.step % 50 == 0)
+      r.curve.push_back({sim.step, sim.time, closure, load, std::int64_t(sim.broken.size())});
     clock.maybe_report(progress);
 
     if (sim.time > t_load + t_hold_min && sim.step % 50 == 0) {
@@ -71,15 +79,20 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
         break;
       }
     }
-    if (sim.step >= max_steps) r.stop_reason = "max_steps";
-    else if (clock.stop_requested()) r.stop_reason = "cancelled";
+    if (sim.step >= max_steps)
+      r.stop_reason = "max_steps";
+    else if (clock.stop_requested())
+      r.stop_reason = "cancelled";
     if (!r.stop_reason.empty()) break;
   }
 
   // Interior: the central half of the specimen in radius and in height.
   const double r_in = 0.25 * diameter, z_in = 0.25 * length;
   const InteriorState s = measure_interior(
-      sim, reference, [&](const Vec3& x) { return x.x() * x.x() + x.y() * x.y() <= r_in * r_in && std::abs(x.z()) <= z_in; },
+      sim, reference,
+      [&](const Vec3& x) {
+        return x.x() * x.x() + x.y() * x.y() <= r_in * r_in && std::abs(x.z()) <= z_in;
+      },
       particle_volume);
   const double eps_axial = s.strain(2, 2);
   const double eps_lateral = 0.5 * (s.strain(0, 0) + s.strain(1, 1));

@@ -4,8 +4,8 @@
 namespace rockcal {
 
 template <class Region>
-InteriorState measure_interior(const Simulation& sim, const std::vector<Vec3>& reference, Region inside,
-                               double particle_volume_m3) {
+InteriorState measure_interior(const Simulation& sim, const std::vector<Vec3>& reference,
+                               Region inside, double particle_volume_m3) {
   const Particles& p = sim.particles;
   std::vector<char> in(p.size(), 0);
   Vec3 mean_x = Vec3::Zero(), mean_u = Vec3::Zero();

@@ -27,12 +27,12 @@ struct CurvePoint {
 struct TestResult {
   TestKind test = TestKind::uct;
   double peak_load_n = 0.0;
-  double strength_pa = 0.0;                  // UCS = F/A or BTS = 2P/(pi D t); elastic: 0
-  std::optional<double> youngs_modulus_pa;   // UCT pre-peak slope, or elastic test
-  std::optional<double> poisson_ratio;       // elastic test
+  double strength_pa = 0.0;                 // UCS = F/A or BTS = 2P/(pi D t); elastic: 0
+  std::optional<double> youngs_modulus_pa;  // UCT pre-peak slope, or elastic test
+  std::optional<double> poisson_ratio;      // elastic test
   double peak_displacement_m = 0.0;
   std::int64_t particles = 0, bonds = 0, broken_bonds = 0;
-  std::array<std::int64_t, 4> broken_by{};   // by BreakMode
+  std::array<std::int64_t, 4> broken_by{};  // by BreakMode
   std::int64_t steps = 0;
   double dt_s = 0.0;
   double wall_seconds = 0.0;

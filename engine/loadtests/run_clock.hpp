@@ -14,7 +14,9 @@ class RunClock {
   double elapsed_s() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
-  bool stop_requested() const { return hooks_.stop && hooks_.stop->load(std::memory_order_relaxed); }
+  bool stop_requested() const {
+    return hooks_.stop && hooks_.stop->load(std::memory_order_relaxed);
+  }
 
   // Reports progress when a period has passed since the last report (or when forced).
   template <class MakeProgress>

@@ -7,9 +7,11 @@ namespace rockcal {
 namespace {
 
 // Walks the lattice over a box of half-extents `half` and keeps the centres `inside` accepts.
-std::vector<Vec3> lattice_in(const Vec3& half, double radius, const std::function<bool(const Vec3&)>& inside) {
+std::vector<Vec3> lattice_in(const Vec3& half, double radius,
+                             const std::function<bool(const Vec3&)>& inside) {
   const double a = 2.0 * std::sqrt(2.0) * radius;  // cube edge: nearest neighbours 2R apart
-  const Vec3 basis[4] = {{0, 0, 0}, {0.5 * a, 0.5 * a, 0}, {0.5 * a, 0, 0.5 * a}, {0, 0.5 * a, 0.5 * a}};
+  const Vec3 basis[4] = {
+      {0, 0, 0}, {0.5 * a, 0.5 * a, 0}, {0.5 * a, 0, 0.5 * a}, {0, 0.5 * a, 0.5 * a}};
   std::vector<Vec3> out;
   const int nx = static_cast<int>(half.x() / a) + 1, ny = static_cast<int>(half.y() / a) + 1,
             nz = static_cast<int>(half.z() / a) + 1;
@@ -31,17 +33,19 @@ constexpr double kEps = 1e-9;
 std::vector<Vec3> fcc_centres(const Cylinder& s, double r) {
   const double rmax = 0.5 * s.diameter_m - (1.0 - kTolerance) * r + kEps;
   const double zmax = 0.5 * s.height_m - (1.0 - kTolerance) * r + kEps;
-  return lattice_in(Vec3(0.5 * s.diameter_m, 0.5 * s.diameter_m, 0.5 * s.height_m), r, [&](const Vec3& x) {
-    return x.x() * x.x() + x.y() * x.y() <= rmax * rmax && std::abs(x.z()) <= zmax;
-  });
+  return lattice_in(
+      Vec3(0.5 * s.diameter_m, 0.5 * s.diameter_m, 0.5 * s.height_m), r, [&](const Vec3& x) {
+        return x.x() * x.x() + x.y() * x.y() <= rmax * rmax && std::abs(x.z()) <= zmax;
+      });
 }
 
 std::vector<Vec3> fcc_centres(const Disc& s, double r) {
   const double rmax = 0.5 * s.diameter_m - (1.0 - kTolerance) * r + kEps;
   const double ymax = 0.5 * s.thickness_m - (1.0 - kTolerance) * r + kEps;
-  return lattice_in(Vec3(0.5 * s.diameter_m, 0.5 * s.thickness_m, 0.5 * s.diameter_m), r, [&](const Vec3& x) {
-    return x.x() * x.x() + x.z() * x.z() <= rmax * rmax && std::abs(x.y()) <= ymax;
-  });
+  return lattice_in(
+      Vec3(0.5 * s.diameter_m, 0.5 * s.thickness_m, 0.5 * s.diameter_m), r, [&](const Vec3& x) {
+        return x.x() * x.x() + x.z() * x.z() <= rmax * rmax && std::abs(x.y()) <= ymax;
+      });
 }
 
 }  // namespace rockcal
