@@ -38,6 +38,16 @@ nlohmann::json run_job(const JobSpec& spec, const fs::path& dir, const std::atom
   write_breaks_csv(dir / "breaks.csv", r.breaks);
   if (spec.output.vtk) write_breaks_vtu(dir / "vtk" / "breaks.vtu", r.breaks);
   nlohmann::json result = result_to_json(spec, r, 1);
+  if (progress_on_stderr) {
+    std::fprintf(stderr,
+                 "[rockcal-dem] %s: peak load %.6g N, strength %.6g Pa, %lld particles, %lld of "
+                 "%lld bonds broken, "
+                 "%lld steps in %.2f s (%s)\n",
+                 to_string(spec.test), r.peak_load_n, r.strength_pa,
+                 static_cast<long long>(r.particles), static_cast<long long>(r.broken_bonds),
+                 static_cast<long long>(r.bonds), static_cast<long long>(r.steps), r.wall_seconds,
+                 r.stop_reason.c_str());
+  }
   if (r.stop_reason != "cancelled") write_atomically(dir / "result.json", result.dump(2) + "\n");
   return result;
 }
