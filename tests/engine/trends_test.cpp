@@ -34,8 +34,8 @@ TEST(Trends, PeaksRiseWithShearStrengthAtFixedTensileStrength) {
 }
 
 TEST(Trends, BrazilianPeakRisesWithTensileStrengthAtFixedShearStrength) {
-  const double a = peak(TestKind::btt, 16, 64), b = peak(TestKind::btt, 32, 64),
-               c = peak(TestKind::btt, 64, 64);
+  const double a = peak(TestKind::btt, 32, 64), b = peak(TestKind::btt, 64, 64),
+               c = peak(TestKind::btt, 128, 64);
   EXPECT_LT(a, b);
   EXPECT_LT(b, c);
 }
