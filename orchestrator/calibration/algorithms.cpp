@@ -8,7 +8,7 @@ namespace {
 // Derivative-free only: a DEM peak load has no gradient worth the name (bond breakage is discrete).
 const std::vector<std::pair<std::string, nlopt::algorithm>>& table() {
   static const std::vector<std::pair<std::string, nlopt::algorithm>> algorithms = {
-      {"bobyqa", nlopt::LN_BOBYQA},   {"sbplx", nlopt::LN_SBPLX},
+      {"bobyqa", nlopt::LN_BOBYQA},         {"sbplx", nlopt::LN_SBPLX},
       {"neldermead", nlopt::LN_NELDERMEAD}, {"cobyla", nlopt::LN_COBYLA},
       {"direct_l", nlopt::GN_DIRECT_L},     {"crs2_lm", nlopt::GN_CRS2_LM},
   };

@@ -60,8 +60,8 @@ LabMaterial parse_lab_material(JsonFields& lab) {
   return material;
 }
 
-// The model's scale is the job template's own K_r, R and rho; "model_scale" may restate them (as the
-// paper does) but must agree, and adds the length ratio x2/x1.
+// The model's scale is the job template's own K_r, R and rho; "model_scale" may restate them (as
+// the paper does) but must agree, and adds the length ratio x2/x1.
 LabCase parse_lab_case(JsonFields& targets, const JobSpec& model) {
   JsonFields lab(targets.require("lab"), targets.path_of("lab"));
   LabCase c{parse_lab_specimen(lab), parse_lab_material(lab), {}, std::nullopt};
@@ -135,12 +135,15 @@ std::vector<std::uint64_t> parse_seeds(JsonFields& root) {
   std::vector<std::uint64_t> seeds;
   const json* v = root.get("seeds");
   if (!v) return seeds;
-  if (!v->is_array() || v->size() > 16) throw CampaignError("seeds", "must be a list of at most 16 seeds");
+  if (!v->is_array() || v->size() > 16)
+    throw CampaignError("seeds", "must be a list of at most 16 seeds");
   std::set<std::uint64_t> seen;
   for (std::size_t i = 0; i < v->size(); ++i) {
     const json& s = (*v)[i];
     const std::string field = "seeds[" + std::to_string(i) + "]";
-    if (!s.is_number_unsigned()) throw CampaignError(field, "must be a non-negative integer");
+    if (!s.is_number_integer() || (!s.is_number_unsigned() && s.get<std::int64_t>() < 0)) {
+      throw CampaignError(field, "must be a non-negative integer");
+    }
     if (!seen.insert(s.get<std::uint64_t>()).second) throw CampaignError(field, "is repeated");
     seeds.push_back(s.get<std::uint64_t>());
   }
@@ -184,13 +187,15 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   if (!nlopt_algorithm(c.algorithm)) {
     std::string known;
     for (const auto& n : algorithm_names()) known += (known.empty() ? "" : ", ") + n;
-    throw CampaignError("algorithm", "unknown algorithm '" + c.algorithm + "' (known: " + known + ")");
+    throw CampaignError("algorithm",
+                        "unknown algorithm '" + c.algorithm + "' (known: " + known + ")");
   }
   c.strategy = parse_strategy(root);
   c.initial_points = int(root.integer("initial_points", 0, 64).value_or(c.initial_points));
   c.random_seed = std::uint64_t(
       root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));
-  c.homogeneity_tolerance = root.positive("homogeneity_tolerance").value_or(c.homogeneity_tolerance);
+  c.homogeneity_tolerance =
+      root.positive("homogeneity_tolerance").value_or(c.homogeneity_tolerance);
   c.scatter_seeds = parse_seeds(root);
   root.reject_unknown();
   return c;
@@ -198,9 +203,12 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
 
 const char* to_string(Strategy strategy) {
   switch (strategy) {
-    case Strategy::automatic: return "auto";
-    case Strategy::ratio_scale: return "ratio_scale";
-    case Strategy::direct_2d: return "direct_2d";
+    case Strategy::automatic:
+      return "auto";
+    case Strategy::ratio_scale:
+      return "ratio_scale";
+    case Strategy::direct_2d:
+      return "direct_2d";
   }
   return "?";
 }

@@ -23,8 +23,8 @@ struct Range {
 
 struct CalibrationCampaign {
   std::string name;
-  nlohmann::json job_template;  // the "job" block: no "test", no "bond" (the search sets both)
-  Specimen model_specimen;      // the template's sample, for strengths in model units
+  nlohmann::json job_template;    // the "job" block: no "test", no "bond" (the search sets both)
+  Specimen model_specimen;        // the template's sample, for strengths in model units
   std::uint64_t sample_seed = 1;  // the template's packing seed, used by the search
   Targets targets;
   Range fr0_n{1, 1000};
@@ -35,9 +35,9 @@ struct CalibrationCampaign {
   double weight_btt = 1.0;
   std::string algorithm = "bobyqa";
   Strategy strategy = Strategy::automatic;
-  int initial_points = 4;     // Latin hypercube points of the space-filling start
-  std::uint64_t random_seed = 1;  // Latin hypercube and nlopt::srand
-  double homogeneity_tolerance = 0.1;  // accepted |exponent_uct - exponent_btt|
+  int initial_points = 4;                    // Latin hypercube points of the space-filling start
+  std::uint64_t random_seed = 1;             // Latin hypercube and nlopt::srand
+  double homogeneity_tolerance = 0.1;        // accepted |exponent_uct - exponent_btt|
   std::vector<std::uint64_t> scatter_seeds;  // extra packing seeds for the best point
 };
 

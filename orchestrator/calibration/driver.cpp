@@ -27,6 +27,16 @@ void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& rep
   report.strategy_used = "none";
   const std::vector<EvaluationRecord> start = ledger.evaluate(start_design(c), "start");
   report.homogeneity = measure_homogeneity(start[0], start[1], c.homogeneity_tolerance);
+  if (!report.homogeneity.measured) {
+    // A probe run failed: probe again around the best start point (one more evaluation).
+    if (const EvaluationRecord* best = ledger.best()) {
+      const EvaluationRecord base = *best;
+      const double factor = probe_scale_factor(base.point, c);
+      const BondPoint partner{base.point.fr0_n * factor, base.point.fs0_n * factor};
+      report.homogeneity =
+          measure_homogeneity(base, ledger.evaluate_one(partner, "start"), c.homogeneity_tolerance);
+    }
+  }
   const bool ratio_first = c.strategy == Strategy::ratio_scale ||
                            (c.strategy == Strategy::automatic && report.homogeneity.holds);
   if (ratio_first) {
@@ -41,7 +51,7 @@ void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& rep
     report.strategy_used = "direct_2d";
   }
   const EvaluationRecord* best = ledger.best();
-  local_search(ledger, c, best ? best->point : start[0].point);
+  local_search_with_restarts(ledger, c, best ? best->point : start[0].point);
 }
 
 SeedScatter scatter_best(const CalibrationCampaign& c, Evaluator& evaluator,
@@ -81,11 +91,14 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
         "both loads cannot be met; best is the weighted log-misfit compromise",
         r.ratio->target, r.ratio->min, r.ratio->max);
   } else if (r.stop_reason == StopReason::budget_exhausted) {
-    r.verdict_reason = format("the budget of %.0f evaluations ran out before both loads were within %.3g%%",
-                              c.max_evaluations, 100 * c.tolerance);
+    r.verdict_reason =
+        format("the budget of %.0f evaluations ran out before both loads were within %.3g%%",
+               c.max_evaluations, 100 * c.tolerance);
   } else {
-    r.verdict_reason = format("the optimiser converged without both loads within %.3g%% (noise, or "
-                              "the targets are barely reachable)", 100 * c.tolerance);
+    r.verdict_reason = format(
+        "the optimiser converged without both loads within %.3g%% (noise, or "
+        "the targets are barely reachable)",
+        100 * c.tolerance);
   }
 }
 
@@ -103,13 +116,22 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
   } catch (const EvaluationCancelled&) {
     cancelled = true;
   }
+  // The start batch may already meet the targets (SearchDone before the check): measure anyway.
+  if (!report.homogeneity.measured && ledger.history().size() >= 2) {
+    report.homogeneity =
+        measure_homogeneity(ledger.history()[0], ledger.history()[1], c.homogeneity_tolerance);
+  }
   report.history = ledger.history();
   if (const EvaluationRecord* best = ledger.best()) report.best = *best;
   report.ratio = ratio_range(report.history, ledger.targets());
-  if (cancelled) report.stop_reason = StopReason::cancelled;
-  else if (ledger.target_met()) report.stop_reason = StopReason::tolerance_met;
-  else if (ledger.remaining() <= 0) report.stop_reason = StopReason::budget_exhausted;
-  else report.stop_reason = StopReason::converged;
+  if (cancelled)
+    report.stop_reason = StopReason::cancelled;
+  else if (ledger.target_met())
+    report.stop_reason = StopReason::tolerance_met;
+  else if (ledger.remaining() <= 0)
+    report.stop_reason = StopReason::budget_exhausted;
+  else
+    report.stop_reason = StopReason::converged;
 
   if (!cancelled && report.best && !options.stop.stop_requested()) {
     try {
@@ -139,6 +161,8 @@ CalibrationThread::~CalibrationThread() {
   if (thread_.joinable()) thread_.join();
 }
 
-CalibrationReport CalibrationThread::wait() { return result_.get(); }
+CalibrationReport CalibrationThread::wait() {
+  return result_.get();
+}
 
 }  // namespace rockcal::calibration

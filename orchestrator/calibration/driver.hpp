@@ -22,8 +22,8 @@
 namespace rockcal::calibration {
 
 struct RunOptions {
-  std::stop_token stop;           // checked before every batch
-  RecordCallback on_evaluation;   // after each search evaluation (progress, persistence)
+  std::stop_token stop;          // checked before every batch
+  RecordCallback on_evaluation;  // after each search evaluation (progress, persistence)
 };
 
 // Runs the whole calibration in the calling thread and returns its report; a cancellation (stop

@@ -1,8 +1,8 @@
 // The structural check behind ratio-then-scale. For a quasi-static brittle bond model, scaling
 // F_r0 and F_s0 by c scales both peak loads by c (the bond forces at breakage scale with the
 // strengths, the stiffnesses do not change, so the displacement field at failure scales by c too);
-// then the UCT/BTT ratio depends on F_s0/F_r0 alone. Inertia, friction and damping break this, so it
-// is measured: a point and its scaled copy give the exponents p = ln(L(c x)/L(x)) / ln c.
+// then the UCT/BTT ratio depends on F_s0/F_r0 alone. Inertia, friction and damping break this, so
+// it is measured: a point and its scaled copy give the exponents p = ln(L(c x)/L(x)) / ln c.
 #pragma once
 
 #include <limits>

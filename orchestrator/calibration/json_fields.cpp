@@ -54,7 +54,9 @@ std::optional<std::int64_t> JsonFields::integer(const std::string& key, std::int
   if (!v) return std::nullopt;
   const bool fits = v->is_number_integer() &&
                     !(v->is_number_unsigned() && v->get<std::uint64_t>() > std::uint64_t(hi));
-  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  // Built by appending: GCC 12 warns falsely (-Wrestrict) on "[" + std::to_string(...).
+  std::string range = "[";
+  range.append(std::to_string(lo)).append(", ").append(std::to_string(hi)).append("]");
   if (!fits) throw CampaignError(path_of(key), "must be an integer in " + range);
   const std::int64_t x = v->get<std::int64_t>();
   if (x < lo || x > hi) throw CampaignError(path_of(key), "must be in " + range);

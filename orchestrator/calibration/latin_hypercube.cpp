@@ -6,7 +6,9 @@
 namespace rockcal::calibration {
 namespace {
 
-double unit_draw(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+double unit_draw(std::mt19937_64& rng) {
+  return double(rng() >> 11) * 0x1.0p-53;
+}
 
 // Fisher-Yates with explicit draws (std::shuffle's use of the engine is unspecified).
 std::vector<int> permutation(int n, std::mt19937_64& rng) {

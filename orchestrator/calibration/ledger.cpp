@@ -37,7 +37,8 @@ std::vector<EvaluationRecord> Ledger::evaluate(const std::vector<BondPoint>& poi
   }
   if (truncated || target_met()) throw SearchDone{};
   std::vector<EvaluationRecord> records;
-  for (const BondPoint& p : clipped) records.push_back(history_[index_of_point_.at({p.fr0_n, p.fs0_n})]);
+  for (const BondPoint& p : clipped)
+    records.push_back(history_[index_of_point_.at({p.fr0_n, p.fs0_n})]);
   return records;
 }
 
@@ -64,26 +65,45 @@ EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome&
   } else {
     if (outcome.loads) r.error = "non-positive or non-finite peak load";
     if (r.error.empty()) r.error = "evaluation failed";
-    r.misfit = failure_penalty();
+    r.misfit = failure_penalty(point);
   }
   return r;
 }
 
-// NLopt cannot handle NaN: a failure costs twice the worst misfit seen (at least that of being a
-// factor 10 off on both loads), so the optimiser steps away from it but its models stay finite.
-double Ledger::failure_penalty() const {
+// NLopt cannot handle NaN, so a failure gets a finite penalty: twice the worst misfit among the
+// three successful evaluations nearest to it (in the log box). The optimiser steps away from it,
+// but the penalty stays on the scale of its neighbourhood: a global "worst ever" penalty next to
+// the optimum wrecks BOBYQA's quadratic model and stalls it there.
+double Ledger::failure_penalty(const BondPoint& point) const {
   const Weights w = weights();
-  double worst = (w.uct + w.btt) * std::pow(std::log(10.0), 2);
+  const double floor = (w.uct + w.btt) * std::pow(std::log(10.0), 2);  // a factor 10 off on both
+  const double du = std::log(campaign_.fr0_n.hi / campaign_.fr0_n.lo);
+  const double dv = std::log(campaign_.fs0_n.hi / campaign_.fs0_n.lo);
+  std::vector<std::pair<double, double>> by_distance;  // (distance, misfit)
   for (const EvaluationRecord& r : history_) {
-    if (r.loads) worst = std::max(worst, r.misfit);
+    if (!r.loads) continue;
+    const double a = std::log(r.point.fr0_n / point.fr0_n) / du;
+    const double b = std::log(r.point.fs0_n / point.fs0_n) / dv;
+    by_distance.push_back({a * a + b * b, r.misfit});
   }
+  if (by_distance.empty()) return floor;
+  const std::size_t k = std::min<std::size_t>(3, by_distance.size());
+  std::partial_sort(by_distance.begin(), by_distance.begin() + k, by_distance.end());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < k; ++i) worst = std::max(worst, by_distance[i].second);
   return 2.0 * worst;
 }
 
+// A point that meets both tolerances beats one with a lower misfit that does not (one load 0%
+// off, the other 2.5%); among equals, the lower misfit.
 const EvaluationRecord* Ledger::best() const {
   const EvaluationRecord* best = nullptr;
   for (const EvaluationRecord& r : history_) {
-    if (r.loads && (!best || r.misfit < best->misfit)) best = &r;
+    if (!r.loads) continue;
+    if (!best || std::pair(!r.within_tolerance, r.misfit) <
+                     std::pair(!best->within_tolerance, best->misfit)) {
+      best = &r;
+    }
   }
   return best;
 }

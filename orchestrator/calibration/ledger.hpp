@@ -18,13 +18,13 @@
 namespace rockcal::calibration {
 
 struct EvaluationRecord {
-  int index = 0;          // order of evaluation, from 0
-  std::string phase;      // start | ratio | scale | local | scatter
-  BondPoint point{};      // model units, as run
+  int index = 0;      // order of evaluation, from 0
+  std::string phase;  // start | ratio | scale | local | scatter
+  BondPoint point{};  // model units, as run
   std::uint64_t sample_seed = 0;
   std::optional<PeakLoads> loads;  // absent when the evaluation failed
   std::string error;
-  double misfit = 0.0;    // the objective; a penalty for a failed evaluation
+  double misfit = 0.0;  // the objective; a penalty for a failed evaluation
   bool within_tolerance = false;
 };
 
@@ -56,7 +56,7 @@ class Ledger {
  private:
   EvaluationRecord record(const BondPoint& point, const EvaluationOutcome& outcome,
                           const std::string& phase);
-  double failure_penalty() const;
+  double failure_penalty(const BondPoint& point) const;
 
   const CalibrationCampaign& campaign_;
   Evaluator& evaluator_;

@@ -12,7 +12,9 @@ double misfit(const LogErrors& e, const Weights& w) {
   return w.uct * e.uct * e.uct + w.btt * e.btt * e.btt;
 }
 
-double relative_error(double simulated, double target) { return simulated / target - 1.0; }
+double relative_error(double simulated, double target) {
+  return simulated / target - 1.0;
+}
 
 bool within_tolerance(const PeakLoads& sim, const PeakLoads& target, double tolerance) {
   return std::abs(relative_error(sim.uct_n, target.uct_n)) <= tolerance &&

@@ -45,7 +45,8 @@ class RatioSearch {
     const EvaluationRecord* nearest = nullptr;
     for (const EvaluationRecord& r : ledger_.history()) {
       if (!r.loads) continue;
-      if (!nearest || std::abs(ratio_coords(r.point).s - s) < std::abs(ratio_coords(nearest->point).s - s)) {
+      if (!nearest ||
+          std::abs(ratio_coords(r.point).s - s) < std::abs(ratio_coords(nearest->point).s - s)) {
         nearest = &r;
       }
     }
@@ -56,7 +57,8 @@ class RatioSearch {
 
   double ratio_misfit(double s) {
     s = clamp_to(s, s_range(box_));
-    const EvaluationRecord r = ledger_.evaluate_one(point_from_ratio_coords({s, predicted_m(s)}), "ratio");
+    const EvaluationRecord r =
+        ledger_.evaluate_one(point_from_ratio_coords({s, predicted_m(s)}), "ratio");
     return r.loads ? line_optimum(r).misfit : r.misfit;
   }
 
@@ -67,7 +69,8 @@ class RatioSearch {
     const double target = std::log(ledger_.targets().uct_n / ledger_.targets().btt_n);
     std::vector<std::pair<double, double>> g;  // (s, ln ratio - ln target ratio)
     for (const EvaluationRecord& r : ledger_.history()) {
-      if (r.loads) g.push_back({ratio_coords(r.point).s, std::log(r.loads->uct_n / r.loads->btt_n) - target});
+      if (r.loads)
+        g.push_back({ratio_coords(r.point).s, std::log(r.loads->uct_n / r.loads->btt_n) - target});
     }
     std::sort(g.begin(), g.end());
     const double default_step = 0.1 * (sr.hi - sr.lo);
@@ -90,7 +93,8 @@ class RatioSearch {
     const Range sr = s_range(box_);
     auto algorithm = nlopt_algorithm(campaign_.algorithm).value_or(nlopt::LN_BOBYQA);
     // A global method would spend the budget on a line; the 1-D search is always local.
-    if (algorithm == nlopt::GN_DIRECT_L || algorithm == nlopt::GN_CRS2_LM) algorithm = nlopt::LN_BOBYQA;
+    if (algorithm == nlopt::GN_DIRECT_L || algorithm == nlopt::GN_CRS2_LM)
+      algorithm = nlopt::LN_BOBYQA;
     nlopt::opt opt(algorithm, 1);
     opt.set_lower_bounds({sr.lo});
     opt.set_upper_bounds({sr.hi});
@@ -101,7 +105,10 @@ class RatioSearch {
     const Weights w = ledger_.weights();
     const double half_tol = 0.5 * std::log1p(campaign_.tolerance);
     opt.set_stopval(w.uct * w.btt / (w.uct + w.btt) * half_tol * half_tol);
-    opt.set_xtol_abs(1e-3);
+    // F_s0/F_r0 to a quarter of the tolerance; and stop on a plateau (an unreachable ratio makes
+    // the misfit flat where a mechanism saturates).
+    opt.set_xtol_abs(0.25 * std::log1p(campaign_.tolerance));
+    opt.set_ftol_rel(1e-3);
     opt.set_maxeval(10 * campaign_.max_evaluations);  // the ledger's budget ends it first
     minimise(opt, x, [this](const std::vector<double>& s) { return ratio_misfit(s[0]); });
   }

@@ -47,20 +47,28 @@ SeedScatter seed_scatter(std::vector<ScatterRun> runs) {
 
 const char* to_string(StopReason reason) {
   switch (reason) {
-    case StopReason::tolerance_met: return "tolerance_met";
-    case StopReason::budget_exhausted: return "budget_exhausted";
-    case StopReason::converged: return "converged";
-    case StopReason::cancelled: return "cancelled";
+    case StopReason::tolerance_met:
+      return "tolerance_met";
+    case StopReason::budget_exhausted:
+      return "budget_exhausted";
+    case StopReason::converged:
+      return "converged";
+    case StopReason::cancelled:
+      return "cancelled";
   }
   return "?";
 }
 
 const char* to_string(Verdict verdict) {
   switch (verdict) {
-    case Verdict::feasible: return "feasible";
-    case Verdict::compromise: return "compromise";
-    case Verdict::incomplete: return "incomplete";
-    case Verdict::failed: return "failed";
+    case Verdict::feasible:
+      return "feasible";
+    case Verdict::compromise:
+      return "compromise";
+    case Verdict::incomplete:
+      return "incomplete";
+    case Verdict::failed:
+      return "failed";
   }
   return "?";
 }

@@ -9,7 +9,9 @@ namespace {
 
 using nlohmann::json;
 
-json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+json number_or_null(double x) {
+  return std::isfinite(x) ? json(x) : json(nullptr);
+}
 
 // One test's result on one specimen: load, strength, target and relative error.
 json test_result(double load_n, double target_n, double strength_pa) {
@@ -35,7 +37,8 @@ json best_json(const EvaluationRecord& best, const CalibrationCampaign& c) {
   if (c.targets.scaling) {
     const Scaling& s = *c.targets.scaling;
     const BondPoint bonds = bonds_to_lab(best.point, s);
-    json lab = loads_json(loads_to_lab(*best.loads, s), loads_to_lab(targets, s), c.targets.lab->specimen);
+    json lab =
+        loads_json(loads_to_lab(*best.loads, s), loads_to_lab(targets, s), c.targets.lab->specimen);
     lab["fr0"] = bonds.fr0_n;
     lab["fs0"] = bonds.fs0_n;
     j["lab"] = lab;
@@ -45,19 +48,25 @@ json best_json(const EvaluationRecord& best, const CalibrationCampaign& c) {
 
 json targets_json(const CalibrationCampaign& c) {
   const PeakLoads& t = c.targets.model_loads_n;
-  json j = {{"units", c.targets.lab ? "lab" : "model"},
-            {"uct", {{"peak_load", t.uct_n}, {"strength", uct_strength_pa(t.uct_n, c.model_specimen)}}},
-            {"btt", {{"peak_load", t.btt_n}, {"strength", btt_strength_pa(t.btt_n, c.model_specimen)}}}};
+  json j = {
+      {"units", c.targets.lab ? "lab" : "model"},
+      {"uct", {{"peak_load", t.uct_n}, {"strength", uct_strength_pa(t.uct_n, c.model_specimen)}}},
+      {"btt", {{"peak_load", t.btt_n}, {"strength", btt_strength_pa(t.btt_n, c.model_specimen)}}}};
   if (c.targets.scaling) {
     const Scaling& s = *c.targets.scaling;
     const LabCase& lab = *c.targets.lab;
     const PeakLoads l = loads_to_lab(t, s);
-    j["lab"] = {{"uct", {{"peak_load", l.uct_n}, {"strength", uct_strength_pa(l.uct_n, lab.specimen)}}},
-                {"btt", {{"peak_load", l.btt_n}, {"strength", btt_strength_pa(l.btt_n, lab.specimen)}}}};
+    j["lab"] = {
+        {"uct", {{"peak_load", l.uct_n}, {"strength", uct_strength_pa(l.uct_n, lab.specimen)}}},
+        {"btt", {{"peak_load", l.btt_n}, {"strength", btt_strength_pa(l.btt_n, lab.specimen)}}}};
     // The lab specimen as the model would have to be to match loads one to one; a model sample of
     // another size matches the mapped loads but not the lab's strengths.
-    j["scaling"] = {{"length", s.length}, {"force", s.force},   {"stress", s.stress},
-                    {"time", s.time},     {"mass", s.mass},     {"velocity", s.velocity},
+    j["scaling"] = {{"length", s.length},
+                    {"force", s.force},
+                    {"stress", s.stress},
+                    {"time", s.time},
+                    {"mass", s.mass},
+                    {"velocity", s.velocity},
                     {"kr_lab", s.kr_lab_n_m},
                     {"lab_specimen_in_model_units",
                      {{"diameter", s.length_to_model(lab.specimen.diameter_m)},
@@ -126,9 +135,10 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"stop_reason", to_string(r.stop_reason)},
             {"verdict", to_string(r.verdict)},
             {"verdict_reason", r.verdict_reason},
-            {"strategy", {{"requested", to_string(c.strategy)},
-                          {"used", r.strategy_used},
-                          {"algorithm", c.algorithm}}},
+            {"strategy",
+             {{"requested", to_string(c.strategy)},
+              {"used", r.strategy_used},
+              {"algorithm", c.algorithm}}},
             {"homogeneity", homogeneity_json(r.homogeneity)},
             {"tolerance", c.tolerance},
             {"evaluations", r.history.size()},
@@ -139,11 +149,12 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"history", history_json(r.history)},
             {"scatter", scatter_json(r.scatter)}};
   if (r.ratio) {
-    j["ratio"] = {{"target", r.ratio->target},
-                  {"min", r.ratio->min},
-                  {"max", r.ratio->max},
-                  {"target_inside", r.ratio->target_inside},
-                  {"best", r.best ? json(r.best->loads->uct_n / r.best->loads->btt_n) : json(nullptr)}};
+    j["ratio"] = {
+        {"target", r.ratio->target},
+        {"min", r.ratio->min},
+        {"max", r.ratio->max},
+        {"target_inside", r.ratio->target_inside},
+        {"best", r.best ? json(r.best->loads->uct_n / r.best->loads->btt_n) : json(nullptr)}};
   } else {
     j["ratio"] = nullptr;
   }

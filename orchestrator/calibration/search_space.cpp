@@ -6,12 +6,17 @@
 namespace rockcal::calibration {
 
 LogBox log_box(const CalibrationCampaign& c) {
-  return {{std::log(c.fr0_n.lo), std::log(c.fr0_n.hi)}, {std::log(c.fs0_n.lo), std::log(c.fs0_n.hi)}};
+  return {{std::log(c.fr0_n.lo), std::log(c.fr0_n.hi)},
+          {std::log(c.fs0_n.lo), std::log(c.fs0_n.hi)}};
 }
 
-BondPoint point_from_logs(double u, double v) { return {std::exp(u), std::exp(v)}; }
+BondPoint point_from_logs(double u, double v) {
+  return {std::exp(u), std::exp(v)};
+}
 
-double clamp_to(double x, const Range& range) { return std::clamp(x, range.lo, range.hi); }
+double clamp_to(double x, const Range& range) {
+  return std::clamp(x, range.lo, range.hi);
+}
 
 BondPoint clip_to_bounds(const BondPoint& p, const CalibrationCampaign& c) {
   return {clamp_to(p.fr0_n, c.fr0_n), clamp_to(p.fs0_n, c.fs0_n)};
@@ -27,7 +32,9 @@ BondPoint point_from_ratio_coords(const RatioCoords& r) {
   return point_from_logs(r.m - 0.5 * r.s, r.m + 0.5 * r.s);
 }
 
-Range s_range(const LogBox& b) { return {b.v.lo - b.u.hi, b.v.hi - b.u.lo}; }
+Range s_range(const LogBox& b) {
+  return {b.v.lo - b.u.hi, b.v.hi - b.u.lo};
+}
 
 // u = m - s/2 and v = m + s/2 must both lie in their ranges.
 Range m_range(const LogBox& b, double s) {

@@ -1,0 +1,93 @@
+#include "synthetic.hpp"
+
+#include <bit>
+#include <cmath>
+
+namespace rockcal::calibration::testing {
+
+PeakLoads power_law(const BondPoint& p) {
+  return {2500.0 * std::pow(p.fr0_n, 0.3) * std::pow(p.fs0_n, 0.7),
+          420.0 * std::pow(p.fr0_n, 0.8) * std::pow(p.fs0_n, 0.2)};
+}
+
+PeakLoads smooth_min(const BondPoint& p) {
+  auto soft_min = [](double a, double b) { return 1.0 / std::sqrt(1.0 / (a * a) + 1.0 / (b * b)); };
+  // Tension-limited: UCT 2500 fr0, BTT 420 fr0 (ratio 5.95); shear-limited: UCT 5000 fs0 x 1.0,
+  // BTT 210 fs0 (ratio 23.8).
+  return {soft_min(2500.0 * p.fr0_n, 5000.0 * p.fs0_n), soft_min(420.0 * p.fr0_n, 210.0 * p.fs0_n)};
+}
+
+PeakLoads non_homogeneous(const BondPoint& p) {
+  return {1750.0 * std::pow(p.fr0_n, 0.3) * std::pow(p.fs0_n, 0.7) + 15000.0,
+          150.0 * std::pow(p.fr0_n, 0.9) * std::pow(p.fs0_n, 0.3)};
+}
+
+double hash_unit(const BondPoint& p, std::uint64_t seed, std::uint64_t salt) {
+  std::uint64_t x = std::bit_cast<std::uint64_t>(p.fr0_n) * 0x9E3779B97F4A7C15ull ^
+                    std::bit_cast<std::uint64_t>(p.fs0_n) ^ (seed << 32) ^ salt;
+  // splitmix64 finaliser
+  x ^= x >> 30, x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 27, x *= 0x94D049BB133111EBull;
+  x ^= x >> 31;
+  return double(x >> 11) * 0x1.0p-52 - 1.0;
+}
+
+EvaluationOutcome ModelEvaluator::evaluate(const EvaluationRequest& r) const {
+  if (failure_rate > 0 && 0.5 * (hash_unit(r.point, r.sample_seed, 7) + 1.0) < failure_rate) {
+    return {std::nullopt, "synthetic failure"};
+  }
+  PeakLoads loads = model(r.point);
+  loads.uct_n *= 1.0 + noise * hash_unit(r.point, r.sample_seed, 1);
+  loads.btt_n *= 1.0 + noise * hash_unit(r.point, r.sample_seed, 2);
+  return {loads, ""};
+}
+
+std::vector<EvaluationOutcome> ModelEvaluator::evaluate_batch(
+    std::span<const EvaluationRequest> batch) {
+  std::vector<EvaluationOutcome> out;
+  for (const EvaluationRequest& r : batch) {
+    ++requests;
+    log.push_back(r);
+    out.push_back(evaluate(r));
+  }
+  return out;
+}
+
+std::vector<EvaluationOutcome> CachingEvaluator::evaluate_batch(
+    std::span<const EvaluationRequest> batch) {
+  std::vector<EvaluationOutcome> out;
+  for (const EvaluationRequest& r : batch) {
+    log.push_back(r);
+    const auto key = std::make_tuple(r.point.fr0_n, r.point.fs0_n, r.sample_seed);
+    auto it = cache.find(key);
+    if (it == cache.end()) {
+      if (cancel_after >= 0 && fresh >= cancel_after) throw EvaluationCancelled();
+      ++fresh;
+      it = cache.emplace(key, inner.evaluate_batch(std::span(&r, 1)).front()).first;
+    }
+    out.push_back(it->second);
+  }
+  return out;
+}
+
+nlohmann::json campaign_json(const PeakLoads& targets, const nlohmann::json& overrides) {
+  nlohmann::json j = {
+      {"kind", "calibration"},
+      {"name", "synthetic"},
+      {"job",
+       {{"sample", {{"diameter", 10}, {"height", 28}, {"radius", 1}}},
+        {"material", {{"kr", 8000}, {"nu", 0.2}, {"density", 1}}}}},
+      {"targets",
+       {{"uct", {{"peak_load", targets.uct_n}}}, {"btt", {{"peak_load", targets.btt_n}}}}},
+      {"bounds", {{"fr0", {1, 1000}}, {"fs0", {1, 1000}}}},
+      {"max_evaluations", 40},
+      {"tolerance", 0.02}};
+  if (overrides.is_object()) j.merge_patch(overrides);  // a null key in overrides deletes it
+  return j;
+}
+
+CalibrationCampaign campaign(const PeakLoads& targets, const nlohmann::json& overrides) {
+  return parse_calibration_campaign(campaign_json(targets, overrides));
+}
+
+}  // namespace rockcal::calibration::testing

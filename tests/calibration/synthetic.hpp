@@ -1,0 +1,63 @@
+// Synthetic evaluators: closed-form "DEMs" with the properties the driver must cope with, plus
+// wrappers that add noise, failures, counting, caching and cancellation.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <tuple>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "orchestrator/calibration/campaign.hpp"
+#include "orchestrator/calibration/evaluator.hpp"
+
+namespace rockcal::calibration::testing {
+
+using Model = std::function<PeakLoads(const BondPoint&)>;
+
+// Homogeneous of degree 1, ratio unbounded: UCT = 2500 fr0^0.3 fs0^0.7, BTT = 420 fr0^0.8 fs0^0.2.
+PeakLoads power_law(const BondPoint& p);
+// Homogeneous of degree 1 with a bounded ratio (a smooth minimum of a tensile and a shear
+// mechanism, like a bond that fails by whichever is weaker): UCT/BTT stays within [6.0, 23.8].
+PeakLoads smooth_min(const BondPoint& p);
+// Not homogeneous: a friction-like constant in the UCT and degree 1.2 in the BTT.
+PeakLoads non_homogeneous(const BondPoint& p);
+
+// A deterministic pseudo-random number in [-1, 1] for a point and a seed (so replays agree).
+double hash_unit(const BondPoint& p, std::uint64_t seed, std::uint64_t salt);
+
+struct ModelEvaluator : Evaluator {
+  Model model;
+  double noise = 0.0;         // relative amplitude, varies with point and seed
+  double failure_rate = 0.0;  // share of points that fail, chosen by hash
+  std::atomic<int> requests{0};
+  std::vector<EvaluationRequest> log;  // every request, in order
+
+  explicit ModelEvaluator(Model m) : model(std::move(m)) {}
+  EvaluationOutcome evaluate(const EvaluationRequest& r) const;
+  std::vector<EvaluationOutcome> evaluate_batch(
+      std::span<const EvaluationRequest> requests) override;
+};
+
+// A job cache in front of another evaluator: answers known requests without running them, counts
+// the fresh ones; optionally cancels once `cancel_after` fresh requests have run.
+struct CachingEvaluator : Evaluator {
+  Evaluator& inner;
+  std::map<std::tuple<double, double, std::uint64_t>, EvaluationOutcome> cache;
+  std::vector<EvaluationRequest> log;
+  int fresh = 0;
+  int cancel_after = -1;
+
+  explicit CachingEvaluator(Evaluator& e) : inner(e) {}
+  std::vector<EvaluationOutcome> evaluate_batch(
+      std::span<const EvaluationRequest> requests) override;
+};
+
+// A campaign with model-unit targets `targets`, on a demo sample, with the given overrides merged
+// in.
+nlohmann::json campaign_json(const PeakLoads& targets, const nlohmann::json& overrides = {});
+CalibrationCampaign campaign(const PeakLoads& targets, const nlohmann::json& overrides = {});
+
+}  // namespace rockcal::calibration::testing
