@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Fault-injection double for rockcal-dem, for the service's failure-handling tests only: it honours
+# the engine's command line (`run JOB.json --out DIR`) and file contract, and picks a behaviour
+# from the job's bond.fr0 so one sweep can mix healthy and broken jobs:
+#   13 -> crashes (SIGSEGV) every time      17 -> hangs (for timeouts and cancels)
+#   19 -> fails the first attempt only       23 -> exits 2 (invalid spec, must not be retried)
+#   29 -> ignores SIGTERM and hangs (so the executor must escalate to SIGKILL)
+#   anything else -> writes result.json, curve.csv and progress.json after FAKE_DEM_SLEEP seconds
+set -u
+[ "${1:-}" = run ] || { echo "usage: $0 run JOB.json --out DIR" >&2; exit 2; }
+job=$2
+out=${4:-.}
+fr0=$(grep -o '"fr0": *[0-9.eE+-]*' "$job" | head -1 | sed 's/.*: *//')
+fs0=$(grep -o '"fs0": *[0-9.eE+-]*' "$job" | head -1 | sed 's/.*: *//')
+test=$(grep -o '"test": *"[a-z]*"' "$job" | head -1 | sed 's/.*: *"\(.*\)"/\1/')
+echo "fake-rockcal-dem: test=$test fr0=$fr0 fs0=$fs0 pid=$$"
+case "${fr0%.0}" in
+  13) echo "fake-rockcal-dem: crashing"; kill -SEGV $$ ;;
+  17) echo "fake-rockcal-dem: hanging"; sleep 600 & wait ;;
+  19) attempts=$(grep -c '=== rockcal: attempt' "$out/log" 2>/dev/null || true)
+      if [ "${attempts:-0}" -lt 2 ]; then echo "fake-rockcal-dem: transient failure"; exit 1; fi ;;
+  23) echo "fake-rockcal-dem: invalid spec" >&2; exit 2 ;;
+  29) trap '' TERM; echo "fake-rockcal-dem: ignoring SIGTERM"; sleep 600 & wait; sleep 600 ;;
+esac
+sleep "${FAKE_DEM_SLEEP:-0}"
+echo '{"step": 10, "fraction": 1.0, "load": 1, "peak_load": 2, "broken_bonds": 0, "elapsed_s": 0}' > "$out/progress.json"
+printf 'step,time_s,displacement_m,load_n,broken_bonds\n1,0.1,0.001,%s,0\n' "$fr0" > "$out/curve.csv"
+cat > "$out/result.json.tmp" <<JSON
+{"test": "$test", "peak_load": $fr0, "strength": $fs0, "youngs_modulus": 1000.0, "poisson_ratio": null,
+ "particles": 7, "wall_seconds": 0.01, "engine_version": "fake", "stop_reason": "post_peak"}
+JSON
+mv "$out/result.json.tmp" "$out/result.json"
+echo "fake-rockcal-dem: done"

@@ -1,0 +1,164 @@
+// The orchestrator with the fault-injecting fake engine: retries, failures kept with their log,
+// timeouts, cancellation, and the submit-and-wait API a calibration driver uses.
+#include <gtest/gtest.h>
+
+#include "orchestrator/job_service.hpp"
+#include "orchestrator/local_executor.hpp"
+#include "orchestrator/process_groups.hpp"
+#include "support.hpp"
+
+namespace rockcal::orch {
+namespace {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+struct JobServiceTest : ::testing::Test {
+  test::TempDir dir;
+  std::unique_ptr<JobService> service;
+
+  void start(int workers, std::chrono::milliseconds timeout = 60s, int attempts = 3) {
+    ServiceConfig cfg;
+    cfg.db_path = dir.path() / "svc.db";
+    cfg.workers = workers;
+    cfg.max_attempts = attempts;
+    cfg.job_timeout = timeout;
+    LocalExecutorConfig exec;
+    exec.engine = test::fake_engine();
+    exec.ranks = 0;
+    exec.grace = 1s;
+    service = std::make_unique<JobService>(cfg, std::make_unique<LocalExecutor>(exec));
+    service->start();
+  }
+  void TearDown() override {
+    if (service) service->stop();
+    EXPECT_TRUE(test::processes_mentioning(dir.path().string()).empty()) << "jobs left running";
+  }
+
+  json points_request(std::vector<std::pair<double, double>> points) {
+    json r = test::sweep_request({"uct"}, {1}, {1});
+    r.erase("grid");
+    r["points"] = json::array();
+    for (auto [a, b] : points) r["points"].push_back({a, b});
+    return r;
+  }
+  bool finished(std::int64_t campaign) {
+    auto c = service->store().counts(campaign);
+    return c.queued + c.running == 0;
+  }
+  db::JobRow job_with_fr0(std::int64_t campaign, double fr0) {
+    for (const auto& row : service->store().campaign_results(campaign)) {
+      if (row.job.fr0 == fr0) return row.job;
+    }
+    throw std::runtime_error("no such job");
+  }
+};
+
+TEST_F(JobServiceTest, FailuresAreRetriedKeptWithTheirLogAndDoNotStopTheCampaign) {
+  start(2);
+  // 13 crashes always, 19 fails once, 23 is an invalid spec, 31 and 37 are healthy.
+  auto id = service->create_campaign(points_request({{13, 1}, {19, 1}, {23, 1}, {31, 1}, {37, 1}}));
+  ASSERT_TRUE(test::poll_until([&] { return finished(id); }, 60s));
+  auto crash = job_with_fr0(id, 13);
+  EXPECT_EQ(crash.state, "failed");
+  EXPECT_EQ(crash.attempts, 3);
+  ASSERT_TRUE(crash.error);
+  EXPECT_NE(crash.error->find("signal 11"), std::string::npos) << *crash.error;
+  EXPECT_NE(crash.error->find("fake-rockcal-dem: crashing"), std::string::npos) << *crash.error;
+  auto flaky = job_with_fr0(id, 19);
+  EXPECT_EQ(flaky.state, "succeeded");
+  EXPECT_EQ(flaky.attempts, 2);
+  auto invalid = job_with_fr0(id, 23);
+  EXPECT_EQ(invalid.state, "failed");
+  EXPECT_EQ(invalid.attempts, 1) << "an invalid spec is not retried";
+  EXPECT_EQ(job_with_fr0(id, 31).state, "succeeded");
+  EXPECT_EQ(job_with_fr0(id, 37).state, "succeeded");
+  auto results = service->store().campaign_results(id);
+  int with_result = 0;
+  for (const auto& r : results) with_result += r.result ? 1 : 0;
+  EXPECT_EQ(with_result, 3);
+}
+
+TEST_F(JobServiceTest, HangingJobsTimeOutAndAreStopped) {
+  start(1, 700ms, 2);
+  auto id = service->create_campaign(points_request({{17, 1}, {31, 1}}));
+  ASSERT_TRUE(test::poll_until([&] { return finished(id); }, 30s));
+  auto hung = job_with_fr0(id, 17);
+  EXPECT_EQ(hung.state, "failed");
+  EXPECT_EQ(hung.attempts, 2);
+  EXPECT_NE(hung.error.value_or("").find("timed out"), std::string::npos);
+  EXPECT_EQ(job_with_fr0(id, 31).state, "succeeded");
+}
+
+TEST_F(JobServiceTest, CancelStopsRunningJobsAndDropsQueuedOnes) {
+  start(1);
+  auto id = service->create_campaign(points_request({{17, 1}, {31, 1}, {37, 1}}));
+  ASSERT_TRUE(test::poll_until(
+      [&] {
+        auto j = job_with_fr0(id, 17);
+        return j.state == "running" && j.handle;
+      },
+      10s));
+  pid_t pgid = std::stoi(*job_with_fr0(id, 17).handle);
+  EXPECT_EQ(service->cancel_campaign(id), db::CancelOutcome::cancelled);
+  auto counts = service->store().counts(id);
+  EXPECT_EQ(counts.cancelled, 3);
+  EXPECT_TRUE(test::poll_until([&] { return group_members(pgid).empty(); }, 10s));
+  EXPECT_EQ(service->cancel_campaign(id), db::CancelOutcome::already_finished);
+}
+
+TEST_F(JobServiceTest, DriversSubmitJobsAndWaitForResults) {
+  // A stand-in for the calibration kind: evaluates two points, then a cached one, and reports.
+  CampaignKind kind;
+  kind.name = "probe";
+  kind.plan = [](const json&, const Limits&) { return CampaignPlan{"probe", {}}; };
+  kind.driver = [](DriverContext& ctx) {
+    json spec = test::tiny_job_template();
+    spec["test"] = "uct";
+    json summary = json::array();
+    for (double fr0 : {41.0, 43.0, 41.0}) {
+      spec["bond"]["fr0"] = fr0;
+      JobOutcome out = ctx.service.submit_and_wait(ctx.campaign_id, spec, ctx.stop);
+      summary.push_back({{"state", out.state},
+                         {"cached", out.cached},
+                         {"peak", out.result ? *out.result->peak_load : -1.0}});
+    }
+    return summary;
+  };
+  ServiceConfig cfg;
+  start(2);
+  service->kinds().add(kind);
+  auto id = service->create_campaign({{"kind", "probe"}});
+  ASSERT_TRUE(test::poll_until(
+      [&] {
+        return service->store().campaign(id)->driver_status == std::optional<std::string>("done");
+      },
+      30s));
+  json summary = json::parse(*service->store().campaign(id)->summary);
+  ASSERT_EQ(summary.size(), 3u);
+  EXPECT_EQ(summary[0]["state"], "succeeded");
+  EXPECT_EQ(summary[0]["peak"], 41.0);  // the fake engine reports fr0 as the peak
+  EXPECT_EQ(summary[1]["peak"], 43.0);
+  EXPECT_EQ(summary[2]["cached"], true) << "a point already computed is not run again";
+  EXPECT_EQ(service->store().counts(id).total(), 3);
+}
+
+TEST_F(JobServiceTest, WaitingDriverSeesCancellation) {
+  start(1);
+  auto id = service->create_campaign(points_request({{31, 1}}));
+  json spec = test::tiny_job_template();
+  spec["test"] = "uct";
+  spec["bond"]["fr0"] = 17;  // hangs
+  auto job = service->submit_job(id, spec);
+  std::thread canceller([&] {
+    test::poll_until([&] { return service->store().job_state(job) == "running"; }, 10s);
+    service->cancel_campaign(id);
+  });
+  auto outcome = service->wait_job(job);
+  canceller.join();
+  EXPECT_EQ(outcome.state, "cancelled");
+  EXPECT_FALSE(outcome.result);
+}
+
+}  // namespace
+}  // namespace rockcal::orch
