@@ -5,6 +5,7 @@
 
 #include <nlopt.hpp>
 
+#include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/local_search.hpp"
 #include "orchestrator/calibration/ratio_scale.hpp"
 #include "orchestrator/calibration/start_design.hpp"
@@ -23,29 +24,32 @@ bool ratio_out_of_reach(const Ledger& ledger) {
   return range && !range->target_inside;
 }
 
+// A second check where the answer probably lies: the best start point and its copy scaled toward
+// the targets (also when the centre check failed to run).
+void probe_near_best(Ledger& ledger, const CalibrationCampaign& c, HomogeneityChecks& h) {
+  const EvaluationRecord* best = ledger.best();
+  if (!best || (best->index <= 1 && h.checks.front().measured)) return;
+  const EvaluationRecord base = *best;
+  const double factor = probe_toward_targets(base, c);
+  if (factor == 1.0) return;
+  const BondPoint partner{base.point.fr0_n * factor, base.point.fs0_n * factor};
+  h.checks.push_back(
+      measure_homogeneity(base, ledger.evaluate_one(partner, "start"), c.homogeneity_tolerance));
+}
+
 void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& report) {
   report.strategy_used = "none";
   const std::vector<EvaluationRecord> start = ledger.evaluate(start_design(c), "start");
-  report.homogeneity = measure_homogeneity(start[0], start[1], c.homogeneity_tolerance);
-  if (!report.homogeneity.measured) {
-    // A probe run failed: probe again around the best start point (one more evaluation).
-    if (const EvaluationRecord* best = ledger.best()) {
-      const EvaluationRecord base = *best;
-      const double factor = probe_scale_factor(base.point, c);
-      const BondPoint partner{base.point.fr0_n * factor, base.point.fs0_n * factor};
-      report.homogeneity =
-          measure_homogeneity(base, ledger.evaluate_one(partner, "start"), c.homogeneity_tolerance);
-    }
-  }
-  const bool ratio_first = c.strategy == Strategy::ratio_scale ||
-                           (c.strategy == Strategy::automatic && report.homogeneity.holds);
+  HomogeneityChecks& h = report.homogeneity;
+  h.checks.push_back(measure_homogeneity(start[0], start[1], c.homogeneity_tolerance));
+  if (c.strategy != Strategy::direct_2d) probe_near_best(ledger, c, h);
+  const bool ratio_first =
+      c.strategy == Strategy::ratio_scale || (c.strategy == Strategy::automatic && h.holds());
   if (ratio_first) {
     report.strategy_used = "ratio_scale";
-    const double degree =
-        report.homogeneity.measured ? std::clamp(report.homogeneity.degree(), 0.5, 2.0) : 1.0;
-    ratio_then_scale(ledger, c, degree);
+    ratio_then_scale(ledger, c, std::clamp(h.degree(), 0.5, 2.0), h);
     // The ratio search has mapped the reachable ratios; a 2-D search cannot leave them either.
-    if (ratio_out_of_reach(ledger) && report.homogeneity.holds) return;
+    if (ratio_out_of_reach(ledger) && h.holds()) return;
     report.strategy_used = "ratio_scale+direct_2d";
   } else {
     report.strategy_used = "direct_2d";
@@ -117,9 +121,9 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
     cancelled = true;
   }
   // The start batch may already meet the targets (SearchDone before the check): measure anyway.
-  if (!report.homogeneity.measured && ledger.history().size() >= 2) {
-    report.homogeneity =
-        measure_homogeneity(ledger.history()[0], ledger.history()[1], c.homogeneity_tolerance);
+  if (report.homogeneity.checks.empty() && ledger.history().size() >= 2) {
+    report.homogeneity.checks.push_back(
+        measure_homogeneity(ledger.history()[0], ledger.history()[1], c.homogeneity_tolerance));
   }
   report.history = ledger.history();
   if (const EvaluationRecord* best = ledger.best()) report.best = *best;

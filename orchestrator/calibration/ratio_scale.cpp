@@ -19,8 +19,13 @@ struct LineOptimum {
 
 class RatioSearch {
  public:
-  RatioSearch(Ledger& ledger, const CalibrationCampaign& campaign, double degree)
-      : ledger_(ledger), campaign_(campaign), box_(log_box(campaign)), degree_(degree) {}
+  RatioSearch(Ledger& ledger, const CalibrationCampaign& campaign, double degree,
+              HomogeneityChecks& checks)
+      : ledger_(ledger),
+        campaign_(campaign),
+        box_(log_box(campaign)),
+        degree_(degree),
+        checks_(checks) {}
 
   void run() {
     search_ratio();
@@ -135,8 +140,15 @@ class RatioSearch {
       if (std::abs(opt.shift) < 1e-9) return;
       const RatioCoords rc = ratio_coords(current.point);
       const std::size_t before = ledger_.history().size();
+      const EvaluationRecord previous = current;
       current = ledger_.evaluate_one(point_from_ratio_coords({rc.s, rc.m + opt.shift}), "scale");
       if (ledger_.history().size() == before || !current.loads) return;
+      // A large enough step is a check on one ratio line: did the ratio stay put?
+      if (std::abs(opt.shift) >= std::log(kMinCheckScale)) {
+        checks_.checks.push_back(
+            measure_homogeneity(previous, current, campaign_.homogeneity_tolerance));
+        if (!checks_.checks.back().holds) return;
+      }
     }
   }
 
@@ -144,12 +156,14 @@ class RatioSearch {
   const CalibrationCampaign& campaign_;
   LogBox box_;
   double degree_;
+  HomogeneityChecks& checks_;
 };
 
 }  // namespace
 
-void ratio_then_scale(Ledger& ledger, const CalibrationCampaign& campaign, double degree) {
-  RatioSearch(ledger, campaign, degree).run();
+void ratio_then_scale(Ledger& ledger, const CalibrationCampaign& campaign, double degree,
+                      HomogeneityChecks& checks) {
+  RatioSearch(ledger, campaign, degree, checks).run();
 }
 
 }  // namespace rockcal::calibration

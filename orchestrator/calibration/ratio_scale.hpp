@@ -6,12 +6,16 @@
 // ratio is found the loads usually are too.
 #pragma once
 
+#include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/ledger.hpp"
 
 namespace rockcal::calibration {
 
-// Runs the 1-D ratio search and up to three closed-form scale steps. Returns normally when both
-// are done without meeting the targets; throws SearchDone / EvaluationCancelled like the ledger.
-void ratio_then_scale(Ledger& ledger, const CalibrationCampaign& campaign, double degree);
+// Runs the 1-D ratio search and up to three closed-form scale steps. Each scale step is also a
+// homogeneity check (a pair on one ratio line), appended to `checks`; a failed one ends the steps.
+// Returns normally when done without meeting the targets; throws SearchDone / EvaluationCancelled
+// like the ledger.
+void ratio_then_scale(Ledger& ledger, const CalibrationCampaign& campaign, double degree,
+                      HomogeneityChecks& checks);
 
 }  // namespace rockcal::calibration

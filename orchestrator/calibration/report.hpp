@@ -53,7 +53,7 @@ struct CalibrationReport {
   Verdict verdict = Verdict::failed;
   std::string verdict_reason;
   std::string strategy_used;  // ratio_scale | ratio_scale+direct_2d | direct_2d | none
-  Homogeneity homogeneity;
+  HomogeneityChecks homogeneity;
   std::optional<EvaluationRecord> best;
   std::vector<EvaluationRecord> history;
   std::optional<RatioRange> ratio;  // absent without a successful evaluation

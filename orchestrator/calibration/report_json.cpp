@@ -116,13 +116,19 @@ json scatter_json(const SeedScatter& s) {
   return {{"runs", runs}, {"uct", stats_json(s.uct)}, {"btt", stats_json(s.btt)}};
 }
 
-json homogeneity_json(const Homogeneity& h) {
+json check_json(const Homogeneity& h) {
   return {{"measured", h.measured},
           {"base", {{"fr0", h.base.fr0_n}, {"fs0", h.base.fs0_n}}},
           {"scale_factor", h.scale_factor},
           {"exponent_uct", number_or_null(h.exponent_uct)},
           {"exponent_btt", number_or_null(h.exponent_btt)},
           {"holds", h.holds}};
+}
+
+json homogeneity_json(const HomogeneityChecks& h) {
+  json checks = json::array();
+  for (const Homogeneity& c : h.checks) checks.push_back(check_json(c));
+  return {{"holds", h.holds()}, {"degree", h.degree()}, {"checks", checks}};
 }
 
 }  // namespace

@@ -63,7 +63,8 @@ TEST(Report, AllFailedEvaluationsGiveFailedVerdictAndValidJson) {
   EXPECT_FALSE(has_nan(j));
   EXPECT_TRUE(j["best"].is_null());
   EXPECT_TRUE(j["ratio"].is_null());
-  EXPECT_TRUE(j["homogeneity"]["exponent_uct"].is_null());
+  EXPECT_FALSE(j["homogeneity"]["holds"].get<bool>());
+  EXPECT_TRUE(j["homogeneity"]["checks"][0]["exponent_uct"].is_null());
 }
 
 }  // namespace

@@ -1,0 +1,97 @@
+#include "dem_evaluator.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+extern char** environ;
+
+namespace rockcal::calibration::testing {
+namespace {
+
+struct Job {
+  nlohmann::json spec;
+  std::filesystem::path dir;
+  std::optional<double> peak_load_n;
+  std::string error;
+};
+
+// Runs one job as a child process (argv, no shell) and reads its result.json.
+void run(const std::string& engine, Job& job) {
+  std::filesystem::create_directories(job.dir);
+  const std::string spec_path = (job.dir / "job.json").string();
+  std::ofstream(spec_path) << job.spec.dump();
+  const std::string out = job.dir.string();
+  const std::string log = (job.dir / "log.txt").string();
+  std::vector<std::string> args = {engine, "run", spec_path, "--out", out};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, engine.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    job.error = "cannot start " + engine;
+    return;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  std::ifstream result(job.dir / "result.json");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !result) {
+    job.error = "rockcal-dem failed (status " + std::to_string(status) + "), see " + log;
+    return;
+  }
+  job.peak_load_n = nlohmann::json::parse(result).at("peak_load").get<double>();
+}
+
+}  // namespace
+
+std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
+    std::span<const EvaluationRequest> requests) {
+  std::vector<Job> jobs;
+  for (const EvaluationRequest& r : requests) {
+    for (TestKind test : {TestKind::uct, TestKind::btt}) {
+      const std::string name = "job" + std::to_string(jobs_run + int(jobs.size()));
+      jobs.push_back({job_for(job_template, r, test), work_dir / name, std::nullopt, ""});
+    }
+  }
+  jobs_run += int(jobs.size());
+  std::mutex mutex;
+  std::size_t next = 0;
+  std::vector<std::thread> workers;
+  for (int w = 0; w < parallel; ++w) {
+    workers.emplace_back([&] {
+      for (;;) {
+        std::size_t i;
+        {
+          std::lock_guard lock(mutex);
+          if (next == jobs.size()) return;
+          i = next++;
+        }
+        run(engine, jobs[i]);
+      }
+    });
+  }
+  for (std::thread& t : workers) t.join();
+  std::vector<EvaluationOutcome> outcomes;
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    const Job& uct = jobs[2 * i];
+    const Job& btt = jobs[2 * i + 1];
+    if (uct.peak_load_n && btt.peak_load_n) {
+      outcomes.push_back({PeakLoads{*uct.peak_load_n, *btt.peak_load_n}, ""});
+    } else {
+      outcomes.push_back({std::nullopt, uct.error.empty() ? btt.error : uct.error});
+    }
+  }
+  return outcomes;
+}
+
+}  // namespace rockcal::calibration::testing

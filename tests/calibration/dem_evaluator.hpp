@@ -1,0 +1,24 @@
+// An evaluator that runs the real engine: `rockcal-dem run job.json --out DIR` per test, the jobs
+// of a batch in parallel. A stand-in for the orchestrator's pool, for the twin tests only (no
+// cache, no retries, no MPI launcher).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "orchestrator/calibration/evaluator.hpp"
+
+namespace rockcal::calibration::testing {
+
+struct DemEvaluator : Evaluator {
+  std::string engine;              // path to rockcal-dem
+  nlohmann::json job_template;     // the campaign's "job" block
+  std::filesystem::path work_dir;  // one subdirectory per job
+  int parallel = 2;
+  int jobs_run = 0;
+
+  std::vector<EvaluationOutcome> evaluate_batch(
+      std::span<const EvaluationRequest> requests) override;
+};
+
+}  // namespace rockcal::calibration::testing
