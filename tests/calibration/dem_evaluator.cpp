@@ -49,7 +49,13 @@ void run(const std::string& engine, Job& job) {
     job.error = "rockcal-dem failed (status " + std::to_string(status) + "), see " + log;
     return;
   }
-  job.peak_load_n = nlohmann::json::parse(result).at("peak_load").get<double>();
+  const nlohmann::json r = nlohmann::json::parse(result);
+  // A run that hit max_strain before the load dropped has no peak: its "peak" is a lower bound.
+  if (!r.value("peak_reached", true)) {
+    job.error = "peak not reached before loading.max_strain";
+    return;
+  }
+  job.peak_load_n = r.at("peak_load").get<double>();
 }
 
 }  // namespace
