@@ -173,7 +173,8 @@ int client_list(const ClientOptions& o) {
   Http http(o);
   auto r = http.client.Get("/api/v1/campaigns?limit=100", http.headers);
   if (!r || r->status != 200) return report(r);
-  for (const auto& c : json::parse(r->body)["campaigns"]) {
+  json body = json::parse(r->body);  // kept alive: the loop iterates one of its members
+  for (const auto& c : body["campaigns"]) {
     std::cout << status_line(c) << "  " << c["kind"].get<std::string>() << " \""
               << c["name"].get<std::string>() << "\"\n";
   }

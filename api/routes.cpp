@@ -33,7 +33,7 @@ namespace {
 json parse_body(const Req& req) {
   try {
     return json::parse(req.body);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, or out_of_range for 1e999
     throw HttpError(400, std::string("malformed JSON: ") + e.what(), "(body)");
   }
 }

@@ -1,1 +1,95 @@
+// Crash recovery (issue 4): kill -9 the real server in the middle of a sweep run by the real engine
+// under mpirun, restart it on the same file: the orphaned mpirun process groups are found and
+// stopped, the running jobs re-queued, the sweep finishes with exactly one result per point, no
+// process is left behind, and PRAGMA integrity_check says ok.
 #include <gtest/gtest.h>
+
+#include <set>
+
+#include "db/sqlite.hpp"
+#include "orchestrator/process_groups.hpp"
+#include "support.hpp"
+
+namespace rockcal::test {
+namespace {
+
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+std::vector<pid_t> running_job_groups(const std::filesystem::path& db) {
+  db::Connection conn(db.string());
+  auto st = conn.prepare("SELECT handle FROM jobs WHERE state = 'running' AND handle IS NOT NULL");
+  std::vector<pid_t> out;
+  while (st.step()) out.push_back(std::stoi(st.text(0)));
+  return out;
+}
+
+TEST(Recovery, KillNineMidSweepThenRestartFinishesWithOneResultPerPoint) {
+  TempDir dir;
+  std::vector<std::string> options = {"--engine", engine_binary(), "--ranks-per-job",
+                                      "1",        "--workers",     "2"};
+  ServerProcess server(dir.path(), options);
+  server.start();
+  auto c = server.client();
+  // A sample large enough that each job runs for about a second.
+  json request = sweep_request({"uct"}, {40, 60, 80}, {50, 70, 90});
+  request["job"]["sample"] = {{"diameter", 14}, {"height", 28}, {"radius", 1}};
+  auto r = c.Post("/api/v1/campaigns", request.dump(), "application/json");
+  ASSERT_TRUE(r && r->status == 201);
+  auto id = json::parse(r->body)["id"].get<std::int64_t>();
+
+  // Crash while some jobs are done and others are running (with their pgid recorded).
+  std::vector<pid_t> orphans;
+  ASSERT_TRUE(poll_until(
+      [&] {
+        json p = get_json(c, "/api/v1/campaigns/" + std::to_string(id))["progress"];
+        if (p["succeeded"].get<int>() < 1 || p["queued"].get<int>() < 1) return false;
+        orphans = running_job_groups(server.db());
+        return !orphans.empty();
+      },
+      60s))
+      << "never saw the sweep half done";
+  server.kill9();
+  bool any_orphan_alive = false;
+  for (pid_t g : orphans) any_orphan_alive |= orch::group_runs_engine(g, "rockcal-dem");
+  EXPECT_TRUE(any_orphan_alive) << "the crash should leave running mpirun groups behind";
+
+  ServerProcess restarted(dir.path(), options);
+  restarted.start();
+  for (pid_t g : orphans) {
+    EXPECT_TRUE(orch::group_members(g).empty()) << "orphaned group " << g << " still runs";
+  }
+  EXPECT_NE(restarted.stderr_text().find("re-queued"), std::string::npos)
+      << restarted.stderr_text();
+  auto c2 = restarted.client();
+  json done = wait_campaign(c2, id, 120s);
+  ASSERT_EQ(done["state"], "succeeded") << done.dump(2);
+  EXPECT_EQ(done["progress"]["succeeded"], 9);
+
+  json results = get_json(c2, "/api/v1/campaigns/" + std::to_string(id) + "/results");
+  std::set<std::pair<double, double>> points;
+  for (const auto& row : results["results"]) {
+    EXPECT_EQ(row["state"], "succeeded");
+    EXPECT_TRUE(row["peak_load"].is_number()) << row.dump();
+    points.insert({row["fr0"].get<double>(), row["fs0"].get<double>()});
+  }
+  EXPECT_EQ(results["results"].size(), 9u);
+  EXPECT_EQ(points.size(), 9u);
+  EXPECT_EQ(restarted.terminate(), 0);
+
+  db::Connection conn(restarted.db().string());
+  auto count = conn.prepare("SELECT COUNT(*), COUNT(DISTINCT hash) FROM results");
+  ASSERT_TRUE(count.step());
+  EXPECT_EQ(count.int64(0), 9) << "exactly one result per point";
+  EXPECT_EQ(count.int64(1), 9);
+  auto jobs = conn.prepare("SELECT COUNT(*) FROM jobs WHERE state <> 'succeeded'");
+  ASSERT_TRUE(jobs.step());
+  EXPECT_EQ(jobs.int64(0), 0);
+  auto check = conn.prepare("PRAGMA integrity_check");
+  ASSERT_TRUE(check.step());
+  EXPECT_EQ(check.text(0), "ok");
+  EXPECT_TRUE(processes_mentioning(dir.path().string()).empty()) << "processes left running";
+}
+
+}  // namespace
+}  // namespace rockcal::test
