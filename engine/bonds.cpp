@@ -34,11 +34,14 @@ const char* to_string(BreakMode mode) {
   return "?";
 }
 
-Bond make_bond(std::int32_t i, std::int32_t j, const Vec3& x_i, double r_i, const Vec3& x_j,
-               double r_j, double kr, double ks, double kb, double kt, double fr0, double fs0) {
+Bond make_bond(std::int32_t i, std::int32_t j, std::int64_t id_i, std::int64_t id_j,
+               const Vec3& x_i, double r_i, const Vec3& x_j, double r_j, double kr, double ks,
+               double kb, double kt, double fr0, double fs0) {
   Bond b;
   b.i = i;
   b.j = j;
+  b.id_i = id_i;
+  b.id_j = id_j;
   const Vec3 d = x_j - x_i;
   b.r0 = d.norm();
   b.n0 = d / b.r0;
@@ -135,7 +138,8 @@ void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakR
     const BondLoad load = bond_load(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
     BreakMode mode;
     if (breakage_index(b, load, rule, &mode) >= 1.0) {
-      events.push_back({step, p.id[b.i], p.id[b.j], 0.5 * (p.pos[b.i] + p.pos[b.j]), mode});
+      if (static_cast<std::size_t>(b.i) < p.n_owned)
+        events.push_back({step, b.id_i, b.id_j, 0.5 * (p.pos[b.i] + p.pos[b.j]), mode});
       broken.push_back(b);
       bonds[k] = bonds.back();  // order is not meaningful; swap-remove keeps the array dense
       bonds.pop_back();
@@ -152,7 +156,8 @@ void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakR
 double bond_energy(const std::vector<Bond>& bonds, const Particles& p) {
   double e = 0.0;
   for (const Bond& b : bonds)
-    e += bond_load(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]).energy;
+    if (static_cast<std::size_t>(b.i) < p.n_owned)  // a border bond is counted by one rank only
+      e += bond_load(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]).energy;
   return e;
 }
 

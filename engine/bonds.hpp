@@ -22,14 +22,16 @@ enum class BreakMode : std::uint8_t { tension, shear, twist, bending };
 const char* to_string(BreakMode mode);
 
 struct Bond {
-  std::int32_t i, j;  // particle indices, i < j
-  double r0;          // rest length, m
-  Vec3 n0;            // bond direction i -> j at creation (= in both body frames), unit
-  double w_i;         // R_i / (R_i + R_j): where the bond's contact point sits
-  double kr, ks;      // N/m
-  double kb, kt;      // N m / rad
-  double fr0, fs0;    // tensile and shear strengths, N
-  double gb0, gt0;    // bending and twisting strengths, N m (G_b0 = R F_r0 / 4, G_t0 = R F_s0 / 2)
+  std::int32_t i, j;        // local particle indices; i is the particle with the lower id, so every
+                            // rank that holds the bond evaluates it with the same operands
+  std::int64_t id_i, id_j;  // global particle ids, id_i < id_j
+  double r0;                // rest length, m
+  Vec3 n0;                  // bond direction i -> j at creation (= in both body frames), unit
+  double w_i;               // R_i / (R_i + R_j): where the bond's contact point sits
+  double kr, ks;            // N/m
+  double kb, kt;            // N m / rad
+  double fr0, fs0;          // tensile and shear strengths, N
+  double gb0, gt0;  // bending and twisting strengths, N m (G_b0 = R F_r0 / 4, G_t0 = R F_s0 / 2)
 };
 
 // The state of one bond at the current configuration: what eq. 1 gives and what eq. 2 weighs.
@@ -57,8 +59,9 @@ double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule
                       BreakMode* dominant);
 
 // Creates a bond between two particles at their current (rest) configuration.
-Bond make_bond(std::int32_t i, std::int32_t j, const Vec3& x_i, double r_i, const Vec3& x_j,
-               double r_j, double kr, double ks, double kb, double kt, double fr0, double fs0);
+Bond make_bond(std::int32_t i, std::int32_t j, std::int64_t id_i, std::int64_t id_j,
+               const Vec3& x_i, double r_i, const Vec3& x_j, double r_j, double kr, double ks,
+               double kb, double kt, double fr0, double fs0);
 
 struct BreakEvent {
   std::int64_t step;
@@ -68,11 +71,13 @@ struct BreakEvent {
 };
 
 // Adds every intact bond's forces and torques to the particles; bonds that satisfy eq. 2 break
-// (are removed from `bonds`) and are appended to `broken` and `events`.
+// (are removed from `bonds`) and are appended to `broken`. A break is recorded in `events` only by
+// the rank that owns the bond's lower-id particle, so that a border bond is counted once.
 void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakRule& rule,
                             std::int64_t step, std::vector<Bond>& broken,
                             std::vector<BreakEvent>& events);
 
+// Elastic energy of the bonds this rank counts (those whose lower-id particle it owns).
 double bond_energy(const std::vector<Bond>& bonds, const Particles& p);
 
 }  // namespace rockcal

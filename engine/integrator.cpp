@@ -5,14 +5,14 @@
 namespace rockcal {
 
 void kick(Particles& p, double h) {
-  for (std::size_t k = 0; k < p.size(); ++k) {
+  for (std::size_t k = 0; k < p.n_owned; ++k) {
     p.vel[k] += (h / p.mass[k]) * p.force[k];
     p.omega[k] += (h / p.inertia[k]) * p.torque[k];
   }
 }
 
 void drift(Particles& p, double dt) {
-  for (std::size_t k = 0; k < p.size(); ++k) {
+  for (std::size_t k = 0; k < p.n_owned; ++k) {
     p.pos[k] += dt * p.vel[k];
     // Spheres have isotropic inertia: omega is constant over the drift, so this rotation is exact.
     p.orient[k] = (rotation_from_vector(dt * p.omega[k]) * p.orient[k]).normalized();
@@ -31,13 +31,13 @@ inline void damp(Vec3& f, const Vec3& v, double alpha) {
 
 void apply_damping(Particles& p, const Damping& d) {
   if (d.local > 0) {
-    for (std::size_t k = 0; k < p.size(); ++k) {
+    for (std::size_t k = 0; k < p.n_owned; ++k) {
       damp(p.force[k], p.vel[k], d.local);
       damp(p.torque[k], p.omega[k], d.local);
     }
   }
   if (d.viscous > 0) {
-    for (std::size_t k = 0; k < p.size(); ++k) {
+    for (std::size_t k = 0; k < p.n_owned; ++k) {
       p.force[k] -= d.viscous * p.mass[k] * p.vel[k];
       p.torque[k] -= d.viscous * p.inertia[k] * p.omega[k];
     }
@@ -46,7 +46,7 @@ void apply_damping(Particles& p, const Damping& d) {
 
 double kinetic_energy(const Particles& p) {
   double e = 0.0;
-  for (std::size_t k = 0; k < p.size(); ++k)
+  for (std::size_t k = 0; k < p.n_owned; ++k)
     e += 0.5 * (p.mass[k] * p.vel[k].squaredNorm() + p.inertia[k] * p.omega[k].squaredNorm());
   return e;
 }

@@ -1,5 +1,6 @@
 // Velocity Verlet for translation and rotation (second order), with optional Cundall local damping
-// and mass-proportional viscous damping applied to the forces of each step.
+// and mass-proportional viscous damping applied to the forces of each step. All act on the owned
+// particles only; ghosts are refreshed from their owners.
 #pragma once
 
 #include "engine/particles.hpp"
@@ -18,6 +19,6 @@ void drift(Particles& p, double dt);
 // Replaces the accumulated loads by their damped values (uses the current, mid-step velocities).
 void apply_damping(Particles& p, const Damping& d);
 
-double kinetic_energy(const Particles& p);  // translational + rotational, J
+double kinetic_energy(const Particles& p);  // owned particles: translational + rotational, J
 
 }  // namespace rockcal

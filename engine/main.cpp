@@ -21,7 +21,7 @@ extern "C" void on_signal(int) {
 constexpr int kExitOk = 0, kExitFailure = 1, kExitInvalid = 2, kExitStopped = 3;
 
 // Reads and validates a job file. Prints {"error", "field"} and returns nullopt when invalid.
-std::optional<rockcal::JobSpec> load_job(const std::string& path) {
+std::optional<rockcal::JobSpec> load_job(const std::string& path, bool report) {
   nlohmann::json error;
   try {
     std::ifstream in(path);
@@ -36,8 +36,10 @@ std::optional<rockcal::JobSpec> load_job(const std::string& path) {
   } catch (const rockcal::SpecError& e) {
     error = {{"error", e.what()}, {"field", e.field}};
   }
-  std::cout << error.dump() << std::endl;
-  std::cerr << "rockcal-dem: invalid job: " << error["error"].get<std::string>() << std::endl;
+  if (report) {
+    std::cout << error.dump() << std::endl;
+    std::cerr << "rockcal-dem: invalid job: " << error["error"].get<std::string>() << std::endl;
+  }
   return std::nullopt;
 }
 
@@ -67,29 +69,24 @@ int main(int argc, char** argv) {
   }
 
   int code = kExitOk;
-  auto spec = load_job(job_path);
+  auto spec = load_job(job_path, rank == 0);
   if (!spec) {
     code = kExitInvalid;
   } else if (validate->parsed()) {
     if (rank == 0)
       std::cout << nlohmann::json{{"valid", true}, {"spec", rockcal::to_json(*spec)}}.dump()
                 << std::endl;
-  } else if (ranks > 1) {
-    if (rank == 0)
-      std::cerr
-          << "rockcal-dem: runs on more than one rank need the domain decomposition, which this "
-             "version does not have yet; use -np 1"
-          << std::endl;
-    code = kExitFailure;
   } else {
     std::signal(SIGTERM, on_signal);
     std::signal(SIGINT, on_signal);
     try {
-      const nlohmann::json result = rockcal::run_job(*spec, out_dir, &g_stop, true);
-      std::cout << result.dump() << std::endl;
+      const nlohmann::json result =
+          rockcal::run_job(*spec, out_dir, &g_stop, rank == 0, MPI_COMM_WORLD);
+      if (rank == 0) std::cout << result.dump() << std::endl;
       if (result["stop_reason"] == "cancelled") code = kExitStopped;
     } catch (const std::exception& e) {
-      std::cerr << "rockcal-dem: run failed: " << e.what() << std::endl;
+      std::cerr << "rockcal-dem: run failed on rank " << rank << ": " << e.what() << std::endl;
+      if (ranks > 1) MPI_Abort(MPI_COMM_WORLD, kExitFailure);  // the other ranks would wait forever
       code = kExitFailure;
     }
   }

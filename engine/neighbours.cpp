@@ -1,12 +1,13 @@
 #include "engine/neighbours.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace rockcal {
 namespace {
 
-// Bond partners of each particle in CSR form, for O(1)-ish lookups during the build.
+// Bond partners of each local particle in CSR form (both directions), for lookups during the build.
 struct Adjacency {
   std::vector<std::int32_t> offset, partner;
   std::vector<PairBond> state;
@@ -14,7 +15,10 @@ struct Adjacency {
   Adjacency(std::size_t n, const std::vector<Bond>& intact, const std::vector<Bond>& broken) {
     offset.assign(n + 1, 0);
     auto count = [&](const std::vector<Bond>& bs) {
-      for (const Bond& b : bs) ++offset[b.i + 1];
+      for (const Bond& b : bs) {
+        ++offset[b.i + 1];
+        ++offset[b.j + 1];
+      }
     };
     count(intact);
     count(broken);
@@ -26,35 +30,48 @@ struct Adjacency {
       for (const Bond& b : bs) {
         partner[fill[b.i]] = b.j;
         state[fill[b.i]++] = s;
+        partner[fill[b.j]] = b.i;
+        state[fill[b.j]++] = s;
       }
     };
     put(intact, PairBond::intact);
     put(broken, PairBond::broken);
   }
 
-  PairBond lookup(std::int32_t i, std::int32_t j) const {
-    for (std::int32_t k = offset[i]; k < offset[i + 1]; ++k)
-      if (partner[k] == j) return state[k];
-    return PairBond::none;
+  PairBond lookup(std::int32_t a, std::int32_t b) const {
+    PairBond s = PairBond::none;
+    for (std::int32_t k = offset[a]; k < offset[a + 1]; ++k)
+      if (partner[k] == b) s = std::max(s, state[k]);  // a re-formed bond would not be "broken"
+    return s;
   }
 };
+
+bool id_less(const SpringRecord& a, const SpringRecord& b) {
+  return a.id_lo < b.id_lo || (a.id_lo == b.id_lo && a.id_hi < b.id_hi);
+}
 
 }  // namespace
 
 bool NeighbourList::needs_rebuild(const Particles& p) const {
-  if (ref_pos.size() != p.size()) return true;
+  if (ref_pos.size() != p.n_owned) return true;
   const double limit2 = 0.25 * skin * skin;
-  for (std::size_t k = 0; k < p.size(); ++k)
+  for (std::size_t k = 0; k < p.n_owned; ++k)
     if ((p.pos[k] - ref_pos[k]).squaredNorm() > limit2) return true;
   return false;
 }
 
 void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
-                          const std::vector<Bond>& broken) {
+                          const std::vector<Bond>& broken,
+                          const std::vector<SpringRecord>& incoming) {
   const std::size_t n = p.size();
-  std::vector<ContactPair> old;
-  old.swap(pairs);
-  ref_pos = p.pos;
+  // History carried over by ids: springs of the old list, plus what migrants brought along.
+  std::vector<SpringRecord> history = incoming;
+  for (const ContactPair& c : pairs)
+    if (!c.spring.isZero(0.0)) history.push_back({p_id_cache_[c.i], p_id_cache_[c.j], c.spring});
+  std::sort(history.begin(), history.end(), id_less);
+  pairs.clear();
+  ref_pos.assign(p.pos.begin(), p.pos.begin() + static_cast<std::ptrdiff_t>(p.n_owned));
+  p_id_cache_ = p.id;
   ++builds;
   if (n == 0) return;
 
@@ -88,11 +105,11 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
 
   const Adjacency adj(n, intact, broken);
   std::vector<std::int32_t> row;
-  std::size_t o = 0;  // cursor into the old (sorted) list, to carry tangential history over
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t a = 0; a < n; ++a) {
     row.clear();
-    const std::int64_t cx = cell_of(p.pos[i], 0), cy = cell_of(p.pos[i], 1),
-                       cz = cell_of(p.pos[i], 2);
+    const bool a_owned = a < p.n_owned;
+    const std::int64_t cx = cell_of(p.pos[a], 0), cy = cell_of(p.pos[a], 1),
+                       cz = cell_of(p.pos[a], 2);
     for (std::int64_t z = std::max<std::int64_t>(0, cz - 1); z <= std::min(dims[2] - 1, cz + 1);
          ++z)
       for (std::int64_t y = std::max<std::int64_t>(0, cy - 1); y <= std::min(dims[1] - 1, cy + 1);
@@ -101,30 +118,43 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
              ++x) {
           const std::size_t c = static_cast<std::size_t>((z * dims[1] + y) * dims[0] + x);
           for (std::int32_t m = start[c]; m < start[c + 1]; ++m) {
-            const std::int32_t j = members[m];
-            if (j <= static_cast<std::int32_t>(i)) continue;
-            const double reach = p.radius[i] + p.radius[j] + skin;
-            if ((p.pos[j] - p.pos[i]).squaredNorm() < reach * reach) row.push_back(j);
+            const std::int32_t b = members[m];
+            if (b <= static_cast<std::int32_t>(a)) continue;
+            if (!a_owned && static_cast<std::size_t>(b) >= p.n_owned) continue;  // two ghosts
+            const double reach = p.radius[a] + p.radius[b] + skin;
+            if ((p.pos[b] - p.pos[a]).squaredNorm() < reach * reach) row.push_back(b);
           }
         }
     std::sort(row.begin(), row.end());
-    for (std::int32_t j : row) {
-      ContactPair cp{static_cast<std::int32_t>(i), j, adj.lookup(static_cast<std::int32_t>(i), j),
-                     Vec3::Zero()};
-      while (o < old.size() && (old[o].i < cp.i || (old[o].i == cp.i && old[o].j < cp.j))) ++o;
-      if (o < old.size() && old[o].i == cp.i && old[o].j == cp.j) cp.spring = old[o].spring;
+    for (std::int32_t b : row) {
+      const auto ia = static_cast<std::int32_t>(a);
+      const bool a_first = p.id[a] < p.id[b];
+      ContactPair cp{a_first ? ia : b, a_first ? b : ia, adj.lookup(ia, b), Vec3::Zero()};
+      const SpringRecord key{p.id[cp.i], p.id[cp.j], Vec3::Zero()};
+      auto it = std::lower_bound(history.begin(), history.end(), key, id_less);
+      if (it != history.end() && it->id_lo == key.id_lo && it->id_hi == key.id_hi)
+        cp.spring = it->spring;
       pairs.push_back(cp);
     }
   }
 }
 
-void NeighbourList::mark_broken(std::int32_t i, std::int32_t j) {
-  if (i > j) std::swap(i, j);
-  auto it = std::lower_bound(pairs.begin(), pairs.end(), std::pair{i, j},
-                             [](const ContactPair& a, const auto& key) {
-                               return a.i < key.first || (a.i == key.first && a.j < key.second);
-                             });
-  if (it != pairs.end() && it->i == i && it->j == j) it->bond = PairBond::broken;
+void NeighbourList::mark_broken(std::int32_t a, std::int32_t b) {
+  const std::int32_t lo = std::min(a, b), hi = std::max(a, b);
+  auto it = std::lower_bound(
+      pairs.begin(), pairs.end(), std::pair{lo, hi}, [](const ContactPair& c, const auto& key) {
+        const std::int32_t clo = std::min(c.i, c.j), chi = std::max(c.i, c.j);
+        return clo < key.first || (clo == key.first && chi < key.second);
+      });
+  if (it != pairs.end() && std::min(it->i, it->j) == lo && std::max(it->i, it->j) == hi)
+    it->bond = PairBond::broken;
+}
+
+void NeighbourList::history_of(const Particles& p, std::int32_t local,
+                               std::vector<SpringRecord>& out) const {
+  for (const ContactPair& c : pairs)
+    if ((c.i == local || c.j == local) && !c.spring.isZero(0.0))
+      out.push_back({p.id[c.i], p.id[c.j], c.spring});
 }
 
 }  // namespace rockcal

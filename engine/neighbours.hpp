@@ -13,22 +13,38 @@ namespace rockcal {
 enum class PairBond : std::uint8_t { none, intact, broken };
 
 struct ContactPair {
-  std::int32_t i, j;  // i < j
-  PairBond bond;      // an intact bond excludes the pair from contact forces
-  Vec3 spring;        // tangential spring displacement (history), m
+  std::int32_t i,
+      j;          // local indices, i the particle with the lower id (same operands on every rank)
+  PairBond bond;  // an intact bond excludes the pair from contact forces
+  Vec3 spring;    // tangential spring displacement (history), m
+};
+
+// Tangential history of one pair, keyed by ids: it survives rebuilds and travels with migrating
+// particles.
+struct SpringRecord {
+  std::int64_t id_lo, id_hi;
+  Vec3 spring;
 };
 
 struct NeighbourList {
-  std::vector<ContactPair> pairs;  // sorted by (i, j)
-  std::vector<Vec3> ref_pos;       // positions at the last build
+  std::vector<ContactPair> pairs;  // sorted by (min(i, j), max(i, j))
+  std::vector<Vec3> ref_pos;       // owned positions at the last build
   double skin = 0.0;               // m
   std::int64_t builds = 0;
 
+  // Whether an owned particle has moved more than half the skin since the last build.
   bool needs_rebuild(const Particles& p) const;
-  // Rebuilds, keeping the tangential history of pairs that persist.
-  void build(const Particles& p, const std::vector<Bond>& intact, const std::vector<Bond>& broken);
-  // A bond between i and j broke: the pair becomes an ordinary contact from now on.
-  void mark_broken(std::int32_t i, std::int32_t j);
+  // Rebuilds over owned and ghost particles (pairs of two ghosts are left to their owners), keeping
+  // the tangential history of persisting pairs and taking `incoming` history from migrants.
+  void build(const Particles& p, const std::vector<Bond>& intact, const std::vector<Bond>& broken,
+             const std::vector<SpringRecord>& incoming = {});
+  // A bond between local particles a and b broke: the pair becomes an ordinary contact.
+  void mark_broken(std::int32_t a, std::int32_t b);
+  // History of the pairs that involve particle `local` (for migration).
+  void history_of(const Particles& p, std::int32_t local, std::vector<SpringRecord>& out) const;
+
+ private:
+  std::vector<std::int64_t> p_id_cache_;  // ids of the local particles at the last build
 };
 
 }  // namespace rockcal

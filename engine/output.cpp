@@ -24,6 +24,7 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
               {"particles", r.particles},
               {"bonds", r.bonds},
               {"broken_bonds", r.broken_bonds},
+              {"broken_bonds_at_peak", r.broken_at_peak},
               {"broken_by", by},
               {"steps", r.steps},
               {"dt", r.dt_s},

@@ -1,12 +1,17 @@
 // The particle set: structure of arrays so the time-step loops stream through contiguous memory.
+// Under domain decomposition the first `n_owned` entries are this rank's particles and the rest are
+// ghosts: read-only copies of neighbours' particles near the border, refreshed every step.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "engine/vec.hpp"
 
 namespace rockcal {
+
+constexpr int kMaxWalls = 2;
 
 struct Particles {
   std::vector<Vec3> pos;         // m
@@ -18,7 +23,9 @@ struct Particles {
   std::vector<double> radius;    // m
   std::vector<double> mass;      // kg
   std::vector<double> inertia;   // kg m^2 (spheres: isotropic)
-  std::vector<std::int64_t> id;  // stable identity (survives reordering and, later, migration)
+  std::vector<std::int64_t> id;  // global identity: survives reordering and migration
+  std::vector<std::array<Vec3, kMaxWalls>> wall_spring;  // platen friction history, m
+  std::size_t n_owned = 0;
 
   std::size_t size() const { return pos.size(); }
 
@@ -33,6 +40,37 @@ struct Particles {
     mass.push_back(m);
     inertia.push_back(i);
     id.push_back(pid);
+    wall_spring.push_back({Vec3::Zero(), Vec3::Zero()});
+    n_owned = size();
+  }
+
+  void resize(std::size_t n) {
+    pos.resize(n);
+    vel.resize(n);
+    orient.resize(n);
+    omega.resize(n);
+    force.resize(n);
+    torque.resize(n);
+    radius.resize(n);
+    mass.resize(n);
+    inertia.resize(n);
+    id.resize(n);
+    wall_spring.resize(n);
+  }
+
+  // Copies particle `from` over particle `to` (same array).
+  void copy(std::size_t from, std::size_t to) {
+    pos[to] = pos[from];
+    vel[to] = vel[from];
+    orient[to] = orient[from];
+    omega[to] = omega[from];
+    force[to] = force[from];
+    torque[to] = torque[from];
+    radius[to] = radius[from];
+    mass[to] = mass[from];
+    inertia[to] = inertia[from];
+    id[to] = id[from];
+    wall_spring[to] = wall_spring[from];
   }
 
   void clear_loads() {

@@ -3,7 +3,7 @@
 namespace rockcal {
 
 Wall make_wall(const Vec3& normal, const Vec3& point, double kn, double ks, double friction,
-               std::size_t n) {
+               int slot) {
   Wall w;
   w.normal = normal.normalized();
   w.point = point;
@@ -11,35 +11,33 @@ Wall make_wall(const Vec3& normal, const Vec3& point, double kn, double ks, doub
   w.kn_n_m = kn;
   w.ks_n_m = ks;
   w.friction = friction;
-  if (friction > 0) w.spring.assign(n, Vec3::Zero());
+  w.slot = slot;
   w.reaction = Vec3::Zero();
   return w;
 }
 
 void accumulate_wall_forces(Wall& w, Particles& p, double dt) {
   Vec3 reaction = Vec3::Zero();
-  int touching = 0;
   const bool frictional = w.friction > 0;
-  for (std::size_t k = 0; k < p.size(); ++k) {
+  for (std::size_t k = 0; k < p.n_owned; ++k) {
     const double overlap = p.radius[k] - (p.pos[k] - w.point).dot(w.normal);
     if (overlap <= 0) {
-      if (frictional) w.spring[k].setZero();
+      if (frictional) p.wall_spring[k][w.slot].setZero();
       continue;
     }
-    ++touching;
     const double fn = w.kn_n_m * overlap;
     Vec3 f = fn * w.normal;
     if (frictional) {
       const Vec3 r = -p.radius[k] * w.normal;  // centre -> contact point
       const Vec3 v_rel = p.vel[k] + p.omega[k].cross(r) - w.velocity;
-      Vec3 s = w.spring[k] + (v_rel - v_rel.dot(w.normal) * w.normal) * dt;
+      Vec3 s = p.wall_spring[k][w.slot] + (v_rel - v_rel.dot(w.normal) * w.normal) * dt;
       Vec3 ft = -w.ks_n_m * s;
       const double limit = w.friction * fn, ft_norm = ft.norm();
       if (ft_norm > limit) {
         ft *= limit / ft_norm;
         s = -ft / w.ks_n_m;
       }
-      w.spring[k] = s;
+      p.wall_spring[k][w.slot] = s;
       f += ft;
       p.torque[k] += r.cross(ft);
     }
@@ -47,7 +45,6 @@ void accumulate_wall_forces(Wall& w, Particles& p, double dt) {
     reaction -= f;
   }
   w.reaction = reaction;
-  w.touching = touching;
 }
 
 }  // namespace rockcal

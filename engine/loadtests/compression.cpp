@@ -35,7 +35,7 @@ std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, doub
 }  // namespace
 
 TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
-  Simulation sim = make_specimen(spec);
+  Simulation sim = make_specimen(spec, hooks.comm);
   RunClock clock(hooks, spec.output.progress_seconds);
   const LoadingSpec& ld = spec.loading;
   const double length = loaded_length(spec);
@@ -54,8 +54,7 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
 
   TestResult r;
   r.test = spec.test;
-  r.particles = static_cast<std::int64_t>(sim.particles.size());
-  r.bonds = static_cast<std::int64_t>(sim.bonds.size());
+  count_specimen(sim, r);
   r.dt_s = sim.dt;
   double load = 0.0, closure = 0.0;
   int frame = 0;
@@ -65,8 +64,7 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     double f = std::max(closure / (ld.max_strain * length), double(sim.step) / double(max_steps));
     if (r.peak_load_n > 0 && load < r.peak_load_n)  // past the peak: how far towards the stop load
       f = std::max(f, (r.peak_load_n - load) / (r.peak_load_n * (1.0 - ld.stop_load_fraction)));
-    return Progress{
-        sim.step, std::min(1.0, f), load, r.peak_load_n, std::int64_t(sim.broken.size()), elapsed};
+    return Progress{sim.step, std::min(1.0, f), load, r.peak_load_n, sim.broken_total, elapsed};
   };
 
   while (true) {
@@ -80,15 +78,16 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     if (load > r.peak_load_n) {
       r.peak_load_n = load;
       r.peak_displacement_m = closure;
+      r.broken_at_peak = sim.broken_total;
     }
     if (sim.step % curve_every == 0)
-      r.curve.push_back({sim.step, sim.time, closure, load, std::int64_t(sim.broken.size())});
+      r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
     if (hooks.on_frame && sim.step % frame_every == 0) hooks.on_frame(sim, frame++);
     clock.maybe_report(progress);
 
     // A peak only counts once the ramp is over and bonds have started to break.
     const bool past_peak =
-        sim.time > t_ramp && !sim.broken.empty() && load <= ld.stop_load_fraction * r.peak_load_n;
+        sim.time > t_ramp && sim.broken_total > 0 && load <= ld.stop_load_fraction * r.peak_load_n;
     if (past_peak)
       r.stop_reason = "post_peak";
     else if (closure >= ld.max_strain * length)
@@ -100,7 +99,7 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     if (!r.stop_reason.empty()) break;
   }
   if (r.curve.empty() || r.curve.back().step != sim.step)
-    r.curve.push_back({sim.step, sim.time, closure, load, std::int64_t(sim.broken.size())});
+    r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
   if (hooks.on_frame) hooks.on_frame(sim, frame++);
   clock.maybe_report(progress, true);
 
@@ -113,7 +112,7 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     r.youngs_modulus_pa = prepeak_modulus(r.curve, r.peak_load_n, area, length);
   }
   r.steps = sim.step;
-  r.broken_bonds = static_cast<std::int64_t>(sim.broken.size());
+  r.broken_bonds = sim.broken_total;
   for (const BreakEvent& e : sim.breaks) ++r.broken_by[static_cast<int>(e.mode)];
   r.breaks = std::move(sim.breaks);
   r.wall_seconds = clock.elapsed_s();

@@ -1,5 +1,6 @@
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include "engine/loadtests/driver.hpp"
 #include "engine/loadtests/interior.hpp"
@@ -18,7 +19,7 @@ constexpr double kSettledEnergyRatio = 1e-8;  // kinetic / stored energy that co
 }  // namespace
 
 TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
-  Simulation sim = make_specimen(spec);
+  Simulation sim = make_specimen(spec, hooks.comm);
   RunClock clock(hooks, spec.output.progress_seconds);
   const double r0 = spec.sample.radius_m;
   const double length = spec.sample.height_m;
@@ -35,7 +36,9 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
   const std::int64_t max_steps =
       spec.loading.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
 
-  const std::vector<Vec3> reference = sim.particles.pos;
+  std::unordered_map<std::int64_t, Vec3> reference;  // by id: local indices change at rebuilds
+  for (std::size_t k = 0; k < sim.particles.n_owned; ++k)
+    reference.emplace(sim.particles.id[k], sim.particles.pos[k]);
   Wall& bottom = sim.walls[kBottomPlaten];
   Wall& top = sim.walls[kTopPlaten];
   const double gap0 = top.point.z() - bottom.point.z();
@@ -43,8 +46,7 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
 
   TestResult r;
   r.test = TestKind::elastic;
-  r.particles = static_cast<std::int64_t>(sim.particles.size());
-  r.bonds = static_cast<std::int64_t>(sim.bonds.size());
+  count_specimen(sim, r);
   r.dt_s = sim.dt;
   double load = 0.0, closure = 0.0;
   auto progress = [&](double elapsed) {
@@ -52,7 +54,7 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
                     std::min(1.0, sim.time / (t_load + t_hold_min)),
                     load,
                     r.peak_load_n,
-                    std::int64_t(sim.broken.size()),
+                    sim.broken_total,
                     elapsed};
   };
 
@@ -69,12 +71,13 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
     load = 0.5 * (top.reaction.z() - bottom.reaction.z());
     r.peak_load_n = std::max(r.peak_load_n, load);
     if (sim.step % 50 == 0)
-      r.curve.push_back({sim.step, sim.time, closure, load, std::int64_t(sim.broken.size())});
+      r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
     clock.maybe_report(progress);
 
     if (sim.time > t_load + t_hold_min && sim.step % 50 == 0) {
-      const double kinetic = kinetic_energy(sim.particles);
-      if (kinetic <= kSettledEnergyRatio * bond_energy(sim.bonds, sim.particles)) {
+      double energy[2] = {kinetic_energy(sim.particles), bond_energy(sim.bonds, sim.particles)};
+      reduce_sum(sim.domain, energy, 2);
+      if (energy[0] <= kSettledEnergyRatio * energy[1]) {
         r.stop_reason = "settled";
         break;
       }
@@ -103,7 +106,7 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
   r.strength_pa = 0.0;
   r.peak_displacement_m = closure;
   r.steps = sim.step;
-  r.broken_bonds = static_cast<std::int64_t>(sim.broken.size());
+  r.broken_bonds = sim.broken_total;
   for (const BreakEvent& e : sim.breaks) ++r.broken_by[static_cast<int>(e.mode)];
   r.breaks = std::move(sim.breaks);
   r.wall_seconds = clock.elapsed_s();

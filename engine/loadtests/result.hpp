@@ -1,6 +1,8 @@
 // What a test run produces: the reduced figures and the curve a plot needs.
 #pragma once
 
+#include <mpi.h>
+
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -31,6 +33,7 @@ struct TestResult {
   std::optional<double> youngs_modulus_pa;  // UCT pre-peak slope, or elastic test
   std::optional<double> poisson_ratio;      // elastic test
   double peak_displacement_m = 0.0;
+  std::int64_t broken_at_peak = 0;  // damage when the peak was reached
   std::int64_t particles = 0, bonds = 0, broken_bonds = 0;
   std::array<std::int64_t, 4> broken_by{};  // by BreakMode
   std::int64_t steps = 0;
@@ -49,8 +52,10 @@ struct Progress {
   double elapsed_s;
 };
 
-// Hooks a run calls; all optional. `stop` is polled each step (set by a signal handler).
+// Hooks a run calls; all optional. `stop` is polled each step (set by a signal handler). With a
+// communicator of several ranks the run is decomposed; progress and frames are then per rank.
 struct RunHooks {
+  MPI_Comm comm = MPI_COMM_NULL;
   std::function<void(const Progress&)> on_progress;
   std::function<void(const Simulation&, int frame)> on_frame;  // VTK snapshots
   const std::atomic<bool>* stop = nullptr;

@@ -1,5 +1,6 @@
 #include "engine/loadtests/specimen.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "engine/packing/fcc.hpp"
@@ -9,12 +10,22 @@ namespace rockcal {
 
 // Bonds join particles that touch; the tolerance only absorbs round-off of the lattice coordinates.
 constexpr double kBondTolerance = 1e-6;
+constexpr double kSkinRadii = 0.3;  // neighbour-list skin, in particle radii
 
 double loaded_length(const JobSpec& spec) {
   return spec.test == TestKind::btt ? spec.sample.diameter_m : spec.sample.height_m;
 }
 
-Simulation make_specimen(const JobSpec& spec) {
+void count_specimen(const Simulation& sim, TestResult& r) {
+  double counts[2] = {static_cast<double>(sim.particles.n_owned), 0.0};
+  for (const Bond& b : sim.bonds)
+    counts[1] += static_cast<std::size_t>(b.i) < sim.particles.n_owned ? 1.0 : 0.0;
+  reduce_sum(sim.domain, counts, 2);
+  r.particles = static_cast<std::int64_t>(counts[0]);
+  r.bonds = static_cast<std::int64_t>(counts[1]);
+}
+
+Simulation make_specimen(const JobSpec& spec, MPI_Comm comm) {
   const double r = spec.sample.radius_m;
   std::vector<Vec3> centres;
   if (spec.test == TestKind::btt) {
@@ -23,33 +34,56 @@ Simulation make_specimen(const JobSpec& spec) {
     centres = fcc_centres(Cylinder{spec.sample.diameter_m, spec.sample.height_m}, r);
   }
   if (centres.empty()) throw std::runtime_error("the specimen holds no particle");
+  const BondStiffness k = bond_stiffness(spec, r);
 
   Simulation sim;
+  sim.neighbours.skin = kSkinRadii * r;
+  int ranks = 1;
+  if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &ranks);
+  if (ranks > 1) {
+    // Ghosts must cover the contact reach (2R + skin) and the longest a bond gets before it breaks.
+    const double stretch = std::max(0.5 * r, 2.0 * spec.bond.fr0_n / k.kr_n_m);
+    std::vector<double> z(centres.size());
+    std::transform(centres.begin(), centres.end(), z.begin(), [](const Vec3& c) { return c.z(); });
+    sim.domain = make_domain(comm, std::move(z), 2.0 * r + sim.neighbours.skin + stretch);
+  }
+
+  // This rank's slab plus its halo, with global ids; bonds are found among them.
+  const Domain& d = sim.domain;
   const double m = sphere_mass(spec.material.density_kg_m3, r);
-  for (std::size_t k = 0; k < centres.size(); ++k)
-    sim.particles.add(centres[k], r, m, sphere_inertia(m, r), static_cast<std::int64_t>(k));
-
+  Particles near;
+  for (std::size_t c = 0; c < centres.size(); ++c) {
+    const double z = centres[c].z();
+    if (z >= d.z_lo - d.halo && z < d.z_hi + d.halo)
+      near.add(centres[c], r, m, sphere_inertia(m, r), static_cast<std::int64_t>(c));
+  }
   sim.bonds = bond_neighbours(
-      sim.particles, kBondTolerance, [&](double radius) { return bond_stiffness(spec, radius); },
+      near, kBondTolerance, [&](double radius) { return bond_stiffness(spec, radius); },
       spec.bond.fr0_n, spec.bond.fs0_n);
+  for (std::size_t c = 0; c < near.size(); ++c) {
+    const double z = near.pos[c].z();
+    if (z >= d.z_lo && z < d.z_hi)
+      sim.particles.add(near.pos[c], r, m, sphere_inertia(m, r), near.id[c]);
+  }
+  if (!d.parallel()) sim.particles = std::move(near);  // same set, same order as the bonds' indices
 
-  const BondStiffness k = bond_stiffness(spec, r);
   sim.contact = ContactLaw{k.kr_n_m, k.ks_n_m, spec.contact.friction, spec.contact.friction};
   sim.damping = Damping{spec.damping.local, spec.damping.viscous};
-  sim.neighbours.skin = 0.3 * r;
 
   double z_lo = centres[0].z(), z_hi = centres[0].z();
   for (const Vec3& c : centres) {
     z_lo = std::min(z_lo, c.z());
     z_hi = std::max(z_hi, c.z());
   }
-  const std::size_t n = sim.particles.size();
   const double mu = spec.loading.platen_friction;
-  sim.walls.push_back(make_wall(Vec3(0, 0, 1), Vec3(0, 0, z_lo - r), k.kr_n_m, k.ks_n_m, mu, n));
-  sim.walls.push_back(make_wall(Vec3(0, 0, -1), Vec3(0, 0, z_hi + r), k.kr_n_m, k.ks_n_m, mu, n));
+  sim.walls.push_back(
+      make_wall(Vec3(0, 0, 1), Vec3(0, 0, z_lo - r), k.kr_n_m, k.ks_n_m, mu, kBottomPlaten));
+  sim.walls.push_back(
+      make_wall(Vec3(0, 0, -1), Vec3(0, 0, z_hi + r), k.kr_n_m, k.ks_n_m, mu, kTopPlaten));
 
+  sim.redistribute();  // ghosts and local bond indices, which the time step estimate needs
   sim.dt = spec.loading.dt_s ? *spec.loading.dt_s : auto_time_step(sim, spec.loading.dt_safety);
-  sim.initialise();
+  sim.compute_loads();
   return sim;
 }
 

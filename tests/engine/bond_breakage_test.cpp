@@ -79,6 +79,8 @@ TEST(BondBreakage, ABrokenBondIsGoneForGoodAndRecorded) {
   Pair p = stretched(1.01);
   sim.particles.add(p.xi, 1.0, 1.0, 0.4, 7);
   sim.particles.add(p.xj, 1.0, 1.0, 0.4, 8);
+  p.bond.id_i = 7;
+  p.bond.id_j = 8;
   sim.bonds.push_back(p.bond);
   sim.contact = ContactLaw{p.k.kr_n_m, p.k.ks_n_m, 0.6, 0.6};
   sim.dt = 1e-4;

@@ -12,7 +12,7 @@ struct Pair {
   Vec3 xi{0, 0, 0}, xj{0, 0, 2};
   Quat qi = Quat::Identity(), qj = Quat::Identity();
   Bond bond =
-      make_bond(0, 1, xi, r, xj, r, k.kr_n_m, k.ks_n_m, k.kb_nm_rad, k.kt_nm_rad, 64.0, 64.0);
+      make_bond(0, 1, 0, 1, xi, r, xj, r, k.kr_n_m, k.ks_n_m, k.kb_nm_rad, k.kt_nm_rad, 64.0, 64.0);
 
   BondLoad load() const { return bond_load(bond, xi, qi, xj, qj); }
 };

@@ -7,8 +7,9 @@ using namespace rockcal;
 
 namespace {
 
-// UCT: D = 10, H = 20; BTT: D = 24, t = 12. Smaller discs hold so few particles that round-off-level
-// changes move their peak by tens of percent (measured at D = 16: 2031 vs 2578 for one code change).
+// UCT: D = 10, H = 20; BTT: D = 24, t = 12. Smaller discs hold so few particles that
+// round-off-level changes move their peak by tens of percent (measured at D = 16: 2031 vs 2578 for
+// one code change).
 double peak(TestKind test, double fr0, double fs0) {
   JobSpec s;
   s.test = test;
@@ -25,10 +26,12 @@ double peak(TestKind test, double fr0, double fs0) {
 }  // namespace
 
 TEST(Trends, PeaksRiseWithShearStrengthAtFixedTensileStrength) {
-  const double a = peak(TestKind::uct, 16, 8), b = peak(TestKind::uct, 16, 24), c = peak(TestKind::uct, 16, 64);
+  const double a = peak(TestKind::uct, 16, 8), b = peak(TestKind::uct, 16, 24),
+               c = peak(TestKind::uct, 16, 64);
   EXPECT_LT(a, b);
   EXPECT_LT(b, c);
-  const double d = peak(TestKind::btt, 64, 16), e = peak(TestKind::btt, 64, 32), f = peak(TestKind::btt, 64, 128);
+  const double d = peak(TestKind::btt, 64, 16), e = peak(TestKind::btt, 64, 32),
+               f = peak(TestKind::btt, 64, 128);
   EXPECT_LT(d, e);
   EXPECT_LT(e, f);
 }
