@@ -15,6 +15,15 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
   const double wall = std::max(r.wall_seconds, 1e-9);
   json by;
   for (int m = 0; m < 4; ++m) by[to_string(static_cast<BreakMode>(m))] = r.broken_by[m];
+  json rate = nullptr;
+  if (r.rate_study) {
+    rate = {{"speeds", r.rate_study->speeds_m_s},
+            {"peak_loads", r.rate_study->peaks_n},
+            {"wall_seconds", r.rate_study->wall_seconds},
+            {"extrapolated_peak_load", r.rate_study->extrapolated_peak_n},
+            {"rate_error", r.rate_study->rate_error},
+            {"converged", r.rate_study->converged}};
+  }
   return json{{"test", to_string(r.test)},
               {"peak_load", r.peak_load_n},
               {"strength", r.strength_pa},
@@ -34,6 +43,7 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
               {"peak_reached", r.stop_reason == "post_peak"},
               {"engine_version", engine_version()},
               {"ranks", ranks},
+              {"rate_study", rate},
               {"spec", to_json(spec)}};
 }
 

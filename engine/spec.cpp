@@ -215,6 +215,11 @@ LoadingSpec parse_loading(ObjectReader& root) {
   l.max_steps = r.integer("max_steps", 1, 10'000'000'000LL);
   l.platen_friction = r.in_range("platen_friction", l.platen_friction, 0.0, 10.0, false);
   l.elastic_strain = r.in_range("elastic_strain", l.elastic_strain, 1e-9, 0.01, false);
+  l.slow_factor = r.in_range("slow_factor", l.slow_factor, 1e-4, 1.0, false);
+  l.slow_trigger_broken_fraction =
+      r.in_range("slow_trigger_broken_fraction", l.slow_trigger_broken_fraction, 0.0, 1.0, false);
+  l.rate_study = r.boolean("rate_study").value_or(l.rate_study);
+  l.rate_study_runs = r.integer("rate_study_runs", 3, 6).value_or(l.rate_study_runs);
   r.reject_unknown();
   return l;
 }
@@ -321,7 +326,11 @@ nlohmann::json to_json(const JobSpec& s) {
             {"stop_load_fraction", s.loading.stop_load_fraction},
             {"max_strain", s.loading.max_strain},
             {"platen_friction", s.loading.platen_friction},
-            {"elastic_strain", s.loading.elastic_strain}};
+            {"elastic_strain", s.loading.elastic_strain},
+            {"slow_factor", s.loading.slow_factor},
+            {"slow_trigger_broken_fraction", s.loading.slow_trigger_broken_fraction},
+            {"rate_study", s.loading.rate_study},
+            {"rate_study_runs", s.loading.rate_study_runs}};
   if (s.loading.dt_s)
     l["dt"] = *s.loading.dt_s;
   else

@@ -55,6 +55,13 @@ struct LoadingSpec {
   std::optional<std::int64_t> max_steps;
   double platen_friction = 0.0;  // Coulomb coefficient between platen and particles
   double elastic_strain = 2e-4;  // elastic test: the applied axial strain
+  // Two-rate loading (the seed paper's proposal): once this fraction of the bonds has broken, the
+  // platens slow down to slow_factor x platen_velocity. 1 = a single rate.
+  double slow_factor = 1.0;
+  double slow_trigger_broken_fraction = 1e-3;
+  // Rate study: repeat the test at decreasing speeds and extrapolate the peak to zero speed.
+  bool rate_study = false;
+  std::int64_t rate_study_runs = 3;
 };
 
 struct DampingSpec {

@@ -32,6 +32,23 @@ std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, doub
   return (n * sxy - sx * sy) / den;
 }
 
+// Platen speed over time: a ramp up to the loading speed, then (two-rate loading) a ramp of the
+// same length down to the slow speed once damage has started.
+struct SpeedSchedule {
+  double fast_m_s, slow_factor, ramp_s;
+  double slow_from_s = -1.0;  // when the slow-down started; < 0 while intact
+
+  void slow_down_from(double t) {
+    if (slow_from_s < 0 && slow_factor < 1.0) slow_from_s = t;
+  }
+  double speed_at(double t) const {
+    const double up = ramp_s > 0 ? std::min(1.0, t / ramp_s) : 1.0;
+    if (slow_from_s < 0) return fast_m_s * up;
+    const double down = ramp_s > 0 ? std::min(1.0, (t - slow_from_s) / ramp_s) : 1.0;
+    return fast_m_s * up * (1.0 - (1.0 - slow_factor) * down);
+  }
+};
+
 }  // namespace
 
 TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
@@ -43,10 +60,12 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
   const double t_max = ld.max_strain * length / (2.0 * speed);  // both platens move
   const double t_ramp = ld.ramp_fraction * t_max;
   const std::int64_t max_steps = ld.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
-  const std::int64_t expected =
-      std::min<std::int64_t>(max_steps, static_cast<std::int64_t>(std::ceil(t_max / sim.dt)));
-  const std::int64_t curve_every = std::max<std::int64_t>(1, expected / spec.output.curve_points);
-  const std::int64_t frame_every = std::max<std::int64_t>(1, expected / spec.output.vtk_frames);
+  // Curve rows and VTK frames are spaced by platen closure, so a slowed-down phase is not
+  // oversampled.
+  const double max_closure = ld.max_strain * length;
+  const double curve_spacing = max_closure / static_cast<double>(spec.output.curve_points);
+  const double frame_spacing = max_closure / static_cast<double>(spec.output.vtk_frames);
+  double next_curve = 0.0, next_frame = frame_spacing;
 
   Wall& bottom = sim.walls[kBottomPlaten];
   Wall& top = sim.walls[kTopPlaten];
@@ -55,6 +74,9 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
   TestResult r;
   r.test = spec.test;
   count_specimen(sim, r);
+  SpeedSchedule schedule{speed, ld.slow_factor, t_ramp};
+  const auto slow_trigger = static_cast<std::int64_t>(
+      std::max(1.0, std::ceil(ld.slow_trigger_broken_fraction * static_cast<double>(r.bonds))));
   r.dt_s = sim.dt;
   double load = 0.0, closure = 0.0;
   int frame = 0;
@@ -68,9 +90,10 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
   };
 
   while (true) {
-    const double ramp = t_ramp > 0 ? std::min(1.0, (sim.time + 0.5 * sim.dt) / t_ramp) : 1.0;
-    bottom.velocity = Vec3(0, 0, speed * ramp);
-    top.velocity = Vec3(0, 0, -speed * ramp);
+    if (sim.broken_total >= slow_trigger) schedule.slow_down_from(sim.time);
+    const double v = schedule.speed_at(sim.time + 0.5 * sim.dt);
+    bottom.velocity = Vec3(0, 0, v);
+    top.velocity = Vec3(0, 0, -v);
     sim.advance();
 
     closure = gap0 - (top.point.z() - bottom.point.z());
@@ -80,9 +103,14 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
       r.peak_displacement_m = closure;
       r.broken_at_peak = sim.broken_total;
     }
-    if (sim.step % curve_every == 0)
+    if (closure >= next_curve) {
       r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
-    if (hooks.on_frame && sim.step % frame_every == 0) hooks.on_frame(sim, frame++);
+      next_curve = closure + curve_spacing;
+    }
+    if (hooks.on_frame && closure >= next_frame) {
+      hooks.on_frame(sim, frame++);
+      next_frame = closure + frame_spacing;
+    }
     clock.maybe_report(progress);
 
     // A peak only counts once the ramp is over and bonds have started to break.
@@ -120,8 +148,8 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
 }
 
 TestResult run_test(const JobSpec& spec, const RunHooks& hooks) {
-  return spec.test == TestKind::elastic ? run_elastic_test(spec, hooks)
-                                        : run_compression_test(spec, hooks);
+  if (spec.test == TestKind::elastic) return run_elastic_test(spec, hooks);
+  return spec.loading.rate_study ? run_rate_study(spec, hooks) : run_compression_test(spec, hooks);
 }
 
 }  // namespace rockcal

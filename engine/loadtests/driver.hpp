@@ -13,7 +13,12 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks);
 // stress and strain measured in the interior, away from the free surface and the platens.
 TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks);
 
-// Dispatches on spec.test.
+// Rate study of a UCT or BTT: the test at a sequence of halving platen speeds, starting where the
+// time to peak is kTransitsToPeak elastic-wave transit times; the peak is extrapolated to zero
+// speed. Returns the slowest run, with the study attached.
+TestResult run_rate_study(const JobSpec& spec, const RunHooks& hooks);
+
+// Dispatches on spec.test (and loading.rate_study).
 TestResult run_test(const JobSpec& spec, const RunHooks& hooks = {});
 
 }  // namespace rockcal

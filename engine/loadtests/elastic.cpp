@@ -11,7 +11,6 @@
 namespace rockcal {
 namespace {
 
-constexpr double kFccSolidFraction = M_PI / (3.0 * std::sqrt(2.0));
 constexpr double kLoadTransits = 20.0;  // loading time in elastic-wave transit times: quasi-static
 constexpr double kHoldTransits = 20.0;  // then held this long (at least) to let the damping settle
 constexpr double kSettledEnergyRatio = 1e-8;  // kinetic / stored energy that counts as at rest
@@ -21,16 +20,10 @@ constexpr double kSettledEnergyRatio = 1e-8;  // kinetic / stored energy that co
 TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
   Simulation sim = make_specimen(spec, hooks.comm);
   RunClock clock(hooks, spec.output.progress_seconds);
-  const double r0 = spec.sample.radius_m;
   const double length = spec.sample.height_m;
   const double diameter = spec.sample.diameter_m;
 
-  // Wave speed of the lattice from eq. 3 inverted: E = 2 (1 - 2 nu) K_r / (sqrt(2) R).
-  const double particle_volume = (4.0 / 3.0 * M_PI * r0 * r0 * r0) / kFccSolidFraction;
-  const double kr = bond_stiffness(spec, r0).kr_n_m;
-  const double e_lattice = 2.0 * (1.0 - 2.0 * spec.material.nu) * kr / (std::sqrt(2.0) * r0);
-  const double rho_bulk = sim.particles.mass[0] / particle_volume;
-  const double transit_s = length / std::sqrt(e_lattice / rho_bulk);
+  const double transit_s = wave_transit_time(spec);
   const double t_load = kLoadTransits * transit_s;
   const double t_hold_min = kHoldTransits * transit_s;
   const std::int64_t max_steps =
@@ -96,7 +89,7 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
       [&](const Vec3& x) {
         return x.x() * x.x() + x.y() * x.y() <= r_in * r_in && std::abs(x.z()) <= z_in;
       },
-      particle_volume);
+      particle_volume(spec));
   const double eps_axial = s.strain(2, 2);
   const double eps_lateral = 0.5 * (s.strain(0, 0) + s.strain(1, 1));
   if (s.particles >= 4 && eps_axial != 0) {

@@ -26,6 +26,14 @@ struct CurvePoint {
   std::int64_t broken_bonds;
 };
 
+// Peak load against platen speed, extrapolated to zero speed (rate study).
+struct RateStudy {
+  std::vector<double> speeds_m_s, peaks_n, wall_seconds;
+  double extrapolated_peak_n = 0.0;
+  double rate_error = 0.0;  // |slowest peak - extrapolated| / extrapolated
+  bool converged = false;   // peaks converged geometrically; otherwise the error is a bound guess
+};
+
 struct TestResult {
   TestKind test = TestKind::uct;
   double peak_load_n = 0.0;
@@ -42,6 +50,7 @@ struct TestResult {
   std::string stop_reason;
   std::vector<CurvePoint> curve;
   std::vector<BreakEvent> breaks;
+  std::optional<RateStudy> rate_study;
 };
 
 struct Progress {

@@ -1,6 +1,7 @@
 #include "engine/loadtests/specimen.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "engine/packing/fcc.hpp"
@@ -14,6 +15,21 @@ constexpr double kSkinRadii = 0.3;  // neighbour-list skin, in particle radii
 
 double loaded_length(const JobSpec& spec) {
   return spec.test == TestKind::btt ? spec.sample.diameter_m : spec.sample.height_m;
+}
+
+double particle_volume(const JobSpec& spec) {
+  const double r = spec.sample.radius_m;
+  const double fcc_solid_fraction = M_PI / (3.0 * std::sqrt(2.0));
+  return (4.0 / 3.0 * M_PI * r * r * r) / fcc_solid_fraction;
+}
+
+double wave_transit_time(const JobSpec& spec) {
+  const double r = spec.sample.radius_m;
+  // Eq. 3 inverted: the lattice's E = 2 (1 - 2 nu) K_r / (sqrt(2) R).
+  const double kr = bond_stiffness(spec, r).kr_n_m;
+  const double e_lattice = 2.0 * (1.0 - 2.0 * spec.material.nu) * kr / (std::sqrt(2.0) * r);
+  const double rho_bulk = sphere_mass(spec.material.density_kg_m3, r) / particle_volume(spec);
+  return loaded_length(spec) / std::sqrt(e_lattice / rho_bulk);
 }
 
 void count_specimen(const Simulation& sim, TestResult& r) {

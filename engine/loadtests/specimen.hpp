@@ -19,6 +19,11 @@ void count_specimen(const Simulation& sim, TestResult& r);
 // Specimen length along the loading axis (H for UCT/elastic, D for BTT), m.
 double loaded_length(const JobSpec& spec);
 
+// Volume a particle occupies in the packing (sphere volume / FCC solid fraction), m^3.
+double particle_volume(const JobSpec& spec);
+// Time for an elastic wave to cross the specimen along the loading axis (FCC lattice modulus), s.
+double wave_transit_time(const JobSpec& spec);
+
 // Platen indices in Simulation::walls.
 constexpr int kBottomPlaten = 0;
 constexpr int kTopPlaten = 1;
