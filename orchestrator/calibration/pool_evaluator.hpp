@@ -1,0 +1,31 @@
+// The service's worker pool as the calibration's Evaluator: each request of a batch becomes a UCT
+// and a BTT job of the campaign, all submitted before any is waited for, so the pool runs them in
+// parallel. The job cache answers finished jobs at once, which is what lets a restarted campaign
+// replay its history.
+#pragma once
+
+#include <cstdint>
+#include <stop_token>
+
+#include "orchestrator/calibration/evaluator.hpp"
+#include "orchestrator/job_service.hpp"
+
+namespace rockcal::calibration {
+
+class PoolEvaluator : public Evaluator {
+ public:
+  PoolEvaluator(orch::JobService& service, std::int64_t campaign_id, nlohmann::json job_template,
+                std::stop_token stop);
+
+  // Throws EvaluationCancelled when the campaign is cancelled or the server stops.
+  std::vector<EvaluationOutcome> evaluate_batch(
+      std::span<const EvaluationRequest> requests) override;
+
+ private:
+  orch::JobService& service_;
+  std::int64_t campaign_id_;
+  nlohmann::json job_template_;
+  std::stop_token stop_;
+};
+
+}  // namespace rockcal::calibration

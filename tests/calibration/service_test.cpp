@@ -1,0 +1,135 @@
+// The calibration kind inside the real service (JobService, SQLite store, local executor), with a
+// formula engine: the campaign runs to a feasible report, bad campaigns are refused naming the
+// field, and a server stopped mid-calibration resumes without re-running finished evaluations.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <thread>
+
+#include "orchestrator/calibration/calibration_kind.hpp"
+#include "orchestrator/job_service.hpp"
+#include "orchestrator/local_executor.hpp"
+#include "orchestrator/request_error.hpp"
+#include "synthetic.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+class ServiceCalibration : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("rockcal-cal-svc-" + std::to_string(getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    setenv("FAKE_DEM_RUNS", runs_file().c_str(), 1);
+  }
+  void TearDown() override {
+    if (service_) service_->stop();
+    service_.reset();
+    std::filesystem::remove_all(dir_);
+  }
+
+  void start() {
+    orch::ServiceConfig cfg;
+    cfg.db_path = dir_ / "svc.db";
+    cfg.workers = 2;
+    orch::LocalExecutorConfig exec;
+    exec.engine = FAKE_DEM;
+    exec.ranks = 0;
+    service_ = std::make_unique<orch::JobService>(cfg, std::make_unique<orch::LocalExecutor>(exec));
+    service_->kinds().add(calibration_kind());
+    service_->start();
+  }
+
+  std::optional<std::string> driver_status(std::int64_t id) {
+    return service_->store().campaign(id)->driver_status;
+  }
+
+  bool wait_for(const std::function<bool()>& condition, std::chrono::seconds timeout) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+      if (condition()) return true;
+      std::this_thread::sleep_for(20ms);
+    }
+    return condition();
+  }
+
+  std::string runs_file() const { return (dir_ / "runs.txt").string(); }
+  std::vector<std::string> runs() const {
+    std::vector<std::string> lines;
+    std::ifstream in(runs_file());
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  }
+
+  static json request() {
+    return testing::campaign_json(testing::power_law({40, 90}), {{"name", "service twin"}});
+  }
+
+  std::filesystem::path dir_;
+  std::unique_ptr<orch::JobService> service_;
+};
+
+TEST_F(ServiceCalibration, RunsToAFeasibleReport) {
+  start();
+  const std::int64_t id = service_->create_campaign(request());
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 60s));
+  const json report = json::parse(*service_->store().campaign(id)->summary);
+  EXPECT_EQ(report["verdict"], "feasible") << report["verdict_reason"];
+  EXPECT_NEAR(report["best"]["fr0"].get<double>() / 40, 1.0, 0.1);
+  EXPECT_NEAR(report["best"]["fs0"].get<double>() / 90, 1.0, 0.1);
+  EXPECT_LE(report["evaluations"].get<int>(), 40);
+  // Every evaluation is two ordinary jobs of the campaign, each run once.
+  EXPECT_EQ(service_->store().counts(id).total(), 2 * report["evaluations"].get<int>());
+  EXPECT_EQ(int(runs().size()), 2 * report["evaluations"].get<int>());
+}
+
+TEST_F(ServiceCalibration, BadCampaignIsRefusedNamingTheField) {
+  start();
+  json bad = request();
+  bad["bounds"]["fr0"] = {100, 10};
+  try {
+    service_->create_campaign(bad);
+    FAIL() << "accepted inverted bounds";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(e.field, "bounds.fr0");
+  }
+}
+
+TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluations) {
+  // The 2-D search takes ~20 evaluations here; stop the server after the first 8.
+  json r = request();
+  r["strategy"] = "direct_2d";
+  start();
+  const std::int64_t id = service_->create_campaign(r);
+  ASSERT_TRUE(wait_for([&] { return service_->store().counts(id).succeeded >= 16; }, 60s));
+  service_->stop();  // a shutdown: the driver stays "running" and resumes at the next start
+  service_.reset();
+  const std::size_t before = runs().size();
+  start();
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 60s));
+  const json report = json::parse(*service_->store().campaign(id)->summary);
+  EXPECT_EQ(report["verdict"], "feasible");
+  // No finished (test, point) ran twice; only jobs cut short by the stop may have run again.
+  std::map<std::string, int> times;
+  for (const std::string& line : runs()) ++times[line];
+  int repeated = 0;
+  for (const auto& [line, n] : times) repeated += n - 1;
+  EXPECT_LE(repeated, 2) << "more re-runs than jobs that can be running at a stop (2 workers)";
+  EXPECT_GT(runs().size(), before);
+  EXPECT_EQ(int(times.size()), 2 * report["evaluations"].get<int>());
+  std::printf("resumed calibration: %d evaluations, %zu engine runs before the stop, %d re-run\n",
+              report["evaluations"].get<int>(), before, repeated);
+}
+
+}  // namespace
+}  // namespace rockcal::calibration
