@@ -49,9 +49,9 @@ struct LoadingSpec {
   double platen_velocity_m_s = 0.05;  // each platen moves at this speed towards the centre
   std::optional<double> dt_s;         // nullopt = "auto"
   double dt_safety = 0.5;             // fraction of the critical step used by "auto"
-  double ramp_fraction = 0.01;        // platen speed ramps up over this fraction of max_strain
-  double stop_load_fraction = 0.7;    // stop once the load falls to this fraction of the peak
-  double max_strain = 0.05;           // stop at this platen strain (total closure / length)
+  double ramp_fraction = 0.01;  // speed ramps over this fraction of the run (>= 2 wave transits)
+  double stop_load_fraction = 0.7;  // stop once the load falls to this fraction of the peak
+  double max_strain = 0.05;         // stop at this platen strain (total closure / length)
   std::optional<std::int64_t> max_steps;
   double platen_friction = 0.0;  // Coulomb coefficient between platen and particles
   double elastic_strain = 2e-4;  // elastic test: the applied axial strain
