@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git procps
   libopenmpi-dev openmpi-bin
-  libeigen3-dev libsqlite3-dev sqlite3 nlohmann-json3-dev libcpp-httplib-dev
+  libeigen3-dev libsqlite3-dev sqlite3 nlohmann-json3-dev libcpp-httplib-dev libssl-dev
   libnlopt-cxx-dev libnlopt-dev libgtest-dev libgmock-dev libcli11-dev
   libspdlog-dev libfmt-dev libbenchmark-dev curl
 )
