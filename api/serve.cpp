@@ -8,6 +8,7 @@
 #include <iostream>
 #include <thread>
 
+#include "api/optional_kinds.hpp"
 #include "api/server.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
@@ -85,6 +86,7 @@ int run_serve(const ServeOptions& o, const std::string& argv0) {
     std::cerr << "rockcal: re-queued " << service.recovered_jobs() << " jobs left running; stopped "
               << service.stopped_orphans() << " orphaned process groups\n";
   }
+  register_optional_kinds(service);
   ApiServer server(service, workers, server_cfg);
   int bound = server.bind();
   service.start();

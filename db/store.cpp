@@ -40,7 +40,7 @@ Store::Lease Store::lease() {
 void Store::give_back(std::unique_ptr<Connection> conn) {
   std::lock_guard lock(pool_mutex_);
   // Keep a bounded number idle; a burst of concurrent requests may open more, briefly.
-  if (idle_.size() < 16) idle_.push_back(std::move(conn));
+  if (idle_.size() < 64) idle_.push_back(std::move(conn));
 }
 
 void Store::with_connection(const std::function<void(Connection&)>& fn) {

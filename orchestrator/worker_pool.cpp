@@ -49,7 +49,20 @@ void WorkerPool::work(std::stop_token stop) {
       std::cerr << "rockcal: claiming a job failed: " << e.what() << "\n";
     }
     if (job) {
-      execute(*job, stop);
+      try {
+        execute(*job, stop);
+      } catch (const std::exception& e) {
+        // A store error mid-job (e.g. a full disk) must not take the server down; execute() has
+        // stopped the job, which counts as a failed attempt (so a persistent error cannot loop).
+        std::cerr << "rockcal: job " << job->id << ": " << e.what() << "\n";
+        try {
+          store_.finish_failure(job->id, std::string("worker error: ") + e.what(), true,
+                                config_.max_attempts);
+        } catch (const std::exception&) {
+          // Still running in the store; the next start-up re-queues it.
+        }
+        on_job_done_(job->id);
+      }
       continue;
     }
     // Nothing queued: sleep until woken (new campaign, retry) or a periodic re-check.
@@ -85,6 +98,16 @@ void WorkerPool::execute(const db::JobRow& job, std::stop_token stop) {
     return;
   }
 
+  try {
+    monitor(job, dir, handle, stop);
+  } catch (...) {
+    executor_.cancel(handle);  // never leave a job running that nobody watches
+    throw;
+  }
+}
+
+void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir,
+                         const std::string& handle, std::stop_token stop) {
   const auto started = Clock::now();
   auto next_cancel_check = started + config_.cancel_check_interval;
   auto next_progress = started + config_.progress_interval;

@@ -41,6 +41,9 @@ class WorkerPool {
  private:
   void work(std::stop_token stop);
   void execute(const db::JobRow& job, std::stop_token stop);
+  // Watches a launched job until it ends, is cancelled or times out, and records the outcome.
+  void monitor(const db::JobRow& job, const std::filesystem::path& dir, const std::string& handle,
+               std::stop_token stop);
 
   db::Store& store_;
   Executor& executor_;
