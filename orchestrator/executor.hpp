@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,11 @@ class Executor {
   virtual ExitStatus poll(const std::string& handle) = 0;
   // Stops the job and waits until it is gone (gracefully first, then forcibly).
   virtual ExitStatus cancel(const std::string& handle) = 0;
-  // After a server crash: stops whatever still runs under a handle a previous server stored.
+  // After a server crash: stops whatever still runs for a job a previous server launched, found by
+  // the handle it stored or (crash between launch and storing the handle) by the job directory.
   // Returns true if something was found and stopped.
-  virtual bool stop_orphan(const std::string& handle) = 0;
+  virtual bool stop_orphan(const std::optional<std::string>& handle,
+                           const std::filesystem::path& job_dir) = 0;
 };
 
 }  // namespace rockcal::orch

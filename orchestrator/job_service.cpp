@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "orchestrator/campaign_status.hpp"
+#include "orchestrator/job_files.hpp"
 #include "orchestrator/job_identity.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/sweep.hpp"
@@ -48,9 +49,11 @@ void JobService::recover() {
   // Every job still marked running belongs to a server that died: nothing else runs jobs of
   // this database (the lock above). Stop what it left behind, then run the job again.
   for (const auto& job : store_->running_jobs()) {
-    if (job.handle && job.executor == executor_->name()) {
+    if (job.executor == executor_->name()) {
       try {
-        if (executor_->stop_orphan(*job.handle)) ++stopped_orphans_;
+        if (executor_->stop_orphan(job.handle, job_dir(config_.data_dir, job.id))) {
+          ++stopped_orphans_;
+        }
       } catch (const std::exception& e) {
         std::cerr << "rockcal: stopping orphan of job " << job.id << ": " << e.what() << "\n";
       }

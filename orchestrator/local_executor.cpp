@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cstring>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -143,11 +144,19 @@ ExitStatus LocalExecutor::cancel(const std::string& handle) {
   return reap(pid, true);
 }
 
-bool LocalExecutor::stop_orphan(const std::string& handle) {
-  pid_t pgid = parse_handle(handle);
+bool LocalExecutor::stop_orphan(const std::optional<std::string>& handle,
+                                const std::filesystem::path& job_dir) {
   std::string engine_name = std::filesystem::path(config_.engine).filename().string();
-  if (!group_runs_engine(pgid, engine_name)) return false;
-  return terminate_group(pgid, config_.grace);
+  std::set<pid_t> groups;
+  if (handle) groups.insert(parse_handle(*handle));
+  // Every run of the job names its job.json on the command line (absolute path).
+  for (pid_t g : groups_mentioning((job_dir / "job.json").string())) groups.insert(g);
+  bool stopped = false;
+  for (pid_t pgid : groups) {
+    // The recorded number may since belong to an unrelated group: only stop engine runs.
+    if (group_runs_engine(pgid, engine_name)) stopped |= terminate_group(pgid, config_.grace);
+  }
+  return stopped;
 }
 
 }  // namespace rockcal::orch

@@ -24,7 +24,8 @@ class LocalExecutor : public Executor {
   std::string launch(const LaunchRequest& request) override;
   ExitStatus poll(const std::string& handle) override;
   ExitStatus cancel(const std::string& handle) override;
-  bool stop_orphan(const std::string& handle) override;
+  bool stop_orphan(const std::optional<std::string>& handle,
+                   const std::filesystem::path& job_dir) override;
 
   // The full argv a job runs with (exposed for tests and logs).
   std::vector<std::string> command(const LaunchRequest& request) const;

@@ -1,10 +1,13 @@
 #include "orchestrator/process_groups.hpp"
 
 #include <signal.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -36,7 +39,10 @@ std::string read_cmdline(const std::filesystem::path& dir) {
 
 }  // namespace
 
-std::vector<ProcessInfo> group_members(pid_t pgid) {
+namespace {
+
+// Every live (non-zombie) process for which `keep` holds.
+std::vector<ProcessInfo> live_processes(const std::function<bool(const ProcessInfo&)>& keep) {
   std::vector<ProcessInfo> out;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator("/proc", ec)) {
@@ -44,11 +50,28 @@ std::vector<ProcessInfo> group_members(pid_t pgid) {
     if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
     ProcessInfo info;
     info.pid = static_cast<pid_t>(std::stol(name));
-    if (!read_stat(entry.path(), info) || info.pgid != pgid || info.state == 'Z') continue;
+    if (!read_stat(entry.path(), info) || info.state == 'Z') continue;
     info.cmdline = read_cmdline(entry.path());
-    out.push_back(std::move(info));
+    if (keep(info)) out.push_back(std::move(info));
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<ProcessInfo> group_members(pid_t pgid) {
+  return live_processes([pgid](const ProcessInfo& p) { return p.pgid == pgid; });
+}
+
+std::vector<pid_t> groups_mentioning(const std::string& needle) {
+  pid_t own = getpgrp();
+  std::set<pid_t> groups;
+  for (const auto& p : live_processes([&](const ProcessInfo& p) {
+         return p.pgid != own && p.cmdline.find(needle) != std::string::npos;
+       })) {
+    groups.insert(p.pgid);
+  }
+  return {groups.begin(), groups.end()};
 }
 
 bool group_runs_engine(pid_t pgid, const std::string& engine_name) {

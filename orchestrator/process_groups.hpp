@@ -19,6 +19,9 @@ struct ProcessInfo {
 // Live (non-zombie) processes whose process group is `pgid`.
 std::vector<ProcessInfo> group_members(pid_t pgid);
 
+// Process groups (other than our own) with a live member whose command line contains `needle`.
+std::vector<pid_t> groups_mentioning(const std::string& needle);
+
 // True if any live member of the group runs the engine or an MPI launcher (so a pgid recorded
 // by a dead server is not mistaken for an unrelated group that reuses the number).
 bool group_runs_engine(pid_t pgid, const std::string& engine_name);

@@ -69,24 +69,36 @@ TEST_F(ExecutorTest, CancelEscalatesToSigkillAndReachesTheWholeGroup) {
 }
 
 TEST_F(ExecutorTest, StopsOrphansOnlyWhenTheGroupRunsTheEngine) {
-  // A job launched by a "previous server" (another executor instance) is found and stopped.
+  // Jobs launched by a "previous server" (another executor instance) are found and stopped.
   LocalExecutor previous(direct(test::fake_engine()));
-  std::ofstream(dir.path() / "job.json") << R"({"test": "uct", "bond": {"fr0": 17.0, "fs0": 1.0}})";
-  auto handle =
-      previous.launch({dir.path(),
-                       dir.path() / "log",
-                       {"run", (dir.path() / "job.json").string(), "--out", dir.path().string()}});
-  pid_t pgid = std::stoi(handle);
-  ASSERT_TRUE(test::poll_until([&] { return group_runs_engine(pgid, "fake-rockcal-dem.sh"); }, 5s));
   LocalExecutor restarted(direct(test::fake_engine()));
-  EXPECT_TRUE(restarted.stop_orphan(handle));
-  EXPECT_TRUE(group_members(pgid).empty());
-  previous.poll(handle);  // reap our zombie
+  auto hanging_job = [&](const std::filesystem::path& job_dir) {
+    std::filesystem::create_directories(job_dir);
+    std::ofstream(job_dir / "job.json") << R"({"test": "uct", "bond": {"fr0": 17.0, "fs0": 1.0}})";
+    auto handle =
+        previous.launch({job_dir,
+                         job_dir / "log",
+                         {"run", (job_dir / "job.json").string(), "--out", job_dir.string()}});
+    EXPECT_TRUE(test::poll_until(
+        [&] { return group_runs_engine(std::stoi(handle), "fake-rockcal-dem.sh"); }, 5s));
+    return handle;
+  };
+  // By the recorded handle.
+  auto a = hanging_job(dir.path() / "a");
+  EXPECT_TRUE(restarted.stop_orphan(a, dir.path() / "elsewhere"));
+  EXPECT_TRUE(group_members(std::stoi(a)).empty());
+  previous.poll(a);  // reap our zombie
+  // With no handle stored (a crash right after launch): by the job directory.
+  auto b = hanging_job(dir.path() / "b");
+  EXPECT_TRUE(restarted.stop_orphan(std::nullopt, dir.path() / "b"));
+  EXPECT_TRUE(group_members(std::stoi(b)).empty());
+  previous.poll(b);
+  EXPECT_FALSE(restarted.stop_orphan(std::nullopt, dir.path() / "b")) << "nothing left to stop";
 
   // A group that reuses a recorded number but runs something else is left alone.
   LocalExecutor other(direct("/bin/sleep"));
   auto unrelated = other.launch({dir.path(), dir.path() / "log2", {"30"}});
-  EXPECT_FALSE(restarted.stop_orphan(unrelated));
+  EXPECT_FALSE(restarted.stop_orphan(unrelated, dir.path() / "c"));
   EXPECT_FALSE(group_members(std::stoi(unrelated)).empty());
   other.cancel(unrelated);
 }
