@@ -15,11 +15,11 @@
 #   ESYS_WORKERS ESys worker processes (default 1; mpirun -np workers+1, rank 0 is ESys's master)
 #   KEEP         set to keep the run directories
 #
-# Default budget: 500 steps x 43k particles per run. On an idle 2-core machine rockcal-dem needs
-# about 10 s and ESys about 30 s (issue 3 quotes 0.8 M particle-steps/s) plus ~10 s of set-up, so
-# the default 2 pairs take 2-3 minutes; on a machine loaded with compilations (load average ~10)
-# ESys drops to ~0.1 M particle-steps/s and the same run takes 8-9 minutes. Set-up and the first
-# ESys step are excluded from the rates, as rockcal-dem excludes its set-up from wall_seconds.
+# Default budget: 500 steps x 43k particles per run. Measured 2026-11-23 under load average 7-10
+# (other builds): rockcal-dem ~22 s, ESys ~180 s + ~10 s set-up per run, 2 pairs in 7 minutes.
+# ESys used ~90 CPU s per 500 steps, so on an idle machine expect ~90 s per ESys run and ~4 minutes
+# in all. Set-up and the first ESys step are excluded from the rates, as rockcal-dem excludes its
+# set-up from wall_seconds.
 # CPU seconds (user + sys of all processes of a run, set-up included) are printed too: ESys's
 # master rank (rank 0) waits in MPI calls that poll, so an ESys run with one worker keeps a second
 # core busy.
