@@ -20,9 +20,8 @@
 # ESys used ~90 CPU s per 500 steps, so on an idle machine expect ~90 s per ESys run and ~4 minutes
 # in all. Set-up and the first ESys step are excluded from the rates, as rockcal-dem excludes its
 # set-up from wall_seconds.
-# CPU seconds (user + sys of all processes of a run, set-up included) are printed too: ESys's
-# master rank (rank 0) waits in MPI calls that poll, so an ESys run with one worker keeps a second
-# core busy.
+# CPU seconds (user + sys of all processes of a run, set-up included) are printed too; for ESys
+# they include its master rank (rank 0), which waits for the worker in MPI calls that may poll.
 set -u
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
