@@ -117,8 +117,12 @@ SampleSpec parse_sample(ObjectReader& root) {
     s.thickness_m = *t;
   }
   s.packing = r.string("packing").value_or(s.packing);
-  if (s.packing != "fcc")
-    throw SpecError("sample.packing", "unknown packing '" + s.packing + "' (known: fcc)");
+  if (s.packing != "fcc" && s.packing != "random")
+    throw SpecError("sample.packing", "unknown packing '" + s.packing + "' (known: fcc, random)");
+  if (s.packing == "random") s.radius_ratio = 1.5;
+  s.radius_ratio = r.in_range("radius_ratio", s.radius_ratio, 1.0, 5.0, false);
+  if (s.packing == "fcc" && s.radius_ratio != 1.0)
+    throw SpecError("sample.radius_ratio", "applies to random packings only (FCC is monodisperse)");
   s.radius_m = r.positive("radius", s.radius_m);
   if (auto seed = r.integer("seed", 0, std::numeric_limits<std::int64_t>::max())) s.seed = *seed;
   r.reject_unknown();
@@ -311,9 +315,13 @@ JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test) {
 nlohmann::json to_json(const JobSpec& s) {
   json j;
   j["test"] = to_string(s.test);
-  j["sample"] = {{"diameter", s.sample.diameter_m},       {"height", s.sample.height_m},
-                 {"thickness", s.sample.btt_thickness()}, {"packing", s.sample.packing},
-                 {"radius", s.sample.radius_m},           {"seed", s.sample.seed}};
+  j["sample"] = {{"diameter", s.sample.diameter_m},
+                 {"height", s.sample.height_m},
+                 {"thickness", s.sample.btt_thickness()},
+                 {"packing", s.sample.packing},
+                 {"radius_ratio", s.sample.radius_ratio},
+                 {"radius", s.sample.radius_m},
+                 {"seed", s.sample.seed}};
   json mat = {{"density", s.material.density_kg_m3}, {"nu", s.material.nu}};
   if (s.material.kr_n_m) mat["kr"] = *s.material.kr_n_m;
   if (s.material.youngs_modulus_pa) mat["youngs_modulus"] = *s.material.youngs_modulus_pa;

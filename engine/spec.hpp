@@ -23,8 +23,9 @@ struct SampleSpec {
   double diameter_m = 10.0;
   double height_m = 28.0;             // UCT and elastic specimen length
   std::optional<double> thickness_m;  // BTT disc thickness; default diameter / 2
-  std::string packing = "fcc";
-  double radius_m = 1.0;  // particle radius (mean radius for random packings)
+  std::string packing = "fcc";        // "fcc" or "random" (random dense, polydisperse)
+  double radius_m = 1.0;              // particle radius (mean radius for random packings)
+  double radius_ratio = 1.0;          // random packings: max / min radius (uniform in between)
   std::uint64_t seed = 1;
   double btt_thickness() const { return thickness_m.value_or(0.5 * diameter_m); }
 };

@@ -133,9 +133,10 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
       r.stop_reason = "max_strain";
     else if (sim.step >= max_steps)
       r.stop_reason = "max_steps";
-    else if (clock.stop_requested())
+    else if (sim.stop_global)
       r.stop_reason = "cancelled";
     if (!r.stop_reason.empty()) break;
+    sim.stop_local = clock.stop_requested();  // decided together after the next step
   }
   if (r.curve.empty() || r.curve.back().step != sim.step)
     r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});

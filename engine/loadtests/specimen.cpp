@@ -4,13 +4,39 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/packing/cache.hpp"
 #include "engine/packing/fcc.hpp"
 #include "engine/units.hpp"
 
 namespace rockcal {
 
-// Bonds join particles that touch; the tolerance only absorbs round-off of the lattice coordinates.
-constexpr double kBondTolerance = 1e-6;
+// Bonds join particles that touch. In a lattice the tolerance only absorbs round-off; a jammed
+// random packing leaves small gaps between neighbours, bridged up to 5% of the pair's mean radius.
+constexpr double kLatticeBondTolerance = 1e-6;
+constexpr double kRandomBondTolerance = 0.025;
+
+namespace {
+
+std::vector<Sphere> specimen_spheres(const JobSpec& spec) {
+  const double r = spec.sample.radius_m;
+  if (spec.sample.packing == "random") {
+    const RandomPackingParams params{r, spec.sample.radius_ratio, spec.sample.seed};
+    const auto dir = default_packing_cache_dir();
+    if (spec.test == TestKind::btt)
+      return cached_random_dense(Disc{spec.sample.diameter_m, spec.sample.btt_thickness()}, params,
+                                 dir);
+    return cached_random_dense(Cylinder{spec.sample.diameter_m, spec.sample.height_m}, params, dir);
+  }
+  const std::vector<Vec3> centres =
+      spec.test == TestKind::btt
+          ? fcc_centres(Disc{spec.sample.diameter_m, spec.sample.btt_thickness()}, r)
+          : fcc_centres(Cylinder{spec.sample.diameter_m, spec.sample.height_m}, r);
+  std::vector<Sphere> out;
+  for (const Vec3& c : centres) out.push_back({c, r});
+  return out;
+}
+
+}  // namespace
 constexpr double kSkinRadii = 0.3;  // neighbour-list skin, in particle radii
 
 double loaded_length(const JobSpec& spec) {
@@ -42,14 +68,11 @@ void count_specimen(const Simulation& sim, TestResult& r) {
 }
 
 Simulation make_specimen(const JobSpec& spec, MPI_Comm comm) {
+  const std::vector<Sphere> spheres = specimen_spheres(spec);
+  if (spheres.empty()) throw std::runtime_error("the specimen holds no particle");
   const double r = spec.sample.radius_m;
-  std::vector<Vec3> centres;
-  if (spec.test == TestKind::btt) {
-    centres = fcc_centres(Disc{spec.sample.diameter_m, spec.sample.btt_thickness()}, r);
-  } else {
-    centres = fcc_centres(Cylinder{spec.sample.diameter_m, spec.sample.height_m}, r);
-  }
-  if (centres.empty()) throw std::runtime_error("the specimen holds no particle");
+  double r_max = 0.0;
+  for (const Sphere& s : spheres) r_max = std::max(r_max, s.radius);
   const BondStiffness k = bond_stiffness(spec, r);
 
   Simulation sim;
@@ -58,44 +81,64 @@ Simulation make_specimen(const JobSpec& spec, MPI_Comm comm) {
   if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &ranks);
   if (ranks > 1) {
     // Ghosts must cover the contact reach (2R + skin) and the longest a bond gets before it breaks.
-    const double stretch = std::max(0.5 * r, 2.0 * spec.bond.fr0_n / k.kr_n_m);
-    std::vector<double> z(centres.size());
-    std::transform(centres.begin(), centres.end(), z.begin(), [](const Vec3& c) { return c.z(); });
-    sim.domain = make_domain(comm, std::move(z), 2.0 * r + sim.neighbours.skin + stretch);
+    const double stretch = std::max(0.5 * r_max, 2.0 * spec.bond.fr0_n / k.kr_n_m);
+    std::vector<double> z(spheres.size());
+    std::transform(spheres.begin(), spheres.end(), z.begin(),
+                   [](const Sphere& s) { return s.centre.z(); });
+    sim.domain = make_domain(comm, std::move(z), 2.0 * r_max + sim.neighbours.skin + stretch);
   }
 
   // This rank's slab plus its halo, with global ids; bonds are found among them.
   const Domain& d = sim.domain;
-  const double m = sphere_mass(spec.material.density_kg_m3, r);
+  auto add = [&](Particles& p, const Vec3& x, double radius, std::int64_t id) {
+    const double m = sphere_mass(spec.material.density_kg_m3, radius);
+    p.add(x, radius, m, sphere_inertia(m, radius), id);
+  };
   Particles near;
-  for (std::size_t c = 0; c < centres.size(); ++c) {
-    const double z = centres[c].z();
+  for (std::size_t c = 0; c < spheres.size(); ++c) {
+    const double z = spheres[c].centre.z();
     if (z >= d.z_lo - d.halo && z < d.z_hi + d.halo)
-      near.add(centres[c], r, m, sphere_inertia(m, r), static_cast<std::int64_t>(c));
+      add(near, spheres[c].centre, spheres[c].radius, std::int64_t(c));
   }
+  const double tolerance =
+      spec.sample.packing == "random" ? kRandomBondTolerance : kLatticeBondTolerance;
   sim.bonds = bond_neighbours(
-      near, kBondTolerance, [&](double radius) { return bond_stiffness(spec, radius); },
-      spec.bond.fr0_n, spec.bond.fs0_n);
+      near, tolerance, [&](double radius) { return bond_stiffness(spec, radius); }, spec.bond.fr0_n,
+      spec.bond.fs0_n);
+  // A random packing's cut can leave particles without a single bond: loose grains that would fly
+  // around undamped (local damping needs a force). They are not part of the specimen.
+  std::vector<int> degree(near.size(), 0);
+  for (const Bond& b : sim.bonds) ++degree[b.i], ++degree[b.j];
+  std::vector<std::int32_t> new_index(near.size(), -1);
   for (std::size_t c = 0; c < near.size(); ++c) {
     const double z = near.pos[c].z();
-    if (z >= d.z_lo && z < d.z_hi)
-      sim.particles.add(near.pos[c], r, m, sphere_inertia(m, r), near.id[c]);
+    if (z < d.z_lo || z >= d.z_hi || (degree[c] == 0 && spec.sample.packing != "fcc")) continue;
+    new_index[c] = static_cast<std::int32_t>(sim.particles.size());
+    add(sim.particles, near.pos[c], near.radius[c], near.id[c]);
   }
-  if (!d.parallel()) sim.particles = std::move(near);  // same set, same order as the bonds' indices
+  if (!d.parallel()) {  // in serial every bond joins two kept particles: renumber (in parallel by
+                        // id)
+    for (Bond& b : sim.bonds) {
+      b.i = new_index[b.i];
+      b.j = new_index[b.j];
+    }
+  }
 
   sim.contact = ContactLaw{k.kr_n_m, k.ks_n_m, spec.contact.friction, spec.contact.friction};
   sim.damping = Damping{spec.damping.local, spec.damping.viscous};
 
-  double z_lo = centres[0].z(), z_hi = centres[0].z();
-  for (const Vec3& c : centres) {
-    z_lo = std::min(z_lo, c.z());
-    z_hi = std::max(z_hi, c.z());
+  // Platens touch the lowest and highest sphere surfaces.
+  double z_lo = spheres[0].centre.z() - spheres[0].radius,
+         z_hi = spheres[0].centre.z() + spheres[0].radius;
+  for (const Sphere& s : spheres) {
+    z_lo = std::min(z_lo, s.centre.z() - s.radius);
+    z_hi = std::max(z_hi, s.centre.z() + s.radius);
   }
   const double mu = spec.loading.platen_friction;
   sim.walls.push_back(
-      make_wall(Vec3(0, 0, 1), Vec3(0, 0, z_lo - r), k.kr_n_m, k.ks_n_m, mu, kBottomPlaten));
+      make_wall(Vec3(0, 0, 1), Vec3(0, 0, z_lo), k.kr_n_m, k.ks_n_m, mu, kBottomPlaten));
   sim.walls.push_back(
-      make_wall(Vec3(0, 0, -1), Vec3(0, 0, z_hi + r), k.kr_n_m, k.ks_n_m, mu, kTopPlaten));
+      make_wall(Vec3(0, 0, -1), Vec3(0, 0, z_hi), k.kr_n_m, k.ks_n_m, mu, kTopPlaten));
 
   sim.redistribute();  // ghosts and local bond indices, which the time step estimate needs
   sim.dt = spec.loading.dt_s ? *spec.loading.dt_s : auto_time_step(sim, spec.loading.dt_safety);
