@@ -30,7 +30,15 @@ orch::CampaignKind calibration_kind() {
   kind.driver = [](orch::DriverContext& ctx) {
     const CalibrationCampaign c = parse_request(ctx.request);
     PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, ctx.stop);
-    return to_json(run_calibration(c, evaluator, {ctx.stop, {}}), c);
+    // While it runs, the campaign's summary is the history so far; the report replaces it at the
+    // end.
+    std::vector<EvaluationRecord> history;
+    auto on_evaluation = [&](const EvaluationRecord& record) {
+      history.push_back(record);
+      ctx.service.store().set_driver_status(ctx.campaign_id, "running",
+                                            progress_json(history, c).dump());
+    };
+    return to_json(run_calibration(c, evaluator, {ctx.stop, on_evaluation}), c);
   };
   return kind;
 }

@@ -70,4 +70,8 @@ const char* to_string(Verdict verdict);
 // The report as JSON: model units throughout, plus "lab" blocks when the targets were in lab units.
 nlohmann::json to_json(const CalibrationReport& report, const CalibrationCampaign& campaign);
 
+// What a running calibration can show: its history so far (for a live convergence plot).
+nlohmann::json progress_json(const std::vector<EvaluationRecord>& history,
+                             const CalibrationCampaign& campaign);
+
 }  // namespace rockcal::calibration

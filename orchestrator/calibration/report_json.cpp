@@ -167,4 +167,14 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
   return j;
 }
 
+json progress_json(const std::vector<EvaluationRecord>& history, const CalibrationCampaign& c) {
+  return {{"kind", "calibration"},
+          {"name", c.name},
+          {"stop_reason", nullptr},
+          {"evaluations", history.size()},
+          {"max_evaluations", c.max_evaluations},
+          {"targets", targets_json(c)},
+          {"history", history_json(history)}};
+}
+
 }  // namespace rockcal::calibration

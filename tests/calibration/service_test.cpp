@@ -112,6 +112,11 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   start();
   const std::int64_t id = service_->create_campaign(r);
   ASSERT_TRUE(wait_for([&] { return service_->store().counts(id).succeeded >= 16; }, 60s));
+  // While it runs, the summary shows the history so far.
+  const json progress = json::parse(service_->store().campaign(id)->summary.value_or("null"));
+  ASSERT_TRUE(progress.is_object());
+  EXPECT_TRUE(progress["stop_reason"].is_null());
+  EXPECT_GE(progress["history"].size(), 6u);
   service_->stop();  // a shutdown: the driver stays "running" and resumes at the next start
   service_.reset();
   const std::size_t before = runs().size();
