@@ -50,8 +50,12 @@ std::vector<ProcessInfo> live_processes(const std::function<bool(const ProcessIn
     if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
     ProcessInfo info;
     info.pid = static_cast<pid_t>(std::stol(name));
-    if (!read_stat(entry.path(), info) || info.state == 'Z') continue;
-    info.cmdline = read_cmdline(entry.path());
+    try {
+      if (!read_stat(entry.path(), info) || info.state == 'Z') continue;
+      info.cmdline = read_cmdline(entry.path());
+    } catch (const std::exception&) {
+      continue;  // the process exited while we read it (libstdc++ throws ESRCH from underflow)
+    }
     if (keep(info)) out.push_back(std::move(info));
   }
   return out;
