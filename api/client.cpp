@@ -127,6 +127,10 @@ int client_status(const ClientOptions& o, std::int64_t id, bool wait) {
         std::cout << line << std::endl;
       } else {
         std::cout << (tty && wait ? "\r\033[K" : "") << line << std::endl;
+        // A driver's report (a calibration's best point, errors, history) is what the user came
+        // for.
+        if (c.contains("summary") && !c["summary"].is_null())
+          std::cout << c["summary"].dump(2) << std::endl;
         return c["state"] == "succeeded" || !wait ? 0 : 1;
       }
     } else {
