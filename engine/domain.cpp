@@ -105,11 +105,11 @@ void unpack_state(const double* o, Particles& p, std::size_t k) {
   p.omega[k] = Vec3(o[10], o[11], o[12]);
 }
 
-std::vector<double> pack_states(const Particles& p, const std::vector<std::int32_t>& list) {
-  std::vector<double> out(list.size() * kStateDoubles);
+void pack_states(const Particles& p, const std::vector<std::int32_t>& list,
+                 std::vector<double>& out) {
+  out.resize(list.size() * kStateDoubles);
   for (std::size_t m = 0; m < list.size(); ++m)
     pack_state(p, static_cast<std::size_t>(list[m]), &out[m * kStateDoubles]);
-  return out;
 }
 
 // Fixed-size variant of `shift` for the per-step refresh: both sides know the counts.
@@ -121,19 +121,19 @@ void shift_states(const Domain& d, const std::vector<double>& out, int to, int f
 
 }  // namespace
 
-void refresh_ghosts(const Domain& d, Particles& p) {
+void refresh_ghosts(Domain& d, Particles& p) {
   if (!d.parallel()) return;
   const std::size_t first_below = p.n_owned, first_above = p.n_owned + d.ghosts_from_below;
-  std::vector<double> in_above(d.ghosts_from_above * kStateDoubles),
-      in_below(d.ghosts_from_below * kStateDoubles);
-  shift_states(d, pack_states(p, d.send_below), d.below, d.above, in_above.data(), in_above.size(),
-               30);
-  shift_states(d, pack_states(p, d.send_above), d.above, d.below, in_below.data(), in_below.size(),
-               31);
+  d.in_above.resize(d.ghosts_from_above * kStateDoubles);
+  d.in_below.resize(d.ghosts_from_below * kStateDoubles);
+  pack_states(p, d.send_below, d.out_below);
+  pack_states(p, d.send_above, d.out_above);
+  shift_states(d, d.out_below, d.below, d.above, d.in_above.data(), d.in_above.size(), 30);
+  shift_states(d, d.out_above, d.above, d.below, d.in_below.data(), d.in_below.size(), 31);
   for (std::size_t m = 0; m < d.ghosts_from_below; ++m)
-    unpack_state(&in_below[m * kStateDoubles], p, first_below + m);
+    unpack_state(&d.in_below[m * kStateDoubles], p, first_below + m);
   for (std::size_t m = 0; m < d.ghosts_from_above; ++m)
-    unpack_state(&in_above[m * kStateDoubles], p, first_above + m);
+    unpack_state(&d.in_above[m * kStateDoubles], p, first_above + m);
 }
 
 void pack_ghost(const Particles& p, std::size_t k, std::vector<double>& out) {

@@ -24,6 +24,8 @@ struct Domain {
   int below = MPI_PROC_NULL, above = MPI_PROC_NULL;  // neighbour ranks
   std::vector<std::int32_t> send_below, send_above;  // owned particles mirrored as ghosts
   std::size_t ghosts_from_below = 0, ghosts_from_above = 0;
+  // Per-step refresh buffers, kept so the time-step loop does not allocate.
+  std::vector<double> out_below, out_above, in_below, in_above;
 
   bool parallel() const { return comm != MPI_COMM_NULL && ranks > 1; }
   bool root() const { return rank == 0; }
@@ -47,7 +49,7 @@ Received exchange(const Domain& d, const std::vector<double>& to_below,
                   const std::vector<double>& to_above);
 
 // Copies the owners' current state (position, velocity, orientation, spin) into the ghosts.
-void refresh_ghosts(const Domain& d, Particles& p);
+void refresh_ghosts(Domain& d, Particles& p);
 
 // Ghost records: what a neighbour needs to evaluate loads on its own particles.
 constexpr int kGhostDoubles = 17;

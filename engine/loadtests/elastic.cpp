@@ -49,6 +49,7 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
   r.dt_s = sim.dt;
   double load = 0.0, closure = 0.0;
   int stage = 1;
+  bool hit_hold_limit = false;
   auto progress = [&](double elapsed) {
     const double f =
         (stage - 1 +
@@ -80,7 +81,7 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
         reduce_sum(sim.domain, energy, 2);
         if (energy[0] <= kSettledEnergyRatio * energy[1]) return true;
         if (held > t_hold_max) {
-          r.stop_reason = "hold_limit";  // measured all the same, but not fully at rest
+          hit_hold_limit = true;  // measured all the same, but not fully at rest
           return true;
         }
       }
@@ -128,7 +129,7 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks) {
       r.youngs_modulus_pa = d_stress(2, 2) / eps_axial;
       r.poisson_ratio = -eps_lateral / eps_axial;
     }
-    if (r.stop_reason.empty()) r.stop_reason = "settled";
+    r.stop_reason = hit_hold_limit ? "hold_limit" : "settled";
   }
   r.strength_pa = 0.0;
   r.peak_displacement_m = closure;
