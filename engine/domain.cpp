@@ -157,6 +157,7 @@ void pack_migrant(const Particles& p, std::size_t k, std::vector<double>& out) {
   pack_ghost(p, k, out);
   for (int w = 0; w < kMaxWalls; ++w)
     for (int a = 0; a < 3; ++a) out.push_back(p.wall_spring[k][w][a]);
+  out.push_back(p.confined[k]);
 }
 
 void unpack_migrant(const double* rec, Particles& p) {
@@ -165,6 +166,7 @@ void unpack_migrant(const double* rec, Particles& p) {
   for (int w = 0; w < kMaxWalls; ++w)
     p.wall_spring.back()[w] = Vec3(rec[kGhostDoubles + 3 * w], rec[kGhostDoubles + 3 * w + 1],
                                    rec[kGhostDoubles + 3 * w + 2]);
+  p.confined.back() = rec[kGhostDoubles + 3 * kMaxWalls] != 0.0 ? 1 : 0;
 }
 
 std::vector<double> gather_to_root(const Domain& d, const std::vector<double>& local) {

@@ -55,8 +55,8 @@ void refresh_ghosts(Domain& d, Particles& p);
 constexpr int kGhostDoubles = 17;
 void pack_ghost(const Particles& p, std::size_t k, std::vector<double>& out);
 void unpack_ghost(const double* rec, Particles& p);  // appends a ghost
-// Migrant records: a ghost record plus the platen friction history.
-constexpr int kMigrantDoubles = kGhostDoubles + 3 * kMaxWalls;
+// Migrant records: a ghost record plus the platen friction history and the confinement flag.
+constexpr int kMigrantDoubles = kGhostDoubles + 3 * kMaxWalls + 1;
 void pack_migrant(const Particles& p, std::size_t k, std::vector<double>& out);
 void unpack_migrant(const double* rec,
                     Particles& p);  // appends an owned particle (no ghosts present)

@@ -27,6 +27,7 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
   return json{{"test", to_string(r.test)},
               {"peak_load", r.peak_load_n},
               {"strength", r.strength_pa},
+              {"confining_pressure", r.confining_pressure_pa},
               {"youngs_modulus", opt(r.youngs_modulus_pa)},
               {"poisson_ratio", opt(r.poisson_ratio)},
               {"peak_displacement", r.peak_displacement_m},

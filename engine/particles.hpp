@@ -25,6 +25,9 @@ struct Particles {
   std::vector<double> inertia;   // kg m^2 (spheres: isotropic)
   std::vector<std::int64_t> id;  // global identity: survives reordering and migration
   std::vector<std::array<Vec3, kMaxWalls>> wall_spring;  // platen friction history, m
+  // 1 = on the lateral surface of a triaxial specimen: the confining pressure acts on it. Set once
+  // at set-up and carried with migrating particles (ghosts do not need it).
+  std::vector<std::uint8_t> confined;
   std::size_t n_owned = 0;
 
   std::size_t size() const { return pos.size(); }
@@ -41,6 +44,7 @@ struct Particles {
     inertia.push_back(i);
     id.push_back(pid);
     wall_spring.push_back({Vec3::Zero(), Vec3::Zero()});
+    confined.push_back(0);
     n_owned = size();
   }
 
@@ -56,6 +60,7 @@ struct Particles {
     inertia.resize(n);
     id.resize(n);
     wall_spring.resize(n);
+    confined.resize(n);
   }
 
   // Copies particle `from` over particle `to` (same array).
@@ -71,6 +76,7 @@ struct Particles {
     inertia[to] = inertia[from];
     id[to] = id[from];
     wall_spring[to] = wall_spring[from];
+    confined[to] = confined[from];
   }
 
   void clear_loads() {

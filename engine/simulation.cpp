@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "engine/confinement.hpp"
 #include "engine/units.hpp"
 
 namespace rockcal {
@@ -184,6 +185,7 @@ void Simulation::compute_loads() {
     neighbours.mark_broken(broken[k].i, broken[k].j);
   accumulate_contact_forces(neighbours, particles, contact, dt);
   for (Wall& w : walls) accumulate_wall_forces(w, particles, dt);
+  if (confining_force_n != 0.0) accumulate_confining_forces(particles, confining_force_n);
   apply_damping(particles, damping);
 
   // The figures every rank needs to take the same decisions: platen reactions, breaks, stop.

@@ -21,6 +21,9 @@ struct Simulation {
   NeighbourList neighbours;
   ContactLaw contact{};
   std::vector<Wall> walls;  // reactions are global (summed over ranks) after each step
+  // Triaxial test: inward radial force on each confined particle (Particles::confined), N. Zero
+  // for the other tests, which then pay one branch per step for it.
+  double confining_force_n = 0.0;
   BreakRule break_rule;
   Damping damping;
   Domain domain;    // serial unless set up by make_specimen under MPI

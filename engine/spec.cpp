@@ -198,7 +198,7 @@ ContactSpec parse_contact(ObjectReader& root) {
   return c;
 }
 
-LoadingSpec parse_loading(ObjectReader& root) {
+LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
   LoadingSpec l;
   const json* v = root.find("loading");
   if (!v) return l;
@@ -218,6 +218,12 @@ LoadingSpec parse_loading(ObjectReader& root) {
   l.max_strain = r.in_range("max_strain", l.max_strain, 1e-9, 0.9, false);
   l.max_steps = r.integer("max_steps", 1, 10'000'000'000LL);
   l.platen_friction = r.in_range("platen_friction", l.platen_friction, 0.0, 10.0, false);
+  if (auto p = r.number("confining_pressure")) {
+    if (test != TestKind::triaxial)
+      throw SpecError("loading.confining_pressure", "applies to the triaxial test only");
+    if (*p < 0) throw SpecError("loading.confining_pressure", "must be non-negative");
+    l.confining_pressure_pa = *p;
+  }
   l.elastic_strain = r.in_range("elastic_strain", l.elastic_strain, 1e-9, 0.01, false);
   l.slow_factor = r.in_range("slow_factor", l.slow_factor, 1e-4, 1.0, false);
   l.slow_trigger_broken_fraction =
@@ -237,6 +243,27 @@ DampingSpec parse_damping(ObjectReader& root) {
   d.viscous = r.in_range("viscous", d.viscous, 0.0, 1e12, false);
   r.reject_unknown();
   return d;
+}
+
+// "effects": {"NAME": {"PARAM": value, ...}, ...}. Names and types here; defaults and ranges in
+// complete_effects(), which also checks specs built in code.
+std::map<std::string, EffectValues> parse_effects(ObjectReader& root) {
+  std::map<std::string, EffectValues> effects;
+  const json* v = root.find("effects");
+  if (!v) return effects;
+  if (!v->is_object()) throw SpecError("effects", "must be a JSON object");
+  for (auto it = v->begin(); it != v->end(); ++it) {
+    const std::string field = "effects." + it.key();
+    const EffectDef* def = find_effect(it.key());
+    if (!def) throw SpecError(field, "unknown effect (known: " + known_effect_names() + ")");
+    ObjectReader r(it.value(), field);
+    EffectValues& values = effects[it.key()];
+    for (const EffectParam& p : def->params)
+      if (auto x = r.number(p.name)) values[p.name] = *x;
+    r.reject_unknown();
+  }
+  complete_effects(effects);
+  return effects;
 }
 
 OutputSpec parse_output(ObjectReader& root) {
@@ -259,14 +286,17 @@ JobSpec parse_body(ObjectReader& r, TestKind test) {
   s.material = parse_material(r);
   s.bond = parse_bond(r);
   s.contact = parse_contact(r);
-  s.loading = parse_loading(r);
+  s.loading = parse_loading(r, test);
   s.damping = parse_damping(r);
   s.output = parse_output(r);
+  s.effects = parse_effects(r);
   r.reject_unknown();
-  if (s.loading.dt_s) {
+  // The checks that follow look at the spec a run will use: with the effects' changes.
+  const JobSpec run = effective_spec(s);
+  if (run.loading.dt_s) {
     // An explicit step above the stability limit would blow up silently; refuse it up front.
-    const double limit = critical_time_step(s);
-    if (*s.loading.dt_s > limit) {
+    const double limit = critical_time_step(run);
+    if (*run.loading.dt_s > limit) {
       throw SpecError("loading.dt",
                       "exceeds the stability limit " + ObjectReader::fmt(limit) + " s");
     }
@@ -284,6 +314,8 @@ const char* to_string(TestKind test) {
       return "btt";
     case TestKind::elastic:
       return "elastic";
+    case TestKind::triaxial:
+      return "triaxial";
   }
   return "?";
 }
@@ -292,15 +324,17 @@ std::optional<TestKind> test_kind_from_string(const std::string& name) {
   if (name == "uct") return TestKind::uct;
   if (name == "btt") return TestKind::btt;
   if (name == "elastic") return TestKind::elastic;
+  if (name == "triaxial") return TestKind::triaxial;
   return std::nullopt;
 }
 
 JobSpec parse_job(const nlohmann::json& job) {
   ObjectReader r(job, "");
   auto name = r.string("test");
-  if (!name) throw SpecError("test", "is required (uct, btt or elastic)");
+  if (!name) throw SpecError("test", "is required (uct, btt, elastic or triaxial)");
   auto kind = test_kind_from_string(*name);
-  if (!kind) throw SpecError("test", "unknown test '" + *name + "' (known: uct, btt, elastic)");
+  if (!kind)
+    throw SpecError("test", "unknown test '" + *name + "' (known: uct, btt, elastic, triaxial)");
   return parse_body(r, *kind);
 }
 
@@ -313,6 +347,9 @@ JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test) {
 }
 
 nlohmann::json to_json(const JobSpec& s) {
+  if (s.spec_effects_applied && !s.effects.empty())
+    throw std::logic_error(
+        "to_json: the spec has its effects applied; serialise the job as written");
   json j;
   j["test"] = to_string(s.test);
   j["sample"] = {{"diameter", s.sample.diameter_m},
@@ -344,12 +381,16 @@ nlohmann::json to_json(const JobSpec& s) {
   else
     l["dt"] = "auto";
   if (s.loading.max_steps) l["max_steps"] = *s.loading.max_steps;
+  // Only where it may be given, so that the other tests' canonical forms (and job identities) stay.
+  if (s.test == TestKind::triaxial) l["confining_pressure"] = s.loading.confining_pressure_pa;
   j["loading"] = l;
   j["damping"] = {{"local", s.damping.local}, {"viscous", s.damping.viscous}};
   j["output"] = {{"vtk", s.output.vtk},
                  {"vtk_frames", s.output.vtk_frames},
                  {"curve_points", s.output.curve_points},
                  {"progress_seconds", s.output.progress_seconds}};
+  if (!s.effects.empty())
+    j["effects"] = s.effects;  // absent when none: identities of old jobs stay
   return j;
 }
 

@@ -2,15 +2,19 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "engine/effects/effect.hpp"
+
 namespace rockcal {
 
-enum class TestKind { uct, btt, elastic };
+// triaxial: the UCT cylinder with a confining pressure on its lateral surface.
+enum class TestKind { uct, btt, elastic, triaxial };
 
 // An invalid spec. `field` is the dotted path of the offending key ("loading.dt").
 struct SpecError : std::runtime_error {
@@ -28,6 +32,13 @@ struct SampleSpec {
   double radius_ratio = 1.0;          // random packings: max / min radius (uniform in between)
   std::uint64_t seed = 1;
   double btt_thickness() const { return thickness_m.value_or(0.5 * diameter_m); }
+  // Equal specimens: a thickness left to its default equals the same thickness given (the
+  // canonical form gives it).
+  bool operator==(const SampleSpec& o) const {
+    return diameter_m == o.diameter_m && height_m == o.height_m &&
+           btt_thickness() == o.btt_thickness() && packing == o.packing && radius_m == o.radius_m &&
+           radius_ratio == o.radius_ratio && seed == o.seed;
+  }
 };
 
 struct MaterialSpec {
@@ -35,15 +46,18 @@ struct MaterialSpec {
   std::optional<double> kr_n_m;             // normal bond stiffness given directly ...
   std::optional<double> youngs_modulus_pa;  // ... or derived from E by eq. 3 (exactly one of them)
   double nu = 0.2;
+  bool operator==(const MaterialSpec&) const = default;
 };
 
 struct BondSpec {
   double fr0_n = 64.0;  // tensile strength
   double fs0_n = 64.0;  // shear strength
+  bool operator==(const BondSpec&) const = default;
 };
 
 struct ContactSpec {
   double friction = 0.6;  // particle-particle Coulomb coefficient
+  bool operator==(const ContactSpec&) const = default;
 };
 
 struct LoadingSpec {
@@ -55,6 +69,8 @@ struct LoadingSpec {
   double max_strain = 0.05;         // stop at this platen strain (total closure / length)
   std::optional<std::int64_t> max_steps;
   double platen_friction = 0.0;  // Coulomb coefficient between platen and particles
+  // Triaxial test only: pressure on the lateral surface, ramped in before the platens advance.
+  double confining_pressure_pa = 0.0;
   double elastic_strain = 2e-4;  // elastic test: the applied axial strain
   // Two-rate loading (the seed paper's proposal): once this fraction of the bonds has broken, the
   // platens slow down to slow_factor x platen_velocity. 1 = a single rate.
@@ -63,11 +79,13 @@ struct LoadingSpec {
   // Rate study: repeat the test at decreasing speeds and extrapolate the peak to zero speed.
   bool rate_study = false;
   std::int64_t rate_study_runs = 3;
+  bool operator==(const LoadingSpec&) const = default;
 };
 
 struct DampingSpec {
   double local = 0.7;    // Cundall non-viscous coefficient, [0, 1)
   double viscous = 0.0;  // mass-proportional viscous damping rate, 1/s
+  bool operator==(const DampingSpec&) const = default;
 };
 
 struct OutputSpec {
@@ -75,6 +93,7 @@ struct OutputSpec {
   std::int64_t vtk_frames = 10;      // number of VTK snapshots over the run
   std::int64_t curve_points = 2000;  // approximate rows in curve.csv
   double progress_seconds = 2.0;     // period of progress reports
+  bool operator==(const OutputSpec&) const = default;
 };
 
 struct JobSpec {
@@ -86,6 +105,12 @@ struct JobSpec {
   LoadingSpec loading;
   DampingSpec damping;
   OutputSpec output;
+  // Optional physics effects (effects/effect.hpp) by name, each with all its parameters. Part of
+  // the job as written: the fields above keep what the job gave, and effective_spec() applies the
+  // effects' spec hooks for a run.
+  std::map<std::string, EffectValues> effects;
+  bool spec_effects_applied = false;  // set by effective_spec(); such a spec is not serialised
+  bool operator==(const JobSpec&) const = default;
 };
 
 // Parses and validates a job. Throws SpecError naming the first offending field.
@@ -95,6 +120,8 @@ JobSpec parse_job(const nlohmann::json& job);
 JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test);
 
 // The canonical form: every field present with its default, so that equal jobs serialise equally.
+// It is the job as written (effects not applied), so parse_job(to_json(s)) == s. Throws
+// std::logic_error for an effective spec with effects: parsing that would apply them twice.
 nlohmann::json to_json(const JobSpec& spec);
 
 const char* to_string(TestKind test);

@@ -1,7 +1,11 @@
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <stdexcept>
 
+#include "engine/confinement.hpp"
+#include "engine/effects/effect.hpp"
 #include "engine/loadtests/driver.hpp"
 #include "engine/loadtests/run_clock.hpp"
 #include "engine/loadtests/specimen.hpp"
@@ -12,15 +16,18 @@ namespace {
 constexpr double kModulusLow = 0.2, kModulusHigh = 0.5;  // fraction of peak load for the E fit
 
 // Least-squares slope of stress against strain on the rising branch between the given fractions
-// of the peak load (ISRM-style average modulus).
-std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, double peak,
-                                      double area_m2, double length_m) {
+// of the peak load (ISRM-style average modulus). Loads count from `base_load` (the triaxial test's
+// load once confined: its modulus is that of the deviatoric loading).
+std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, double base_load,
+                                      double peak_load, double area_m2, double length_m) {
+  const double peak = peak_load - base_load;
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
-  for (const CurvePoint& c : curve) {
-    if (c.load_n >= peak) break;
-    if (c.load_n < kModulusLow * peak || c.load_n > kModulusHigh * peak) continue;
-    const double x = c.displacement_m / length_m, y = c.load_n / area_m2;
+  for (const CurvePoint& point : curve) {
+    const double load = point.load_n - base_load;
+    if (load >= peak) break;
+    if (load < kModulusLow * peak || load > kModulusHigh * peak) continue;
+    const double x = point.displacement_m / length_m, y = load / area_m2;
     sx += x;
     sy += y;
     sxx += x * x;
@@ -54,9 +61,45 @@ struct SpeedSchedule {
   }
 };
 
+// Triaxial confinement: the lateral-surface particles (centre farther than D/2 - 1.5 R from the
+// axis) carry the pressure times the lateral area, shared equally. It is ramped in smoothly over
+// kConfineRampTransits wave transits and held for kConfineHoldTransits more, with the platens
+// still, so the platens start on a specimen at rest under the confinement.
+constexpr double kConfineRampTransits = 3.0;
+constexpr double kConfineHoldTransits = 1.0;
+constexpr double kSurfaceDepthRadii = 1.5;
+
+// Runs the confinement phase. Returns false when the run was stopped (cancelled or step limit).
+bool confine(Simulation& sim, const JobSpec& spec, RunClock& clock, std::int64_t max_steps,
+             const std::function<Progress(double)>& progress) {
+  const double d = spec.sample.diameter_m, h = spec.sample.height_m;
+  const double n_surface = sum_over_ranks(
+      sim.domain, static_cast<double>(mark_confined(
+                      sim.particles, 0.5 * d - kSurfaceDepthRadii * spec.sample.radius_m)));
+  if (n_surface == 0) throw std::runtime_error("the triaxial specimen has no lateral surface");
+  const double full_force = spec.loading.confining_pressure_pa * M_PI * d * h / n_surface;
+  // Radially the wave crosses D, axially H: the slower of the two sets the pace.
+  const double transit = wave_transit_time(spec) * std::max(1.0, d / h);
+  const double t_ramp = kConfineRampTransits * transit;
+  const double t_end = sim.time + t_ramp + kConfineHoldTransits * transit;
+  const double t0 = sim.time;
+  for (Wall& w : sim.walls) w.velocity.setZero();
+  while (sim.time < t_end) {
+    const double f = std::min(1.0, (sim.time + sim.dt - t0) / t_ramp);  // at the step's end
+    sim.confining_force_n = full_force * 0.5 * (1.0 - std::cos(M_PI * f));
+    sim.advance();
+    clock.maybe_report(progress);
+    if (sim.stop_global || sim.step >= max_steps) return false;
+    sim.stop_local = clock.stop_requested();
+  }
+  sim.confining_force_n = full_force;
+  return true;
+}
+
 }  // namespace
 
-TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
+TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
+  const JobSpec spec = effective_spec(job);
   Simulation sim = make_specimen(spec, hooks.comm);
   RunClock clock(hooks, spec.output.progress_seconds);
   const LoadingSpec& ld = spec.loading;
@@ -79,6 +122,7 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
 
   TestResult r;
   r.test = spec.test;
+  r.confining_pressure_pa = spec.loading.confining_pressure_pa;
   count_specimen(sim, r);
   SpeedSchedule schedule{speed, ld.slow_factor, t_ramp};
   bool slow_peak = false;
@@ -96,16 +140,30 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     return Progress{sim.step, std::min(1.0, f), load, r.peak_load_n, sim.broken_total, elapsed};
   };
 
-  while (true) {
-    if (sim.broken_total >= slow_trigger) schedule.slow_down_from(sim.time);
-    const double v = schedule.speed_at(sim.time + 0.5 * sim.dt);
+  // The platens start once a triaxial specimen is confined. Without pressure there is nothing to
+  // ramp in, and the triaxial test is the UCT to the last bit: even a hold of the unloaded specimen
+  // would let round-off-level forces (1e-11 N) seed a different post-damage history, moving the
+  // peak by up to about 1% on small samples. The schedule runs on the loading time.
+  double t = 0.0, base_load = 0.0;
+  if (spec.test == TestKind::triaxial && spec.loading.confining_pressure_pa > 0) {
+    if (!confine(sim, spec, clock, max_steps, progress))
+      r.stop_reason = sim.step >= max_steps ? "max_steps" : "cancelled";
+    load = base_load = 0.5 * (top.reaction.z() - bottom.reaction.z());
+    r.curve.push_back({sim.step, sim.time, 0.0, load, sim.broken_total});
+    next_curve = curve_spacing;
+  }
+
+  while (r.stop_reason.empty()) {
+    if (sim.broken_total >= slow_trigger) schedule.slow_down_from(t);
+    const double v = schedule.speed_at(t + 0.5 * sim.dt);
     bottom.velocity = Vec3(0, 0, v);
     top.velocity = Vec3(0, 0, -v);
     sim.advance();
+    t += sim.dt;
 
     closure = gap0 - (top.point.z() - bottom.point.z());
     load = 0.5 * (top.reaction.z() - bottom.reaction.z());
-    if (schedule.slow_phase(sim.time) && !slow_peak) {  // track the peak afresh at the slow speed
+    if (schedule.slow_phase(t) && !slow_peak) {  // track the peak afresh at the slow speed
       slow_peak = true;
       r.peak_load_n = 0.0;
     }
@@ -125,7 +183,7 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
     clock.maybe_report(progress);
 
     // A peak only counts once the ramp is over and bonds have started to break.
-    const bool past_peak = !schedule.changing(sim.time) && sim.broken_total > 0 &&
+    const bool past_peak = !schedule.changing(t) && sim.broken_total > 0 &&
                            load <= ld.stop_load_fraction * r.peak_load_n;
     if (past_peak)
       r.stop_reason = "post_peak";
@@ -149,7 +207,7 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks) {
   } else {
     const double area = 0.25 * M_PI * d * d;
     r.strength_pa = r.peak_load_n / area;
-    r.youngs_modulus_pa = prepeak_modulus(r.curve, r.peak_load_n, area, length);
+    r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
   }
   r.steps = sim.step;
   r.broken_bonds = sim.broken_total;

@@ -6,7 +6,10 @@
 namespace rockcal {
 
 // UCT (cylinder along its axis) and BTT (disc across a diameter): platens close at the job's speed
-// until the load has fallen past the peak, or the strain or step limit.
+// until the load has fallen past the peak, or the strain or step limit. Triaxial: the UCT cylinder,
+// first confined by loading.confining_pressure on its lateral surface (ramped in with the platens
+// still), then loaded like the UCT; the peak load is the axial platen load.
+// Every driver runs the job's effective spec (effective_spec(): the effects' spec hooks applied).
 TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks);
 
 // Elastic test: the UCT specimen compressed by a small strain and relaxed; E and nu from the

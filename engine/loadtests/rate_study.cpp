@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/effects/effect.hpp"
 #include "engine/loadtests/driver.hpp"
 #include "engine/loadtests/specimen.hpp"
 
@@ -37,7 +38,8 @@ void extrapolate(RateStudy& s) {
 
 }  // namespace
 
-TestResult run_rate_study(const JobSpec& spec, const RunHooks& hooks) {
+TestResult run_rate_study(const JobSpec& job, const RunHooks& hooks) {
+  const JobSpec spec = effective_spec(job);  // the speeds below are the ones the runs use
   JobSpec run = spec;
   run.loading.rate_study = false;
   // A probe at the job's own speed tells the strain at peak, which sets the starting speed.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/effects/effect.hpp"
 #include "engine/packing/cache.hpp"
 #include "engine/packing/fcc.hpp"
 #include "engine/units.hpp"
@@ -67,7 +68,36 @@ void count_specimen(const Simulation& sim, TestResult& r) {
   r.bonds = static_cast<std::int64_t>(counts[1]);
 }
 
-Simulation make_specimen(const JobSpec& spec, MPI_Comm comm) {
+namespace {
+
+// Ghosts must cover the contact reach (2R + skin) and the longest a bond gets before it breaks.
+double halo_for(double r_max, double skin, double longest_stretch) {
+  return 2.0 * r_max + skin + std::max(0.5 * r_max, longest_stretch);
+}
+
+// Effects may have made some bonds stronger than the job's F_r0 (heterogeneity), so that they
+// stretch farther before breaking: widens the ghost layer to match (all ranks alike).
+void widen_halo_for_bonds(Simulation& sim, double r_max) {
+  Domain& d = sim.domain;
+  if (!d.parallel()) return;
+  double stretch = 0.0;
+  for (const Bond& b : sim.bonds) stretch = std::max(stretch, 2.0 * b.fr0 / b.kr);
+  reduce_max(d, &stretch, 1);
+  const double halo = halo_for(r_max, sim.neighbours.skin, stretch);
+  if (halo <= d.halo) return;
+  double too_thin = std::isfinite(d.z_lo) && std::isfinite(d.z_hi) && d.z_hi - d.z_lo < halo;
+  reduce_max(d, &too_thin, 1);
+  if (too_thin > 0)
+    throw std::runtime_error("too many ranks for this specimen: a slab is thinner than the halo " +
+                             std::to_string(halo) + " m its strongest bonds need");
+  d.halo = halo;
+  sim.redistribute();
+}
+
+}  // namespace
+
+Simulation make_specimen(const JobSpec& job, MPI_Comm comm) {
+  const JobSpec spec = effective_spec(job);  // a no-op when the driver already made it effective
   const std::vector<Sphere> spheres = specimen_spheres(spec);
   if (spheres.empty()) throw std::runtime_error("the specimen holds no particle");
   const double r = spec.sample.radius_m;
@@ -80,12 +110,11 @@ Simulation make_specimen(const JobSpec& spec, MPI_Comm comm) {
   int ranks = 1;
   if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &ranks);
   if (ranks > 1) {
-    // Ghosts must cover the contact reach (2R + skin) and the longest a bond gets before it breaks.
-    const double stretch = std::max(0.5 * r_max, 2.0 * spec.bond.fr0_n / k.kr_n_m);
     std::vector<double> z(spheres.size());
     std::transform(spheres.begin(), spheres.end(), z.begin(),
                    [](const Sphere& s) { return s.centre.z(); });
-    sim.domain = make_domain(comm, std::move(z), 2.0 * r_max + sim.neighbours.skin + stretch);
+    sim.domain = make_domain(
+        comm, std::move(z), halo_for(r_max, sim.neighbours.skin, 2.0 * spec.bond.fr0_n / k.kr_n_m));
   }
 
   // This rank's slab plus its halo, with global ids; bonds are found among them.
@@ -141,6 +170,8 @@ Simulation make_specimen(const JobSpec& spec, MPI_Comm comm) {
       make_wall(Vec3(0, 0, -1), Vec3(0, 0, z_hi), k.kr_n_m, k.ks_n_m, mu, kTopPlaten));
 
   sim.redistribute();  // ghosts and local bond indices, which the time step estimate needs
+  apply_specimen_effects(sim, spec);
+  widen_halo_for_bonds(sim, r_max);
   sim.dt = spec.loading.dt_s ? *spec.loading.dt_s : auto_time_step(sim, spec.loading.dt_safety);
   sim.compute_loads();
   return sim;

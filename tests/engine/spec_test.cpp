@@ -62,7 +62,7 @@ TEST(Spec, NamesTheOffendingField) {
   EXPECT_EQ(field_of(with("/loading/dt", 10.0)), "loading.dt");  // above the stability limit
   EXPECT_EQ(field_of(with("/loading/max_steps", 1.5)), "loading.max_steps");
   EXPECT_EQ(field_of(with("/damping/local", 1.0)), "damping.local");
-  EXPECT_EQ(field_of(with("/test", "triaxial")), "test");
+  EXPECT_EQ(field_of(with("/test", "hydrostatic")), "test");
   EXPECT_EQ(field_of(with("/sample/packing", "hcp")), "sample.packing");
   EXPECT_EQ(field_of(json::array()), "(root)");
   json no_bond = good();
@@ -75,4 +75,83 @@ TEST(Spec, TemplatesMustNotNameTheTest) {
   EXPECT_THROW(parse_job_template(t, TestKind::btt), SpecError);
   t.erase("test");
   EXPECT_EQ(parse_job_template(t, TestKind::btt).test, TestKind::btt);
+}
+
+TEST(Spec, EffectsAreCheckedNamingTheField) {
+  auto with_effects = [](json effects) {
+    json j = good();
+    j["effects"] = std::move(effects);
+    return j;
+  };
+  EXPECT_EQ(field_of(with_effects({{"gravity", json::object()}})), "effects.gravity");
+  try {
+    parse_job(with_effects({{"gravity", json::object()}}));
+  } catch (const SpecError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown effect (known: heterogeneity, packing"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(field_of(with_effects({{"rate", {{"speed", 2}}}})), "effects.rate.speed");
+  try {
+    parse_job(with_effects({{"rate", {{"speed", 2}}}}));
+  } catch (const SpecError& e) {
+    EXPECT_EQ(std::string(e.what()), "effects.rate.speed: unknown field");
+  }
+  EXPECT_EQ(field_of(with_effects({{"heterogeneity", {{"weibull_m", 1.0}}}})),
+            "effects.heterogeneity.weibull_m");
+  EXPECT_EQ(field_of(with_effects({{"flaws", {{"crack_radius", 21}}}})),
+            "effects.flaws.crack_radius");
+  EXPECT_EQ(field_of(with_effects({{"rate", {{"speed_factor", "fast"}}}})),
+            "effects.rate.speed_factor");
+  EXPECT_EQ(field_of(with_effects(
+                {{"rate", {{"speed_factor", std::numeric_limits<double>::quiet_NaN()}}}})),
+            "effects.rate.speed_factor");
+  EXPECT_EQ(field_of(with_effects({{"rate", 4}})), "effects.rate");
+  EXPECT_EQ(field_of(with_effects(json::array())), "effects");
+  EXPECT_EQ(field_of(with_effects(json::object())), "(accepted)");
+}
+
+TEST(Spec, EffectsStayInTheCanonicalFormAsWritten) {
+  json j = good();
+  j["effects"] = {{"rate", json::object()}, {"flaws", {{"fraction", 0.1}}}};
+  const JobSpec s = parse_job(j);
+  ASSERT_EQ(s.effects.size(), 2u);
+  EXPECT_EQ(s.effects.at("rate").at("speed_factor"), 4.0);  // default filled in
+  EXPECT_EQ(s.effects.at("flaws").at("crack_radius"), 0.0);
+  EXPECT_DOUBLE_EQ(s.loading.platen_velocity_m_s, 0.05);                 // the job as written ...
+  EXPECT_DOUBLE_EQ(effective_spec(s).loading.platen_velocity_m_s, 0.2);  // ... and as run
+  const json c = to_json(s);
+  EXPECT_EQ(c["effects"]["rate"]["speed_factor"], 4.0);
+  EXPECT_EQ(c["loading"]["platen_velocity"], 0.05);
+  // Idempotent: parsing the canonical form gives the same job, not a compounded speed.
+  EXPECT_EQ(parse_job(c), s);
+  EXPECT_EQ(to_json(parse_job(c)), c);
+  EXPECT_DOUBLE_EQ(effective_spec(parse_job(c)).loading.platen_velocity_m_s, 0.2);
+  // A job without effects keeps the canonical form (and identity) it had before effects existed.
+  EXPECT_FALSE(to_json(parse_job(good())).contains("effects"));
+  // A spec-changing effect's values are validated as the run will see them.
+  j["effects"] = {{"packing", {{"radius_ratio", 2}}}};
+  EXPECT_EQ(effective_spec(parse_job(j)).sample.packing, "random");
+  EXPECT_EQ(parse_job(to_json(parse_job(j))), parse_job(j));
+}
+
+TEST(Spec, TriaxialTakesAConfiningPressure) {
+  json j = good();
+  j["test"] = "triaxial";
+  EXPECT_EQ(parse_job(j).loading.confining_pressure_pa, 0.0);
+  j["loading"]["confining_pressure"] = 25.0;
+  const JobSpec s = parse_job(j);
+  EXPECT_EQ(s.test, TestKind::triaxial);
+  EXPECT_EQ(s.loading.confining_pressure_pa, 25.0);
+  EXPECT_EQ(to_json(s)["test"], "triaxial");
+  EXPECT_EQ(to_json(s)["loading"]["confining_pressure"], 25.0);
+  EXPECT_EQ(parse_job(to_json(s)), s);
+  j["loading"]["confining_pressure"] = -1.0;
+  EXPECT_EQ(field_of(j), "loading.confining_pressure");
+  j["loading"]["confining_pressure"] = "high";
+  EXPECT_EQ(field_of(j), "loading.confining_pressure");
+  j["test"] = "uct";
+  j["loading"]["confining_pressure"] = 25.0;
+  EXPECT_EQ(field_of(j), "loading.confining_pressure");  // only the triaxial test is confined
+  EXPECT_FALSE(to_json(parse_job(good()))["loading"].contains("confining_pressure"));
 }

@@ -1,0 +1,298 @@
+// The effects of the sim-to-real gap diagnosis: each does what it says, and only that.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "engine/confinement.hpp"
+#include "engine/domain.hpp"
+#include "engine/effects/effect.hpp"
+#include "engine/loadtests/specimen.hpp"
+#include "tests/engine/bond_fixture.hpp"
+
+using namespace rockcal;
+using rockcal::testing::Pair;
+using rockcal::testing::rot;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// An FCC cylinder of some 500 particles and 2,500 bonds: enough for statistics, built in
+// milliseconds.
+JobSpec cylinder(std::map<std::string, EffectValues> effects = {}) {
+  JobSpec s;
+  s.test = TestKind::uct;
+  s.sample.diameter_m = 12;
+  s.sample.height_m = 24;
+  s.material.kr_n_m = 8000;
+  s.effects = std::move(effects);
+  return s;
+}
+
+using BondKey = std::pair<std::int64_t, std::int64_t>;
+std::map<BondKey, Bond> by_ids(const std::vector<Bond>& bonds) {
+  std::map<BondKey, Bond> out;
+  for (const Bond& b : bonds) out.emplace(BondKey{b.id_i, b.id_j}, b);
+  return out;
+}
+
+double weibull_cov(double m) {
+  const double g1 = std::tgamma(1 + 1 / m), g2 = std::tgamma(1 + 2 / m);
+  return std::sqrt(g2 / (g1 * g1) - 1);
+}
+
+struct Stats {
+  double mean, cov;
+};
+Stats multiplier_stats(double m, std::uint64_t seed) {
+  JobSpec base = cylinder(), het = cylinder({{"heterogeneity", {{"weibull_m", m}}}});
+  base.sample.seed = het.sample.seed = seed;
+  const auto plain = by_ids(make_specimen(base).bonds);
+  const Simulation sim = make_specimen(het);
+  EXPECT_EQ(sim.bonds.size(), plain.size());
+  double sum = 0, sum2 = 0;
+  for (const Bond& b : sim.bonds) {
+    const Bond& p = plain.at({b.id_i, b.id_j});
+    const double w = b.fr0 / p.fr0;
+    EXPECT_NEAR(b.fs0 / p.fs0, w, 1e-12);  // one multiplier for all four strengths
+    EXPECT_NEAR(b.gb0 / p.gb0, w, 1e-12);
+    EXPECT_NEAR(b.gt0 / p.gt0, w, 1e-12);
+    sum += w;
+    sum2 += w * w;
+  }
+  const double n = static_cast<double>(sim.bonds.size());
+  const double mean = sum / n;
+  return {mean, std::sqrt(sum2 / n - mean * mean) / mean};
+}
+
+// Mean number of other cut bonds whose midpoint lies within 1.5 radii of a cut bond's midpoint:
+// about 0.75 for cuts scattered at 10%, several when they lie on crack discs.
+double cut_neighbours(const Simulation& sim) {
+  std::vector<Vec3> mid;
+  for (const Bond& b : sim.broken)
+    mid.push_back(0.5 * (sim.particles.pos[b.i] + sim.particles.pos[b.j]));
+  double pairs = 0;
+  for (std::size_t a = 0; a < mid.size(); ++a)
+    for (std::size_t b = 0; b < mid.size(); ++b)
+      if (a != b && (mid[a] - mid[b]).norm() < 1.5) ++pairs;
+  return pairs / static_cast<double>(mid.size());
+}
+
+// Two unit particles at x_i and x_j (ids 0 and 1) with the pair's bond intact or broken, and the
+// effects applied as make_specimen would.
+Simulation pair_sim(const Pair& p, const Vec3& x_j, bool intact,
+                    std::map<std::string, EffectValues> effects) {
+  Simulation sim;
+  sim.particles.add(p.xi, 1.0, 1.0, 0.4, 0);
+  sim.particles.add(x_j, 1.0, 1.0, 0.4, 1);
+  (intact ? sim.bonds : sim.broken).push_back(p.bond);
+  sim.contact = ContactLaw{p.k.kr_n_m, p.k.ks_n_m, 0.6, 0.6};
+  sim.dt = 1e-3;
+  sim.neighbours.skin = 0.5;
+  JobSpec job;
+  job.effects = std::move(effects);
+  apply_specimen_effects(sim, effective_spec(job));
+  return sim;
+}
+
+std::size_t broken_pairs(const Simulation& sim) {
+  std::size_t n = 0;
+  for (const ContactPair& c : sim.neighbours.pairs) n += c.bond == PairBond::broken;
+  return n;
+}
+
+}  // namespace
+
+TEST(Effects, RegistryMatchesTheDiagnosisTable) {
+  struct Row {
+    const char* name;
+    const char* param;
+    double neutral, strong;
+    bool log_scale;
+  };
+  const Row table[] = {{"heterogeneity", "weibull_m", kInf, 2, false},
+                       {"packing", "radius_ratio", 1, 2, false},
+                       {"platen_friction", "mu", 0, 0.5, false},
+                       {"flaws", "fraction", 0, 0.15, false},
+                       {"rate", "speed_factor", 1, 8, true},
+                       {"compression_coupling", "coupling", 1, 0, false},
+                       {"post_break_friction", "mu", 0.6, 0.05, false}};
+  ASSERT_EQ(effect_registry().size(), std::size(table));
+  for (const Row& row : table) {
+    const EffectDef* e = find_effect(row.name);
+    ASSERT_NE(e, nullptr) << row.name;
+    ASSERT_FALSE(e->params.empty());
+    EXPECT_LE(e->params.size(), 2u);
+    ASSERT_EQ(e->defaults.size(), e->params.size()) << row.name;
+    EXPECT_EQ(e->params[0].name, row.param);
+    EXPECT_EQ(e->params[0].neutral, row.neutral) << row.name;
+    EXPECT_EQ(e->params[0].strong, row.strong) << row.name;
+    EXPECT_EQ(e->params[0].log_scale, row.log_scale) << row.name;
+    for (std::size_t k = 0; k < e->params.size(); ++k) {
+      EXPECT_GE(e->defaults[k], e->params[k].lo) << row.name;
+      EXPECT_LE(e->defaults[k], e->params[k].hi) << row.name;
+    }
+    EXPECT_TRUE(e->apply_spec || e->apply_specimen) << row.name;
+  }
+  EXPECT_EQ(find_effect("gravity"), nullptr);
+}
+
+TEST(Effects, ValueAtWalksFromNeutralToStrong) {
+  const EffectDef& het = *find_effect("heterogeneity");
+  EXPECT_TRUE(std::isinf(effect_value_at(het, 0.0)));  // off
+  EXPECT_DOUBLE_EQ(effect_value_at(het, 1.0), 2.0);
+  EXPECT_DOUBLE_EQ(effect_value_at(het, 0.5), 4.0);    // 1/m linear: halfway to 1/2
+  EXPECT_DOUBLE_EQ(effect_value_at(het, 0.01), 50.0);  // clamped into the range a job accepts
+  const EffectDef& rate = *find_effect("rate");
+  EXPECT_DOUBLE_EQ(effect_value_at(rate, 0.0), 1.0);
+  EXPECT_NEAR(effect_value_at(rate, 0.5), std::sqrt(8.0), 1e-12);  // log scale
+  EXPECT_DOUBLE_EQ(effect_value_at(rate, 2.0), 8.0);               // s clamped to [0, 1]
+  const EffectDef& coupling = *find_effect("compression_coupling");
+  EXPECT_DOUBLE_EQ(effect_value_at(coupling, 0.25), 0.75);
+  // A job-dependent neutral: the job's contact friction.
+  const EffectDef& pbf = *find_effect("post_break_friction");
+  JobSpec job;
+  job.contact.friction = 0.4;
+  EXPECT_DOUBLE_EQ(effect_value_at(pbf, 0.0, job), 0.4);
+  EXPECT_DOUBLE_EQ(effect_value_at(pbf, 1.0, job), 0.05);
+  EXPECT_DOUBLE_EQ(effect_value_at(pbf, 0.0), 0.6);  // the default job's
+}
+
+TEST(Effects, SpecHooksChangeTheEffectiveSpecOnly) {
+  JobSpec job = cylinder({{"rate", {}}, {"platen_friction", {{"mu", 0.25}}}, {"packing", {}}});
+  const JobSpec run = effective_spec(job);
+  EXPECT_DOUBLE_EQ(run.loading.platen_velocity_m_s, 4 * job.loading.platen_velocity_m_s);
+  EXPECT_DOUBLE_EQ(run.loading.platen_friction, 0.25);
+  EXPECT_EQ(run.sample.packing, "random");
+  EXPECT_DOUBLE_EQ(run.sample.radius_ratio, 1.5);
+  EXPECT_TRUE(run.spec_effects_applied);
+  EXPECT_EQ(effective_spec(run), run);  // idempotent: the rate is not compounded
+  EXPECT_EQ(job.loading.platen_velocity_m_s, LoadingSpec{}.platen_velocity_m_s);  // as written
+  EXPECT_THROW(to_json(run), std::logic_error);  // would apply the effects twice when parsed
+  // The specimen follows the effective spec whichever form it is given.
+  job = cylinder({{"platen_friction", {{"mu", 0.25}}}});
+  const Simulation sim = make_specimen(job);
+  EXPECT_DOUBLE_EQ(sim.walls[kBottomPlaten].friction, 0.25);
+  EXPECT_DOUBLE_EQ(make_specimen(cylinder()).walls[kTopPlaten].friction, 0.0);
+}
+
+TEST(Effects, PackingSwitchesToARandomPacking) {
+  JobSpec job = cylinder({{"packing", {{"radius_ratio", 2.0}}}});
+  job.sample.diameter_m = 6;
+  job.sample.height_m = 8;
+  const Simulation sim = make_specimen(job);
+  double r_min = kInf, r_max = 0;
+  for (std::size_t k = 0; k < sim.particles.n_owned; ++k) {
+    r_min = std::min(r_min, sim.particles.radius[k]);
+    r_max = std::max(r_max, sim.particles.radius[k]);
+  }
+  EXPECT_GT(r_max / r_min, 1.5);  // FCC would be monodisperse
+  EXPECT_LE(r_max / r_min, 2.0 + 1e-9);
+}
+
+TEST(Effects, HeterogeneityMultipliersHaveMeanOneAndTheWeibullScatter) {
+  for (const double m : {4.0, 2.0}) {
+    const Stats s = multiplier_stats(m, 1);
+    EXPECT_NEAR(s.mean, 1.0, 0.03) << m;
+    EXPECT_NEAR(s.cov / weibull_cov(m), 1.0, 0.1) << m << ": CoV " << s.cov;
+  }
+}
+
+TEST(Effects, HeterogeneityIsAFunctionOfTheSeedAndTheBond) {
+  auto strengths = [](std::uint64_t seed) {
+    JobSpec job = cylinder({{"heterogeneity", {}}});
+    job.sample.seed = seed;
+    std::map<BondKey, double> out;
+    for (const auto& [key, b] : by_ids(make_specimen(job).bonds)) out[key] = b.fr0;
+    return out;
+  };
+  const auto a = strengths(7), b = strengths(7), c = strengths(8);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+}
+
+TEST(Effects, ScatteredFlawsCutTheRequestedFractionAsBrokenBondsNotBreaks) {
+  const std::size_t all = make_specimen(cylinder()).bonds.size();
+  const Simulation sim = make_specimen(cylinder({{"flaws", {{"fraction", 0.1}}}}));
+  const double cut = static_cast<double>(sim.broken.size()) / static_cast<double>(all);
+  EXPECT_NEAR(cut, 0.1, 0.02);
+  EXPECT_EQ(sim.bonds.size() + sim.broken.size(), all);
+  EXPECT_EQ(broken_pairs(sim), sim.broken.size());  // they meet as broken-bond contacts
+  EXPECT_TRUE(sim.breaks.empty());                  // ... but are not breaks of the test
+  EXPECT_EQ(sim.broken_total, 0);
+  TestResult r;
+  count_specimen(sim, r);
+  EXPECT_EQ(r.bonds, static_cast<std::int64_t>(sim.bonds.size()));
+}
+
+TEST(Effects, CrackFlawsGroupTheCutsOnDiscs) {
+  const std::size_t all = make_specimen(cylinder()).bonds.size();
+  const Simulation scattered = make_specimen(cylinder({{"flaws", {{"fraction", 0.1}}}}));
+  const Simulation cracks =
+      make_specimen(cylinder({{"flaws", {{"fraction", 0.1}, {"crack_radius", 3.0}}}}));
+  const double cut = static_cast<double>(cracks.broken.size()) / static_cast<double>(all);
+  EXPECT_NEAR(cut, 0.1, 0.03);  // a crack cuts some 30 bonds: the count comes in such steps
+  EXPECT_EQ(broken_pairs(cracks), cracks.broken.size());
+  const double grouped = cut_neighbours(cracks), spread = cut_neighbours(scattered);
+  EXPECT_GT(grouped, 3 * spread) << grouped << " vs " << spread;
+  // Same seed, same cracks.
+  const Simulation again =
+      make_specimen(cylinder({{"flaws", {{"fraction", 0.1}, {"crack_radius", 3.0}}}}));
+  EXPECT_EQ(by_ids(again.broken).size(), cracks.broken.size());
+  for (const auto& [key, b] : by_ids(cracks.broken)) EXPECT_EQ(by_ids(again.broken).count(key), 1u);
+}
+
+TEST(Effects, CompressionCouplingDecidesACompressedTwistedBondsFate) {
+  // Compressed to half of F_r0 and twisted to 1.49 G_t0: eq. 2 with signed f_r gives 0.99 (holds),
+  // with f_r clamped at zero 1.49 (breaks).
+  auto survives = [](std::map<std::string, EffectValues> effects) {
+    Pair p;
+    p.xj.z() -= 0.5 * p.bond.fr0 / p.k.kr_n_m;
+    p.qj = rot(1.49 * p.bond.gt0 / p.k.kt_nm_rad, Vec3::UnitZ());
+    Simulation sim = pair_sim(p, p.xj, true, std::move(effects));
+    sim.particles.orient[1] = p.qj;
+    sim.initialise();
+    return sim.bonds.size() == 1;
+  };
+  EXPECT_TRUE(survives({}));
+  EXPECT_TRUE(survives({{"compression_coupling", {{"coupling", 1.0}}}}));
+  EXPECT_FALSE(survives({{"compression_coupling", {}}}));  // default 0
+  EXPECT_EQ(make_specimen(cylinder({{"compression_coupling", {}}})).break_rule.compression_coupling,
+            0.0);
+}
+
+TEST(Effects, PostBreakFrictionLimitsSlidingOfBrokenPairsOnly) {
+  // A pair whose bond broke, pressed together by 0.01 and sliding fast: the tangential force is
+  // the Coulomb limit mu F_n.
+  auto sliding_force = [](std::map<std::string, EffectValues> effects) {
+    const Pair p;
+    Simulation sim = pair_sim(p, p.xi + Vec3(0, 0, 1.99), false, std::move(effects));
+    sim.particles.vel[1] = Vec3(100, 0, 0);
+    EXPECT_DOUBLE_EQ(sim.contact.friction, 0.6);  // never-bonded contacts keep theirs
+    sim.initialise();
+    return -sim.particles.force[1].x() / (p.k.kr_n_m * 0.01);
+  };
+  EXPECT_NEAR(sliding_force({}), 0.6, 1e-9);
+  EXPECT_NEAR(sliding_force({{"post_break_friction", {}}}), 0.1, 1e-9);
+  EXPECT_NEAR(sliding_force({{"post_break_friction", {{"mu", 1.5}}}}), 1.5, 1e-9);
+}
+
+TEST(Effects, ConfinementFlagTravelsWithMigrants) {
+  Particles p;
+  p.add(Vec3(1, 2, 3), 1.0, 1.0, 0.4, 5);
+  p.add(Vec3(0, 0, 3), 1.0, 1.0, 0.4, 6);
+  EXPECT_EQ(mark_confined(p, 1.5), 1);  // farther than 1.5 from the z axis
+  std::vector<double> buf;
+  pack_migrant(p, 0, buf);
+  pack_migrant(p, 1, buf);
+  ASSERT_EQ(buf.size(), 2u * kMigrantDoubles);
+  Particles q;
+  unpack_migrant(buf.data(), q);
+  unpack_migrant(buf.data() + kMigrantDoubles, q);
+  EXPECT_EQ(q.id[0], 5);
+  EXPECT_EQ(q.confined[0], 1);
+  EXPECT_EQ(q.confined[1], 0);
+}
