@@ -11,30 +11,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/client_http.hpp"
 #include "api/server.hpp"
 
 namespace rockcal::api {
 
 using nlohmann::json;
 
-namespace {
-
-struct Http {
-  httplib::Client client;
-  httplib::Headers headers;
-
-  explicit Http(const ClientOptions& o) : client(o.server) {
-    client.set_connection_timeout(5, 0);
-    client.set_read_timeout(60, 0);
-    std::string token;
-    if (!o.token_file.empty()) {
-      token = read_token_file(o.token_file);
-    } else if (const char* env = std::getenv("ROCKCAL_TOKEN")) {
-      token = env;
-    }
-    if (!token.empty()) headers.emplace("Authorization", "Bearer " + token);
+Http::Http(const ClientOptions& o) : client(o.server) {
+  client.set_connection_timeout(5, 0);
+  client.set_read_timeout(60, 0);
+  std::string token;
+  if (!o.token_file.empty()) {
+    token = read_token_file(o.token_file);
+  } else if (const char* env = std::getenv("ROCKCAL_TOKEN")) {
+    token = env;
   }
-};
+  if (!token.empty()) headers.emplace("Authorization", "Bearer " + token);
+}
 
 // Prints the server's error (or the transport error) and returns the exit code to use.
 int report(const httplib::Result& r) {
@@ -51,6 +45,8 @@ int report(const httplib::Result& r) {
   return 1;
 }
 
+namespace {
+
 std::string path_of(std::int64_t id, const std::string& rest = "") {
   return "/api/v1/campaigns/" + std::to_string(id) + rest;
 }
@@ -63,6 +59,8 @@ std::string duration_text(double seconds) {
   out << s % 60 << "s";
   return out.str();
 }
+
+}  // namespace
 
 std::string status_line(const json& c) {
   const json& p = c["progress"];
@@ -80,6 +78,8 @@ std::string status_line(const json& c) {
   }
   return out.str();
 }
+
+namespace {
 
 bool finished(const std::string& state) {
   return state == "succeeded" || state == "failed" || state == "cancelled";

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace rockcal::api {
 
 struct ClientOptions {
@@ -16,6 +18,14 @@ int client_status(const ClientOptions& o, std::int64_t campaign_id, bool wait);
 int client_results(const ClientOptions& o, std::int64_t campaign_id, bool csv);
 int client_cancel(const ClientOptions& o, std::int64_t campaign_id);
 int client_list(const ClientOptions& o);
+
+// `rockcal diagnose FILE`: submits a diagnosis request (FILE's "dataset_file", relative to FILE, is
+// read here and sent inline: the server reads no files), shows its progress, prints the verdict
+// table and writes the HTML report to `html_out` (default diagnosis-<id>.html).
+int client_diagnose(const ClientOptions& o, const std::string& file, const std::string& html_out);
+
+// The verdict, the gap and the candidates of a diagnosis summary as plain-text tables.
+std::string diagnosis_text(const nlohmann::json& summary);
 
 // "[#########.........] 45%" for a fraction in [0, 1].
 std::string progress_bar(double fraction, int width);

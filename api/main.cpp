@@ -5,6 +5,7 @@
 
 #include "api/client.hpp"
 #include "api/serve.hpp"
+#include "api/twin_cli.hpp"
 
 int main(int argc, char** argv) {
   using namespace rockcal::api;
@@ -53,7 +54,33 @@ int main(int argc, char** argv) {
   auto* cancel = app.add_subcommand("cancel", "cancel a campaign");
   cancel->add_option("id", id)->required();
   auto* list = app.add_subcommand("list", "list campaigns");
-  for (auto* sub : {submit, status, results, cancel, list}) add_common(sub);
+  std::string html_out;
+  auto* diagnose = app.add_subcommand(
+      "diagnose", "run a gap diagnosis (request JSON), print the verdict, write the HTML report");
+  diagnose->add_option("file", file, "diagnosis request (docs/diagnosis.md)")->required();
+  diagnose->add_option("--html", html_out, "HTML report file (default diagnosis-<id>.html)");
+  for (auto* sub : {submit, status, results, cancel, list, diagnose}) add_common(sub);
+
+  TwinOptions twin_options;
+  auto* twin = app.add_subcommand(
+      "twin",
+      "write a synthetic lab dataset made by the engine with a hidden effect (+ its truth)");
+  twin->add_option("--effect", twin_options.effect, "engine effect, or none")->required();
+  auto* value = twin->add_option("--value", twin_options.value, "the effect's fitted parameter");
+  twin->add_option("--seed", twin_options.seed, "draws the truth bond strengths and the noise")
+      ->capture_default_str();
+  twin->add_option("--job", twin_options.job, "job template (default: a tiny demo sample)")
+      ->check(CLI::ExistingFile);
+  twin->add_option("--noise", twin_options.noise, "lognormal sigma of the lab noise")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  twin->add_option("--engine", twin_options.engine, "rockcal-dem executable");
+  twin->add_option("--out", twin_options.out, "dataset file (.json or .csv)")
+      ->capture_default_str();
+  twin->add_option("--parallel", twin_options.parallel, "engine runs at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  twin->add_flag("--keep-runs", twin_options.keep_runs, "keep OUT.runs/ (job dirs and logs)");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -63,6 +90,11 @@ int main(int argc, char** argv) {
     if (*results) return client_results(client, id, csv);
     if (*cancel) return client_cancel(client, id);
     if (*list) return client_list(client);
+    if (*diagnose) return client_diagnose(client, file, html_out);
+    if (*twin) {
+      twin_options.value_given = value->count() > 0;
+      return run_twin(twin_options, argv[0]);
+    }
   } catch (const std::exception& e) {
     std::cerr << "rockcal: " << e.what() << "\n";
     return 1;

@@ -117,6 +117,21 @@ void campaign_results(ApiContext& ctx, const Req& req, Res& res) {
   send_json(res, {{"campaign_id", c.id}, {"results", items}});
 }
 
+// A kind's HTML page of a finished campaign's summary (the diagnosis report), rendered from the
+// stored summary alone.
+void campaign_report(ApiContext& ctx, const Req& req, Res& res) {
+  auto c = campaign_or_404(ctx.service, req);
+  const orch::CampaignKind* kind = ctx.service.kinds().find(c.kind);
+  if (!kind || !kind->report_html) {
+    throw HttpError(404, "campaigns of kind " + c.kind + " have no HTML report");
+  }
+  if (c.driver_status.value_or("") != "done" || !c.summary) {
+    throw HttpError(404, "campaign " + std::to_string(c.id) + " has no report yet (" +
+                             c.driver_status.value_or("queued") + ")");
+  }
+  res.set_content(kind->report_html(json::parse(*c.summary)), "text/html; charset=utf-8");
+}
+
 void get_job(ApiContext& ctx, const Req& req, Res& res) {
   auto j = job_or_404(ctx.service, req);
   send_json(res, job_json(j, result_of(ctx.service, j), true));
@@ -147,7 +162,7 @@ void query_results(ApiContext& ctx, const Req& req, Res& res) {
   if (req.has_param("test")) {
     f.test = req.get_param_value("test");
     if (!rockcal::test_kind_from_string(*f.test)) {
-      throw HttpError(400, "test must be uct, btt or elastic", "test");
+      throw HttpError(400, "test must be uct, btt, elastic or triaxial", "test");
     }
   }
   f.fr0_min = query_number(req, "fr0_min");
@@ -184,6 +199,7 @@ std::vector<Route> api_routes(ApiContext& ctx) {
       {"GET", "/api/v1/campaigns/{id}", bind(get_campaign)},
       {"DELETE", "/api/v1/campaigns/{id}", bind(cancel_campaign)},
       {"GET", "/api/v1/campaigns/{id}/results", bind(campaign_results)},
+      {"GET", "/api/v1/campaigns/{id}/report.html", bind(campaign_report)},
       {"GET", "/api/v1/jobs/{id}", bind(get_job)},
       {"GET", "/api/v1/jobs/{id}/log", bind(job_log)},
       {"GET", "/api/v1/jobs/{id}/curve", bind(job_curve)},

@@ -16,8 +16,6 @@
 namespace rockcal::api {
 namespace fs = std::filesystem;
 
-namespace {
-
 // rockcal-dem beside this binary (installed layout), or in the build tree's engine/, else PATH.
 std::string default_engine(const std::string& argv0) {
   std::error_code ec;
@@ -29,6 +27,8 @@ std::string default_engine(const std::string& argv0) {
   }
   return "rockcal-dem";
 }
+
+namespace {
 
 std::pair<std::string, int> split_listen(const std::string& listen) {
   auto colon = listen.rfind(':');

@@ -24,4 +24,7 @@ struct ServeOptions {
 
 int run_serve(const ServeOptions& options, const std::string& argv0);
 
+// The rockcal-dem to run: beside this binary, else in the build tree's engine/, else from PATH.
+std::string default_engine(const std::string& argv0);
+
 }  // namespace rockcal::api

@@ -41,6 +41,9 @@ struct CampaignKind {
   std::function<CampaignPlan(const nlohmann::json& request, const Limits& limits)> plan;
   // Empty for kinds whose jobs are all known up front (sweep). Returns the summary JSON to store.
   std::function<nlohmann::json(DriverContext& ctx)> driver;
+  // Optional: a self-contained HTML page of a campaign's summary (the diagnosis report), served at
+  // GET /api/v1/campaigns/{id}/report.html. Empty for kinds without one.
+  std::function<std::string(const nlohmann::json& summary)> report_html;
 };
 
 class KindRegistry {

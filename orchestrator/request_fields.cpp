@@ -62,7 +62,7 @@ std::vector<std::string> test_names(const nlohmann::json& request) {
     if (!t.is_string()) throw RequestError(field, "must be a string");
     std::string name = t.get<std::string>();
     if (!rockcal::test_kind_from_string(name)) {
-      throw RequestError(field, "unknown test '" + name + "' (known: uct, btt, elastic)");
+      throw RequestError(field, "unknown test '" + name + "' (known: uct, btt, elastic, triaxial)");
     }
     if (std::find(out.begin(), out.end(), name) != out.end()) {
       throw RequestError(field, "duplicate test '" + name + "'");

@@ -86,7 +86,7 @@ CampaignPlan plan_sweep(const json& request, const Limits& limits) {
 }
 
 CampaignKind sweep_kind() {
-  return {"sweep", plan_sweep, nullptr};
+  return {"sweep", plan_sweep, nullptr, nullptr};
 }
 
 }  // namespace rockcal::orch

@@ -6,6 +6,7 @@
 #include "engine/spec.hpp"
 #include "orchestrator/calibration/algorithms.hpp"
 #include "orchestrator/calibration/json_fields.hpp"
+#include "orchestrator/calibration/lab_case.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -33,59 +34,6 @@ TargetValue parse_target(JsonFields& targets, const std::string& test) {
               : TargetValue{TargetQuantity::strength, *strength};
 }
 
-double required_positive(JsonFields& f, const std::string& key) {
-  auto x = f.positive(key);
-  if (!x) throw CampaignError(f.path_of(key), "is required");
-  return *x;
-}
-
-Specimen parse_lab_specimen(JsonFields& lab) {
-  JsonFields s(lab.require("specimen"), lab.path_of("specimen"));
-  Specimen specimen{required_positive(s, "diameter"), required_positive(s, "height"), 0.0};
-  // A Brazilian disc of t = D/2 unless stated (shared/data/README.md; ISRM proportion).
-  specimen.thickness_m = s.positive("thickness").value_or(0.5 * specimen.diameter_m);
-  s.reject_unknown();
-  return specimen;
-}
-
-LabMaterial parse_lab_material(JsonFields& lab) {
-  JsonFields m(lab.require("material"), lab.path_of("material"));
-  LabMaterial material{required_positive(m, "youngs_modulus"), 0.0, required_positive(m, "density"),
-                       required_positive(m, "grain_radius")};
-  const auto nu = m.number("nu");
-  if (!nu) throw CampaignError(m.path_of("nu"), "is required");
-  if (!(*nu > -1.0 && *nu < 0.5)) throw CampaignError(m.path_of("nu"), "must be in (-1, 0.5)");
-  material.nu = *nu;
-  m.reject_unknown();
-  return material;
-}
-
-// The model's scale is the job template's own K_r, R and rho; "model_scale" may restate them (as
-// the paper does) but must agree, and adds the length ratio x2/x1.
-LabCase parse_lab_case(JsonFields& targets, const JobSpec& model) {
-  JsonFields lab(targets.require("lab"), targets.path_of("lab"));
-  LabCase c{parse_lab_specimen(lab), parse_lab_material(lab), {}, std::nullopt};
-  lab.reject_unknown();
-  const double kr = model.material.kr_n_m.value_or(kr_from_youngs_modulus(
-      model.material.youngs_modulus_pa.value_or(0.0), model.material.nu, model.sample.radius_m));
-  c.model = {kr, model.sample.radius_m, model.material.density_kg_m3};
-  if (const json* v = targets.get("model_scale")) {
-    JsonFields s(*v, targets.path_of("model_scale"));
-    auto agree = [&](const std::string& key, double from_job, const std::string& job_field) {
-      auto given = s.positive(key);
-      if (given && std::abs(*given - from_job) > 1e-9 * from_job) {
-        throw CampaignError(s.path_of(key), "differs from the job template's " + job_field);
-      }
-    };
-    agree("kr", kr, "material.kr");
-    agree("radius", c.model.radius_m, "sample.radius");
-    agree("density", c.model.density_kg_m3, "material.density");
-    c.length_ratio = s.positive("length_ratio");
-    s.reject_unknown();
-  }
-  return c;
-}
-
 Targets parse_targets(JsonFields& root, const JobSpec& model, const Specimen& model_specimen) {
   JsonFields t(root.require("targets"), "targets");
   const std::string units = t.string("units").value_or("model");
@@ -96,7 +44,7 @@ Targets parse_targets(JsonFields& root, const JobSpec& model, const Specimen& mo
   const TargetValue btt = parse_target(t, "btt");
   std::optional<LabCase> lab;
   if (units == "lab") {
-    lab = parse_lab_case(t, model);
+    lab = parse_lab_case(t, model_choice_of(model));
   } else if (t.get("lab") || t.get("model_scale")) {
     throw CampaignError("targets.units", "must be \"lab\" when lab and model_scale are given");
   }

@@ -55,7 +55,7 @@ TEST(Sweep, RejectsBadRequestsNamingTheField) {
   r["colour"] = "red";
   EXPECT_EQ(rejected_field(r), "colour");
   r = base();
-  r["tests"] = {"uct", "triaxial"};
+  r["tests"] = {"uct", "hydrostatic"};
   EXPECT_EQ(rejected_field(r), "tests[1]");
   r = base();
   r["tests"] = "uct";

@@ -1,0 +1,27 @@
+// What the client commands share: an HTTP client for `--server` with the bearer token, the error
+// report of a failed request, and a campaign's one-line status.
+#pragma once
+
+#include <httplib.h>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "api/client.hpp"
+
+namespace rockcal::api {
+
+struct Http {
+  httplib::Client client;
+  httplib::Headers headers;
+  explicit Http(const ClientOptions& o);
+};
+
+// Prints the server's error (or the transport error) and returns the exit code to use.
+int report(const httplib::Result& r);
+
+// "campaign 3 running [####....] 45% 12/27 done, 2 running, ..." for GET /campaigns/{id}.
+std::string status_line(const nlohmann::json& campaign);
+
+}  // namespace rockcal::api

@@ -1,0 +1,250 @@
+#include "orchestrator/diagnosis/campaign.hpp"
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "engine/effects/effect.hpp"
+#include "orchestrator/calibration/json_fields.hpp"
+#include "orchestrator/diagnosis/grid.hpp"
+#include "orchestrator/diagnosis/jobs.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using calibration::CampaignError;
+using calibration::JsonFields;
+using nlohmann::json;
+
+// The same error with its field placed under `prefix` ("observations[2].value" ->
+// "dataset.observations[2].value"); SpecError and CampaignError both read "field: message".
+template <class Error>
+CampaignError under(const std::string& prefix, const Error& e) {
+  const std::string message = std::string(e.what()).substr(e.field.size() + 2);
+  if (prefix.empty() || e.field.empty()) return CampaignError(prefix + e.field, message);
+  return CampaignError(prefix + "." + e.field, message);
+}
+
+calibration::Range parse_range(JsonFields& bounds, const std::string& key, calibration::Range r) {
+  const json* v = bounds.get(key);
+  if (!v) return r;
+  const std::string field = bounds.path_of(key);
+  if (!v->is_array() || v->size() != 2) throw CampaignError(field, "must be [lower, upper]");
+  r = {calibration::finite_number((*v)[0], field + "[0]"),
+       calibration::finite_number((*v)[1], field + "[1]")};
+  if (!(r.lo > 0)) throw CampaignError(field, "lower bound must be positive (log-space grid)");
+  if (!(r.hi > r.lo)) throw CampaignError(field, "upper bound must exceed the lower bound");
+  return r;
+}
+
+GridSpec parse_grid(JsonFields& root) {
+  GridSpec g;
+  const json* v = root.get("grid");
+  if (!v) return g;
+  JsonFields f(*v, "grid");
+  // Three values per axis is the least a quadratic can be fitted to.
+  g.fr0 = int(f.integer("fr0", 3, 12).value_or(g.fr0));
+  g.fs0 = int(f.integer("fs0", 3, 12).value_or(g.fs0));
+  g.s = int(f.integer("s", 3, 9).value_or(g.s));
+  f.reject_unknown();
+  return g;
+}
+
+std::vector<std::uint64_t> parse_seeds(JsonFields& f, std::uint64_t template_seed) {
+  const json* v = f.get("seeds");
+  if (!v) return {template_seed + 1, template_seed + 2};
+  const std::string field = f.path_of("seeds");
+  if (!v->is_array() || v->size() > 8) throw CampaignError(field, "must be a list of at most 8");
+  std::set<std::uint64_t> seen{template_seed};
+  std::vector<std::uint64_t> seeds;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const json& s = (*v)[i];
+    const std::string item = field + "[" + std::to_string(i) + "]";
+    if (!s.is_number_integer() || (!s.is_number_unsigned() && s.get<std::int64_t>() < 0)) {
+      throw CampaignError(item, "must be a non-negative integer");
+    }
+    if (!seen.insert(s.get<std::uint64_t>()).second) {
+      throw CampaignError(item, "repeats a seed (the template's own seed is the reference)");
+    }
+    seeds.push_back(s.get<std::uint64_t>());
+  }
+  return seeds;
+}
+
+BudgetSpec parse_budget(JsonFields& root, std::uint64_t template_seed) {
+  BudgetSpec b;
+  const json* v = root.get("budget");
+  if (!v) {
+    b.seeds = {template_seed + 1, template_seed + 2};
+    return b;
+  }
+  JsonFields f(*v, "budget");
+  b.seeds = parse_seeds(f, template_seed);
+  b.speed_factor = f.positive("speed_factor").value_or(b.speed_factor);
+  if (!(b.speed_factor < 1.0)) {
+    throw CampaignError("budget.speed_factor", "must be below 1 (a slower platen)");
+  }
+  b.resolution = f.positive("resolution").value_or(b.resolution);
+  if (!(b.resolution > 1.0 && b.resolution <= 3.0)) {
+    throw CampaignError("budget.resolution", "must be in (1, 3] (a finer packing)");
+  }
+  f.reject_unknown();
+  return b;
+}
+
+std::vector<Candidate> parse_effects(JsonFields& root, const JobSpec& model) {
+  std::vector<Candidate> all = registry_candidates(model);
+  const json* v = root.get("effects");
+  if (!v) return all;
+  if (!v->is_array() || v->empty()) {
+    throw CampaignError("effects", "must be a non-empty list of effect names (known: " +
+                                       known_effect_names() + ")");
+  }
+  std::vector<Candidate> out;
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const std::string field = "effects[" + std::to_string(i) + "]";
+    if (!(*v)[i].is_string()) throw CampaignError(field, "must be an effect name");
+    const std::string name = (*v)[i].get<std::string>();
+    auto it =
+        std::find_if(all.begin(), all.end(), [&](const Candidate& c) { return c.effect == name; });
+    if (it == all.end()) {
+      throw CampaignError(field,
+                          "unknown effect '" + name + "' (known: " + known_effect_names() + ")");
+    }
+    if (!seen.insert(name).second) throw CampaignError(field, "is repeated");
+    out.push_back(*it);
+  }
+  return out;
+}
+
+// The template through the engine's validation; the diagnosis sets test, bond and effects.
+JobSpec parse_template(JsonFields& root) {
+  const json& t = root.require("job");
+  if (!t.is_object()) throw CampaignError("job", "must be a JSON object");
+  for (const char* key : {"bond", "effects"}) {
+    if (t.contains(key)) {
+      throw CampaignError(std::string("job.") + key,
+                          "is set by the diagnosis; leave it out of the template");
+    }
+  }
+  json probe = t;
+  probe["bond"] = {{"fr0", 64.0}, {"fs0", 64.0}};
+  try {
+    return parse_job_template(probe, TestKind::uct);
+  } catch (const SpecError& e) {
+    throw under(e.field.rfind("job.", 0) == 0 ? "" : "job", e);
+  }
+}
+
+Dataset parse_dataset(JsonFields& root) {
+  const json* inline_json = root.get("dataset");
+  const json* csv = root.get("dataset_csv");
+  if (root.get("dataset_file")) {
+    throw CampaignError("dataset_file",
+                        "the server reads no files: put the dataset inline as \"dataset\" (JSON) "
+                        "or \"dataset_csv\" (text); `rockcal diagnose` does this for you");
+  }
+  if (inline_json && csv)
+    throw CampaignError("dataset_csv", "give dataset or dataset_csv, not both");
+  if (!inline_json && !csv) throw CampaignError("dataset", "is required (or dataset_csv)");
+  const std::string prefix = inline_json ? "dataset" : "dataset_csv";
+  try {
+    if (inline_json) return parse_dataset_json(*inline_json);
+    if (!csv->is_string()) throw CampaignError("", "must be the CSV text");
+    return parse_dataset_csv(csv->get<std::string>());
+  } catch (const CampaignError& e) {
+    throw under(prefix, e);
+  }
+}
+
+// Every distinct run with the base model and with each effect at its strong end, and the budget's
+// variants, through the engine's validation: a request that would fail only in the middle of the
+// diagnosis is refused now, naming what to change.
+void validate_runs(const DiagnosisCampaign& c, const JobSpec& model) {
+  const RunPlan plan = plan_runs(c.targets);
+  const Candidate base;
+  const std::vector<double> centre{0.5, 0.5, 1.0};
+  auto first_target = [&](std::size_t run) {
+    for (std::size_t i = 0; i < plan.run_of.size(); ++i) {
+      if (plan.run_of[i] == run) return i;
+    }
+    return std::size_t(0);
+  };
+  auto check = [&](const RunRequest& r, const std::string& field, std::size_t run) {
+    try {
+      job_for(c.job_template, model, plan.runs[run], r);
+    } catch (const SpecError& e) {
+      throw CampaignError(field, "the engine refuses the job of " +
+                                     c.targets[first_target(run)].id + ": " + e.what());
+    }
+  };
+  const Numerics numerics{c.sample_seed, 1.0, 1.0};
+  for (std::size_t run = 0; run < plan.runs.size(); ++run) {
+    check({model_point(c, base, centre), numerics},
+          "dataset.observations[" + std::to_string(first_target(run)) + "]", run);
+    for (std::size_t k = 0; k < c.candidates.size(); ++k) {
+      check({model_point(c, c.candidates[k], centre), numerics},
+            "effects[" + std::to_string(k) + "]", run);
+    }
+    check({model_point(c, base, centre), {c.sample_seed, c.budget.speed_factor, 1.0}},
+          "budget.speed_factor", run);
+    check({model_point(c, base, centre), {c.sample_seed, 1.0, c.budget.resolution}},
+          "budget.resolution", run);
+  }
+}
+
+}  // namespace
+
+std::vector<Candidate> registry_candidates(const JobSpec& model) {
+  std::vector<Candidate> out;
+  for (const EffectDef& def : effect_registry()) {
+    if (def.params.empty()) continue;
+    const EffectDef* d = &def;  // the registry is static: the pointer outlives every campaign
+    out.push_back({def.name, def.params[0].name, def.params[0].unit,
+                   [d, model](double s) { return effect_value_at(*d, s, model); }});
+  }
+  return out;
+}
+
+DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
+  JsonFields root(request, "");
+  DiagnosisCampaign c;
+  if (root.string("kind").value_or("") != "diagnosis") {
+    throw CampaignError("kind", "must be \"diagnosis\"");
+  }
+  c.name = root.string("name").value_or("");
+  if (c.name.size() > 200) throw CampaignError("name", "must be at most 200 characters");
+  const JobSpec model = parse_template(root);
+  c.job_template = request.at("job");
+  c.sample_seed = model.sample.seed;
+  if (const json* v = root.get("bounds")) {
+    JsonFields bounds(*v, "bounds");
+    c.fr0_n = parse_range(bounds, "fr0", c.fr0_n);
+    c.fs0_n = parse_range(bounds, "fs0", c.fs0_n);
+    bounds.reject_unknown();
+  }
+  c.grid = parse_grid(root);
+  c.budget = parse_budget(root, c.sample_seed);
+  c.confirm = int(root.integer("confirm", 1, 16).value_or(c.confirm));
+  c.bootstrap = int(root.integer("bootstrap", 0, 5000).value_or(c.bootstrap));
+  c.random_seed = std::uint64_t(
+      root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));
+  c.candidates = parse_effects(root, model);
+  c.dataset = parse_dataset(root);
+  root.reject_unknown();
+  try {
+    c.targets = model_targets(c.dataset, model);
+  } catch (const CampaignError& e) {
+    throw under("dataset", e);
+  }
+  if (count_role(c.targets, Role::held_out) == 0) {
+    throw CampaignError("dataset.observations",
+                        "needs at least one held_out observation: effects are ranked on held-out "
+                        "data only (a better calibration fit proves nothing)");
+  }
+  validate_runs(c, model);
+  return c;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,61 @@
+#include "orchestrator/diagnosis/diagnosis_kind.hpp"
+
+#include "orchestrator/diagnosis/driver.hpp"
+#include "orchestrator/diagnosis/jobs.hpp"
+#include "orchestrator/diagnosis/pool_evaluator.hpp"
+#include "orchestrator/diagnosis/report.hpp"
+#include "orchestrator/request_error.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+DiagnosisCampaign parse_request(const nlohmann::json& request) {
+  try {
+    return parse_diagnosis_campaign(request);
+  } catch (const calibration::CampaignError& e) {
+    throw orch::RequestError(e.field, e.what());
+  }
+}
+
+}  // namespace
+
+std::size_t planned_jobs(const DiagnosisCampaign& c) {
+  const std::size_t plane = std::size_t(c.grid.fr0) * std::size_t(c.grid.fs0);
+  const std::size_t grid = plane * (1 + c.candidates.size() * std::size_t(c.grid.s - 1));
+  const std::size_t seeds = c.budget.seeds.size();
+  const std::size_t budget = 3 + seeds;
+  const std::size_t confirm = (1 + std::size_t(c.confirm)) * (1 + seeds);
+  return (grid + budget + confirm) * plan_runs(c.targets).runs.size();
+}
+
+orch::CampaignKind diagnosis_kind() {
+  orch::CampaignKind kind;
+  kind.name = "diagnosis";
+  kind.plan = [](const nlohmann::json& request, const orch::Limits& limits) {
+    const DiagnosisCampaign c = parse_request(request);
+    if (planned_jobs(c) > limits.max_jobs_per_campaign) {
+      throw orch::RequestError("grid", "the diagnosis may need " + std::to_string(planned_jobs(c)) +
+                                           " jobs, above the server's cap of " +
+                                           std::to_string(limits.max_jobs_per_campaign) +
+                                           " per campaign: a smaller grid or fewer effects");
+    }
+    return orch::CampaignPlan{c.name, {}};
+  };
+  // Runs in the service's driver thread; a restart after a crash runs it again from the stored
+  // request, and the job cache replays the finished runs.
+  kind.driver = [](orch::DriverContext& ctx) {
+    const DiagnosisCampaign c = parse_request(ctx.request);
+    PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, c.targets, ctx.stop);
+    DiagnosisOptions options;
+    options.stop = ctx.stop;
+    // While it runs, the summary says which phase it is in; the report replaces it at the end.
+    options.on_progress = [&](const nlohmann::json& progress) {
+      ctx.service.store().set_driver_status(ctx.campaign_id, "running", progress.dump());
+    };
+    return to_json(run_diagnosis(c, evaluator, options), c);
+  };
+  kind.report_html = [](const nlohmann::json& summary) { return report_html(summary); };
+  return kind;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,219 @@
+#include "orchestrator/diagnosis/driver.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "orchestrator/diagnosis/bootstrap.hpp"
+#include "orchestrator/diagnosis/gap.hpp"
+#include "orchestrator/diagnosis/grid.hpp"
+#include "orchestrator/diagnosis/identifiability.hpp"
+#include "orchestrator/diagnosis/ratio.hpp"
+#include "orchestrator/diagnosis/verdict.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+
+void phase(const DiagnosisOptions& o, const std::string& name, int step, int runs) {
+  if (o.stop.stop_requested()) throw DiagnosisCancelled();
+  if (o.on_progress) o.on_progress({{"phase", name}, {"step", step}, {"steps", 4}, {"runs", runs}});
+}
+
+bool has_weight(const Objective& o) {
+  return std::any_of(o.weight.begin(), o.weight.end(), [](double w) { return w > 0; });
+}
+
+std::string first_error(const Samples& s) {
+  for (const RunOutcome& o : s.outcomes) {
+    if (!o.error.empty()) return o.error;
+  }
+  return "";
+}
+
+// The calibration of one candidate on its surfaces, and what it predicts.
+void fit_candidate(CandidateResult& r, const DiagnosisCampaign& c, const std::vector<double>& lab,
+                   const std::vector<double>& budget) {
+  const Objective objective = calibration_objective(c.targets, budget, r.surfaces, lab);
+  if (!has_weight(objective)) {
+    r.error = "no calibration observation has a response surface (too many failed runs)";
+    return;
+  }
+  r.calibration = calibrate_on_surfaces(r.surfaces, objective, lattice_starts(r.surfaces.dims, 3));
+  r.point = model_point(c, r.candidate, r.calibration.z);
+  if (!r.candidate.is_base()) {
+    r.value = r.candidate.value_at ? r.candidate.value_at(r.point.s) : r.point.s;
+  }
+  r.predicted = predict(r.surfaces, r.calibration.z);
+  const std::vector<double> res = residuals(r.predicted, lab);
+  r.surface_rms = {rms(res, c.targets, Role::calibration), rms(res, c.targets, Role::held_out)};
+  r.fitted = true;
+  if (!r.candidate.is_base()) {
+    r.identifiability = identifiability(r.surfaces, objective, c.targets, budget);
+  }
+}
+
+// Base first, then up to `confirm` identifiable effects by surface G.
+std::vector<int> to_confirm(const std::vector<CandidateResult>& candidates, int confirm) {
+  std::vector<int> effects;
+  for (int i = 1; i < int(candidates.size()); ++i) {
+    const CandidateResult& r = candidates[i];
+    if (r.fitted && r.identifiability->identifiable && r.g_surface) effects.push_back(i);
+  }
+  std::stable_sort(effects.begin(), effects.end(), [&](int a, int b) {
+    return *candidates[a].g_surface > *candidates[b].g_surface;
+  });
+  if (int(effects.size()) > confirm) effects.resize(confirm);
+  effects.insert(effects.begin(), 0);
+  return effects;
+}
+
+void confirm_candidates(std::vector<CandidateResult>& candidates, const DiagnosisCampaign& c,
+                        const std::vector<int>& chosen, Evaluator& evaluator,
+                        const std::vector<double>& lab) {
+  std::vector<Numerics> numerics{{c.sample_seed, 1.0, 1.0}};
+  for (std::uint64_t seed : c.budget.seeds) numerics.push_back({seed, 1.0, 1.0});
+  std::vector<RunRequest> requests;
+  for (int i : chosen) {
+    for (const Numerics& n : numerics) requests.push_back({candidates[i].point, n});
+  }
+  const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
+  std::size_t k = 0;
+  for (int i : chosen) {
+    CandidateResult& r = candidates[i];
+    r.confirmed = true;
+    r.confirmed_ln = ln_values(outcomes[k++]);
+    for (std::size_t s = 1; s < numerics.size(); ++s) r.seed_ln.push_back(ln_values(outcomes[k++]));
+    const std::vector<double> res = residuals(r.confirmed_ln, lab);
+    r.confirmed_rms = {rms(res, c.targets, Role::calibration), rms(res, c.targets, Role::held_out)};
+  }
+  for (int i : chosen) {
+    candidates[i].g_confirmed =
+        gap_closure(candidates[i].confirmed_rms.held_out, candidates[0].confirmed_rms.held_out);
+  }
+  candidates[0].g_confirmed.reset();
+}
+
+Budget measure_budget(const DiagnosisCampaign& c, const ModelPoint& point, Evaluator& evaluator) {
+  std::vector<BudgetVariant> variants = budget_variants(c.budget, c.sample_seed);
+  std::vector<RunRequest> requests{{point, {c.sample_seed, 1.0, 1.0}}};
+  for (const BudgetVariant& v : variants) requests.push_back({point, v.numerics});
+  std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
+  const RunOutcome reference = outcomes.front();
+  outcomes.erase(outcomes.begin());
+  return numerical_budget(std::move(variants), reference, outcomes);
+}
+
+int grid_points(const DiagnosisCampaign& c) {
+  const int plane = c.grid.fr0 * c.grid.fs0;
+  return plane * (1 + int(c.candidates.size()) * (c.grid.s - 1));
+}
+
+// Values the grids left missing, and the first reason. Every effect's samples end with the
+// shared base grid: those are counted once.
+void count_failures(DiagnosisReport& report, const std::vector<Samples>& samples) {
+  const std::size_t base_runs = samples[0].outcomes.size();
+  report.base_grid_failures.assign(
+      samples[0].outcomes.empty() ? 0 : samples[0].outcomes[0].values.size(), 0);
+  for (const RunOutcome& o : samples[0].outcomes) {
+    for (std::size_t i = 0; i < o.values.size(); ++i) report.base_grid_failures[i] += !o.values[i];
+  }
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const std::size_t own = samples[k].outcomes.size() - (k > 0 ? base_runs : 0);
+    for (std::size_t r = 0; r < own; ++r) {
+      const RunOutcome& o = samples[k].outcomes[r];
+      report.failed_values += int(std::count(o.values.begin(), o.values.end(), std::nullopt));
+      if (report.first_error.empty()) report.first_error = o.error;
+    }
+  }
+}
+
+}  // namespace
+
+DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
+                              const DiagnosisOptions& options) {
+  const std::size_t n = c.targets.size();
+  const std::vector<double> lab = ln_lab(c.targets);
+  DiagnosisReport report;
+
+  // 1. Every grid, one batch.
+  phase(options, "grid", 1, grid_points(c));
+  const std::vector<Samples> samples = run_grids(c, evaluator);
+  report.candidates.resize(1 + c.candidates.size());
+  for (std::size_t k = 0; k < report.candidates.size(); ++k) {
+    CandidateResult& r = report.candidates[k];
+    if (k > 0) r.candidate = c.candidates[k - 1];
+    r.surfaces = fit_surfaces(samples[k], r.candidate.dims(), n);
+  }
+  report.model_points = grid_points(c);
+
+  // 2. The budget, at the base model's fit with lab uncertainties alone (the budget is not known
+  // yet); later fits weight each residual by lab uncertainty and budget together.
+  const std::vector<double> no_budget(n, 0.0);
+  const Objective first =
+      calibration_objective(c.targets, no_budget, report.candidates[0].surfaces, lab);
+  if (!has_weight(first)) {
+    throw std::runtime_error(
+        "the base model has no response surface for any calibration "
+        "observation: its grid runs failed (" +
+        first_error(samples[0]) + ")");
+  }
+  const SurfaceCalibration base_first =
+      calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
+  report.budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
+  phase(options, "budget", 2, 3 + int(c.budget.seeds.size()));
+  report.budget = measure_budget(c, report.budget_point, evaluator);
+  report.model_points += 3 + int(c.budget.seeds.size());
+  const std::vector<double>& budget = report.budget.per_target;
+  report.combined_calibration = combined_budget(c.targets, budget, Role::calibration);
+  report.combined_held_out = combined_budget(c.targets, budget, Role::held_out);
+
+  // 3. Every candidate calibrated on its surfaces; held-out predicted; identifiability.
+  for (CandidateResult& r : report.candidates) fit_candidate(r, c, lab, budget);
+  if (!report.candidates[0].fitted) throw std::runtime_error(report.candidates[0].error);
+  for (std::size_t k = 1; k < report.candidates.size(); ++k) {
+    CandidateResult& r = report.candidates[k];
+    if (r.fitted) {
+      r.g_surface = gap_closure(r.surface_rms.held_out, report.candidates[0].surface_rms.held_out);
+    }
+  }
+
+  // 4. The base and the best candidates by real runs, with the replicate seeds.
+  const std::vector<int> chosen = to_confirm(report.candidates, c.confirm);
+  phase(options, "confirm", 3, int(chosen.size() * (1 + c.budget.seeds.size())));
+  confirm_candidates(report.candidates, c, chosen, evaluator, lab);
+  report.model_points += int(chosen.size() * (1 + c.budget.seeds.size()));
+
+  // 5. G, ranking, verdict, confidence.
+  phase(options, "analysis", 4, 0);
+  const std::vector<int> order = rank_effects(report.candidates);
+  report.verdict = decide(report.candidates, order, report.combined_held_out);
+  Confidence& conf = report.confidence;
+  conf.seeds = seed_checks(report.candidates, c.targets, c.budget.seeds, report.combined_held_out);
+  const std::string verdict = report.verdict.candidate < 0
+                                  ? ""
+                                  : report.candidates[report.verdict.candidate].candidate.effect;
+  conf.seeds_agreeing =
+      int(std::count_if(conf.seeds.begin(), conf.seeds.end(),
+                        [&](const SeedCheck& s) { return s.verdict == verdict; }));
+  const BootstrapResult boot = bootstrap_verdicts(
+      report.candidates, c.targets, budget, report.combined_held_out, c.bootstrap, c.random_seed);
+  conf.replicates = boot.replicates;
+  conf.winners = boot.winners;
+  if (boot.replicates > 0) {
+    const auto it = boot.winners.find(verdict);
+    conf.agreement = it == boot.winners.end() ? 0.0 : double(it->second) / boot.replicates;
+  } else {
+    conf.agreement = 1.0;
+  }
+  conf.level = confidence_level(conf);
+  report.ratio = ratio_range(c.targets, samples[0]);
+  count_failures(report, samples);
+  // Without held-out residuals there is nothing to judge; say what stopped the runs.
+  if (!report.candidates[0].confirmed_rms.held_out && !report.first_error.empty()) {
+    report.verdict.reason += " (first failure: " + report.first_error + ")";
+  }
+  return report;
+}
+
+}  // namespace rockcal::diagnosis

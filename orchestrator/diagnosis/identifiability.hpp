@@ -1,0 +1,21 @@
+// Can the data see an effect at all? Adding a parameter always improves a fit, so an effect must
+// first show that it moves something the bond strengths cannot: with (F_r0, F_s0) re-fitted to the
+// calibration targets at each s, some observation must move by more than its budget + lab
+// uncertainty as s walks over [0, 1]. An effect that only rescales every strength (the strengths
+// absorb it) fails this, however well it fits.
+#pragma once
+
+#include <vector>
+
+#include "orchestrator/diagnosis/observations.hpp"
+#include "orchestrator/diagnosis/report.hpp"
+#include "orchestrator/diagnosis/surface_fit.hpp"
+
+namespace rockcal::diagnosis {
+
+// `steps` values of s from 0 to 1, each with the strengths re-fitted on the surfaces.
+Identifiability identifiability(const SurfaceSet& surfaces, const Objective& objective,
+                                const std::vector<Target>& targets,
+                                const std::vector<double>& budget, int steps = 11);
+
+}  // namespace rockcal::diagnosis

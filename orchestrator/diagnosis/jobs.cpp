@@ -1,0 +1,65 @@
+#include "orchestrator/diagnosis/jobs.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/effects/effect.hpp"
+
+namespace rockcal::diagnosis {
+
+using nlohmann::json;
+
+RunPlan plan_runs(const std::vector<Target>& targets) {
+  RunPlan plan;
+  for (const Target& t : targets) {
+    std::size_t i = 0;
+    while (i < plan.runs.size() && !(plan.runs[i] == t.conditions)) ++i;
+    if (i == plan.runs.size()) plan.runs.push_back(t.conditions);
+    plan.run_of.push_back(i);
+  }
+  return plan;
+}
+
+json job_for(const json& job_template, const JobSpec& model, const RunConditions& c,
+             const RunRequest& request) {
+  const Numerics& n = request.numerics;
+  json job = job_template;
+  job["test"] = to_string(c.test);
+  json& sample = job["sample"];
+  sample["diameter"] = c.diameter_m;
+  sample["height"] = c.height_m;
+  // Only the disc has a thickness; leaving it alone elsewhere keeps equal cylinders equal jobs.
+  if (c.test == TestKind::btt) sample["thickness"] = c.thickness_m;
+  sample["seed"] = n.seed;
+  sample["radius"] = model.sample.radius_m / n.resolution;
+  if (model.material.kr_n_m) job["material"]["kr"] = *model.material.kr_n_m / n.resolution;
+  const double strength_scale = 1.0 / (n.resolution * n.resolution);
+  job["bond"] = {{"fr0", request.point.fr0_n * strength_scale},
+                 {"fs0", request.point.fs0_n * strength_scale}};
+  job["loading"]["platen_velocity"] = c.platen_velocity_m_s * n.speed_factor;
+  if (c.test == TestKind::triaxial) job["loading"]["confining_pressure"] = c.confining_pressure_pa;
+  if (effect_on(request.point)) {
+    const EffectDef* effect = find_effect(request.point.effect);
+    if (!effect || effect->params.empty()) {
+      throw std::invalid_argument("unknown effect '" + request.point.effect + "'");
+    }
+    job["effects"] = {
+        {effect->name,
+         {{effect->params[0].name, effect_value_at(*effect, request.point.s, model)}}}};
+  }
+  return to_json(parse_job(job));
+}
+
+std::optional<double> observable_value(const json& result, Observable observable) {
+  if (!result.is_object()) return std::nullopt;
+  const char* key = to_string(observable);
+  const bool peak = observable != Observable::youngs_modulus;
+  if (peak && !result.value("peak_reached", true)) return std::nullopt;
+  auto it = result.find(key);
+  if (it == result.end() || !it->is_number()) return std::nullopt;
+  const double v = it->get<double>();
+  if (!std::isfinite(v) || !(v > 0)) return std::nullopt;
+  return v;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,48 @@
+#include "orchestrator/diagnosis/ratio.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace rockcal::diagnosis {
+namespace {
+
+std::optional<std::size_t> first(const std::vector<Target>& targets, TestKind test,
+                                 Observable observable) {
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const Target& t = targets[i];
+    if (t.role == Role::calibration && t.conditions.test == test && t.observable == observable) {
+      return i;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<RatioRange> ratio_range(const std::vector<Target>& targets,
+                                      const Samples& base_grid) {
+  for (Observable observable : {Observable::peak_load, Observable::strength}) {
+    const auto uct = first(targets, TestKind::uct, observable);
+    const auto btt = first(targets, TestKind::btt, observable);
+    if (!uct || !btt) continue;
+    RatioRange r;
+    r.uct = *uct;
+    r.btt = *btt;
+    r.lab = targets[*uct].value / targets[*btt].value;
+    r.min = std::numeric_limits<double>::infinity();
+    r.max = -r.min;
+    for (const RunOutcome& o : base_grid.outcomes) {
+      if (!o.values[*uct] || !o.values[*btt]) continue;
+      const double ratio = *o.values[*uct] / *o.values[*btt];
+      r.min = std::min(r.min, ratio);
+      r.max = std::max(r.max, ratio);
+      ++r.runs;
+    }
+    if (r.runs == 0) return std::nullopt;
+    r.inside = r.lab >= r.min && r.lab <= r.max;
+    return r;
+  }
+  return std::nullopt;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,17 @@
+// The attainable UCT/BTT ratio: the seed paper's gap (model 10, lab 6) in one number. Over the
+// base grid, which spans the bounds, the ratio of the first calibration UCT and BTT peak loads (or
+// strengths, when the dataset has no peak loads of both) against the lab's.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "orchestrator/diagnosis/grid.hpp"
+#include "orchestrator/diagnosis/observations.hpp"
+#include "orchestrator/diagnosis/report.hpp"
+
+namespace rockcal::diagnosis {
+
+std::optional<RatioRange> ratio_range(const std::vector<Target>& targets, const Samples& base_grid);
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,114 @@
+// What a diagnosis found: the campaign summary (JSON) and the HTML page of a diagnosis campaign.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "orchestrator/diagnosis/budget.hpp"
+#include "orchestrator/diagnosis/campaign.hpp"
+#include "orchestrator/diagnosis/candidate.hpp"
+#include "orchestrator/diagnosis/evaluator.hpp"
+#include "orchestrator/diagnosis/surface_fit.hpp"
+
+namespace rockcal::diagnosis {
+
+struct RmsByRole {
+  std::optional<double> calibration;
+  std::optional<double> held_out;
+};
+
+// Whether the data can see an effect at all: with the bond strengths re-fitted to the calibration
+// targets at each s in [0, 1], how far does each observation move from its s = 0 value?
+struct Identifiability {
+  bool identifiable = false;
+  std::vector<double> max_change;  // per target, |ln| (NaN without a surface)
+  std::vector<std::size_t> moved;  // targets moved beyond budget + lab uncertainty
+};
+
+struct CandidateResult {
+  Candidate candidate;
+  bool fitted = false;
+  std::string error;  // why it could not be fitted
+  SurfaceSet surfaces;
+  SurfaceCalibration calibration;
+  ModelPoint point;                                         // the fitted model
+  double value = std::numeric_limits<double>::quiet_NaN();  // the effect parameter at point.s
+  std::vector<double> predicted;                            // ln(sim) on the surfaces
+  RmsByRole surface_rms;
+  std::optional<double> g_surface;
+  std::optional<Identifiability> identifiability;  // effects only
+  bool confirmed = false;
+  std::vector<double> confirmed_ln;  // ln(sim) of the real runs at the fitted point (NaN: failed)
+  RmsByRole confirmed_rms;
+  std::optional<double> g_confirmed;
+  std::vector<std::vector<double>> seed_ln;  // real runs with each budget seed (confirmed only)
+  int rank = 0;                              // 1 = best effect; 0 for the base
+
+  std::optional<double> g() const { return confirmed ? g_confirmed : g_surface; }
+  const std::vector<double>& ln_sim() const { return confirmed ? confirmed_ln : predicted; }
+  RmsByRole rms() const { return confirmed ? confirmed_rms : surface_rms; }
+};
+
+// The verdict under one replicate packing seed: base and confirmed candidates re-run at their
+// fitted points on that packing.
+struct SeedCheck {
+  std::uint64_t seed = 0;
+  std::string verdict;  // effect name, or "" for no effect needed
+  std::map<std::string, double> gap_closure;
+};
+
+struct Confidence {
+  int replicates = 0;                  // bootstrap replicates
+  double agreement = 0.0;              // share of them with the nominal verdict
+  std::map<std::string, int> winners;  // verdict ("" = none) -> replicates
+  std::vector<SeedCheck> seeds;
+  int seeds_agreeing = 0;
+  std::string level;  // high | medium | low
+};
+
+struct Verdict {
+  int candidate = -1;  // index into candidates; -1 = no effect needed
+  int runner_up = -1;
+  std::string reason;
+};
+
+// UCT/BTT peak ratio between two calibration targets, over the base grid runs.
+struct RatioRange {
+  std::size_t uct = 0, btt = 0;  // target indices
+  double lab = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  bool inside = false;
+  int runs = 0;
+};
+
+struct DiagnosisReport {
+  Budget budget;
+  ModelPoint budget_point;  // the base model's first fit, where the budget was measured
+  double combined_calibration = 0.0;
+  double combined_held_out = 0.0;
+  std::vector<CandidateResult> candidates;  // [0] = the base, then the effects in request order
+  std::optional<RatioRange> ratio;
+  Verdict verdict;
+  Confidence confidence;
+  int model_points = 0;  // distinct model points run (each = one job per distinct condition)
+  int failed_values = 0;
+  std::string first_error;              // of the first run that left a value missing
+  std::vector<int> base_grid_failures;  // per target: base grid runs without a value
+};
+
+inline constexpr double kMinGapClosure = 0.3;  // docs/diagnosis.md: verdict rule
+
+// The campaign summary: model units throughout.
+nlohmann::json to_json(const DiagnosisReport& report, const DiagnosisCampaign& campaign);
+
+// A self-contained page (inline SVG, no external assets) of a summary made by to_json.
+std::string report_html(const nlohmann::json& summary);
+
+}  // namespace rockcal::diagnosis

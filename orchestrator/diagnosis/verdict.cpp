@@ -1,0 +1,134 @@
+#include "orchestrator/diagnosis/verdict.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "orchestrator/diagnosis/gap.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+std::string fixed(double x, int digits = 3) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
+  return buf;
+}
+
+bool eligible(const CandidateResult& c) {
+  return c.fitted && c.confirmed && c.identifiability && c.identifiability->identifiable &&
+         c.g_confirmed.has_value();
+}
+
+int group(const CandidateResult& c) {
+  if (!c.fitted) return 3;
+  if (!c.identifiability || !c.identifiability->identifiable) return 2;
+  return c.confirmed ? 0 : 1;
+}
+
+}  // namespace
+
+int choose_effect(std::optional<double> base_held_out_rms, double combined_held_out,
+                  const std::vector<Contender>& contenders) {
+  if (!base_held_out_rms || !(*base_held_out_rms > combined_held_out)) return -1;
+  const Contender* best = nullptr;
+  for (const Contender& c : contenders) {
+    if (!best || c.g > best->g) best = &c;
+  }
+  return best && best->g >= kMinGapClosure ? best->index : -1;
+}
+
+std::vector<int> rank_effects(std::vector<CandidateResult>& candidates) {
+  std::vector<int> order;
+  for (int i = 1; i < int(candidates.size()); ++i) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const CandidateResult& x = candidates[a];
+    const CandidateResult& y = candidates[b];
+    if (group(x) != group(y)) return group(x) < group(y);
+    const double gx = x.g().value_or(-1e300), gy = y.g().value_or(-1e300);
+    return gx > gy;
+  });
+  for (std::size_t r = 0; r < order.size(); ++r) candidates[order[r]].rank = int(r) + 1;
+  return order;
+}
+
+std::string verdict_label(const std::vector<CandidateResult>& candidates, int index) {
+  return index < 0 ? "no effect needed" : candidates[index].candidate.effect;
+}
+
+Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
+               double combined_held_out) {
+  Verdict v;
+  std::vector<Contender> contenders;
+  for (int i : order) {
+    if (eligible(candidates[i])) contenders.push_back({i, *candidates[i].g_confirmed});
+  }
+  const auto base_rms = candidates[0].confirmed_rms.held_out;
+  v.candidate = choose_effect(base_rms, combined_held_out, contenders);
+  for (int i : order) {
+    if (i != v.candidate) {
+      v.runner_up = i;
+      break;
+    }
+  }
+  const std::string budget = fixed(combined_held_out);
+  if (!base_rms) {
+    v.reason = "the base model has no held-out residual (its runs failed): nothing to judge";
+  } else if (!(*base_rms > combined_held_out)) {
+    v.reason = "the base model's held-out rms " + fixed(*base_rms) +
+               " is within the combined budget " + budget +
+               " (numerical noise and lab uncertainty): no gap to explain";
+  } else if (v.candidate >= 0) {
+    const CandidateResult& c = candidates[v.candidate];
+    v.reason = c.candidate.effect + " closes G = " + fixed(*c.g_confirmed, 2) +
+               " of the held-out gap (base held-out rms " + fixed(*base_rms) + " -> " +
+               fixed(c.confirmed_rms.held_out.value_or(0)) + ", combined budget " + budget + ")";
+  } else if (contenders.empty()) {
+    v.reason = "the base model's held-out rms " + fixed(*base_rms) + " exceeds the budget " +
+               budget + ", but no candidate effect is identifiable from these observations";
+  } else {
+    const CandidateResult& c = candidates[contenders.front().index];
+    v.reason = "the base model's held-out rms " + fixed(*base_rms) + " exceeds the budget " +
+               budget + ", but the best effect, " + c.candidate.effect +
+               ", closes only G = " + fixed(*c.g_confirmed, 2) + " of it (< " +
+               fixed(kMinGapClosure, 1) + "): none of the candidates explains the gap";
+  }
+  return v;
+}
+
+std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
+                                   const std::vector<Target>& targets,
+                                   const std::vector<std::uint64_t>& seeds,
+                                   double combined_held_out) {
+  std::vector<SeedCheck> out;
+  const std::vector<double> lab = ln_lab(targets);
+  for (std::size_t j = 0; j < seeds.size(); ++j) {
+    if (candidates[0].seed_ln.size() <= j) break;
+    SeedCheck check;
+    check.seed = seeds[j];
+    const auto base_rms = rms(residuals(candidates[0].seed_ln[j], lab), targets, Role::held_out);
+    std::vector<Contender> contenders;
+    for (int i = 1; i < int(candidates.size()); ++i) {
+      const CandidateResult& c = candidates[i];
+      if (!eligible(c) || c.seed_ln.size() <= j) continue;
+      const auto g =
+          gap_closure(rms(residuals(c.seed_ln[j], lab), targets, Role::held_out), base_rms);
+      if (!g) continue;
+      check.gap_closure[c.candidate.effect] = *g;
+      contenders.push_back({i, *g});
+    }
+    const int chosen = choose_effect(base_rms, combined_held_out, contenders);
+    check.verdict = chosen < 0 ? "" : candidates[chosen].candidate.effect;
+    out.push_back(std::move(check));
+  }
+  return out;
+}
+
+std::string confidence_level(const Confidence& c) {
+  const int seeds = int(c.seeds.size());
+  if (c.agreement >= 0.9 && c.seeds_agreeing == seeds) return "high";
+  if (c.agreement >= 0.7 && 2 * c.seeds_agreeing > seeds) return "medium";
+  if (c.agreement >= 0.7 && seeds == 0) return "medium";
+  return "low";
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,45 @@
+// Ranking, the verdict rule and its replay under replicate packing seeds.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "orchestrator/diagnosis/observations.hpp"
+#include "orchestrator/diagnosis/report.hpp"
+
+namespace rockcal::diagnosis {
+
+struct Contender {
+  int index;  // into the candidates
+  double g;
+};
+
+// docs/diagnosis.md: the contender with the largest G if the base's held-out rms exceeds the
+// combined budget and that G >= 0.3; otherwise -1 ("no effect needed"). Ties keep the earlier.
+int choose_effect(std::optional<double> base_held_out_rms, double combined_held_out,
+                  const std::vector<Contender>& contenders);
+
+// Ranks the effects (candidates[1..]) and sets their `rank` (1 = best): confirmed identifiable
+// ones by their confirmed G, then the other identifiable ones by surface G, then the
+// non-identifiable ones, then those that could not be fitted. Returns the indices in rank order.
+std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
+
+// The verdict over the confirmed identifiable effects (real runs only) and the runner-up (the
+// best-ranked effect that is not the verdict), with a sentence saying why.
+Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
+               double combined_held_out);
+
+// The verdict rule replayed on each replicate seed's runs of the base and confirmed effects.
+std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
+                                   const std::vector<Target>& targets,
+                                   const std::vector<std::uint64_t>& seeds,
+                                   double combined_held_out);
+
+// high: >= 90% of bootstrap replicates and every seed agree; medium: >= 70% and most seeds;
+// low otherwise.
+std::string confidence_level(const Confidence& c);
+
+// "heterogeneity", or "no effect needed".
+std::string verdict_label(const std::vector<CandidateResult>& candidates, int index);
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,186 @@
+// A diagnosis request is validated whole before anything runs, and every refusal names the field
+// to change; a good request resolves into model-unit targets and registry candidates.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "engine/effects/effect.hpp"
+#include "orchestrator/diagnosis/campaign.hpp"
+#include "orchestrator/diagnosis/diagnosis_kind.hpp"
+#include "orchestrator/diagnosis/jobs.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+
+json observation(const std::string& id, const std::string& test, const std::string& role,
+                 json conditions = json::object()) {
+  return {{"id", id},
+          {"test", test},
+          {"conditions", conditions},
+          {"observable", "peak_load"},
+          {"value", 1000.0},
+          {"uncertainty", 20.0},
+          {"role", role}};
+}
+
+json request() {
+  json observations = json::array();
+  observations.push_back(observation("uct", "uct", "calibration"));
+  observations.push_back(observation("btt", "btt", "calibration"));
+  observations.push_back(observation("tri", "triaxial", "held_out", {{"confining_pressure", 50}}));
+  observations.push_back(
+      observation("uct-big", "uct", "held_out", {{"diameter", 9}, {"height", 18}}));
+  json r;
+  r["kind"] = "diagnosis";
+  r["name"] = "validation";
+  r["job"] = {{"sample", {{"diameter", 6}, {"height", 12}, {"radius", 1}}},
+              {"material", {{"kr", 8000}, {"nu", 0.2}, {"density", 1}}},
+              {"loading", {{"platen_velocity", 0.05}, {"max_strain", 0.3}}}};
+  r["dataset"] = {{"name", "small"}, {"units", "model"}, {"observations", observations}};
+  r["effects"] = {"heterogeneity", "platen_friction"};
+  r["bounds"] = {{"fr0", {16, 256}}, {"fs0", {16, 256}}};
+  r["grid"] = {{"fr0", 3}, {"fs0", 3}, {"s", 3}};
+  return r;
+}
+
+std::string refused_field(const json& r) {
+  try {
+    parse_diagnosis_campaign(r);
+  } catch (const calibration::CampaignError& e) {
+    return e.field;
+  }
+  return "(accepted)";
+}
+
+TEST(DiagnosisRequest, GoodRequestResolves) {
+  const DiagnosisCampaign c = parse_diagnosis_campaign(request());
+  ASSERT_EQ(c.targets.size(), 4u);
+  EXPECT_EQ(c.targets[0].conditions.diameter_m, 6);   // absent: the template's
+  EXPECT_EQ(c.targets[1].conditions.thickness_m, 3);  // the engine's D/2
+  EXPECT_EQ(c.targets[3].conditions.diameter_m, 9);
+  EXPECT_NEAR(c.targets[0].sigma, 0.02, 1e-12);
+  ASSERT_EQ(c.candidates.size(), 2u);
+  EXPECT_EQ(c.candidates[0].effect, "heterogeneity");
+  EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3}));
+  // 4 distinct runs; 9 + 2 x 18 grid points, 5 budget points, 3 x 3 confirmations.
+  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 5 + 9) * 4u);
+  // Without "effects", every registered effect is a candidate.
+  json all = request();
+  all.erase("effects");
+  EXPECT_EQ(parse_diagnosis_campaign(all).candidates.size(), effect_registry().size());
+}
+
+TEST(DiagnosisRequest, BadRequestsNameTheField) {
+  const std::vector<std::pair<std::string, std::function<void(json&)>>> cases = {
+      {"kind", [](json& r) { r["kind"] = "calibration"; }},
+      {"bounds.fr0",
+       [](json& r) {
+         r["bounds"]["fr0"] = {100, 10};
+       }},
+      {"bounds.fs0[0]",
+       [](json& r) {
+         r["bounds"]["fs0"] = {"a", 10};
+       }},
+      {"bounds.fr1",
+       [](json& r) {
+         r["bounds"]["fr1"] = {1, 10};
+       }},
+      {"grid.s", [](json& r) { r["grid"]["s"] = 2; }},
+      {"grid.fr0", [](json& r) { r["grid"]["fr0"] = 1.5; }},
+      {"effects[1]",
+       [](json& r) {
+         r["effects"] = {"heterogeneity", "gremlins"};
+       }},
+      {"effects[1]",
+       [](json& r) {
+         r["effects"] = {"flaws", "flaws"};
+       }},
+      {"effects", [](json& r) { r["effects"] = json::array(); }},
+      {"job.bond",
+       [](json& r) {
+         r["job"]["bond"] = {{"fr0", 1}, {"fs0", 1}};
+       }},
+      {"job.effects", [](json& r) { r["job"]["effects"] = json::object(); }},
+      {"job.test", [](json& r) { r["job"]["test"] = "uct"; }},
+      {"job.sample.diameter", [](json& r) { r["job"]["sample"]["diameter"] = -1; }},
+      {"job", [](json& r) { r.erase("job"); }},
+      {"dataset", [](json& r) { r.erase("dataset"); }},
+      {"dataset_file", [](json& r) { r["dataset_file"] = "/etc/passwd"; }},
+      {"dataset_csv", [](json& r) { r["dataset_csv"] = "id,test\n"; }},
+      {"dataset.observations[1].uncertainty",
+       [](json& r) { r["dataset"]["observations"][1]["uncertainty"] = -2; }},
+      {"dataset.observations",
+       [](json& r) {
+         for (json& o : r["dataset"]["observations"]) o["role"] = "calibration";
+       }},
+      {"budget.resolution",
+       [](json& r) {
+         r["budget"] = {{"resolution", 0.8}};
+       }},
+      {"budget.speed_factor",
+       [](json& r) {
+         r["budget"] = {{"speed_factor", 2}};
+       }},
+      {"budget.seeds[0]",
+       [](json& r) {
+         r["budget"] = {{"seeds", {1}}};
+       }},
+      {"confirm", [](json& r) { r["confirm"] = 0; }},
+      {"bootstrap", [](json& r) { r["bootstrap"] = -1; }},
+      {"colour", [](json& r) { r["colour"] = "blue"; }},
+  };
+  for (const auto& [field, change] : cases) {
+    json r = request();
+    change(r);
+    EXPECT_EQ(refused_field(r), field) << r.dump();
+  }
+}
+
+TEST(DiagnosisRequest, JobsAreCanonicalAndCarryTheEffectAndNumerics) {
+  const DiagnosisCampaign c = parse_diagnosis_campaign(request());
+  json probe = c.job_template;
+  probe["bond"] = {{"fr0", 1}, {"fs0", 1}};
+  const JobSpec model = parse_job_template(probe, TestKind::uct);
+  const RunPlan plan = plan_runs(c.targets);
+  ASSERT_EQ(plan.runs.size(), 4u);
+  const RunRequest base{{40, 80, "", 0.0}, {1, 1.0, 1.0}};
+  const json tri = job_for(c.job_template, model, plan.runs[2], base);
+  EXPECT_EQ(tri["test"], "triaxial");
+  EXPECT_EQ(tri["loading"]["confining_pressure"], 50);
+  EXPECT_FALSE(tri.contains("effects") && !tri["effects"].empty());
+  // s = 0 is the base model's very job, effect named or not: the cache knows it.
+  EXPECT_EQ(
+      job_for(c.job_template, model, plan.runs[0], {{40, 80, "heterogeneity", 0.0}, {1, 1, 1}}),
+      job_for(c.job_template, model, plan.runs[0], base));
+  const json het =
+      job_for(c.job_template, model, plan.runs[0], {{40, 80, "heterogeneity", 1.0}, {1, 1, 1}});
+  EXPECT_DOUBLE_EQ(het["effects"]["heterogeneity"]["weibull_m"].get<double>(),
+                   effect_value_at(*find_effect("heterogeneity"), 1.0, model));
+  // A finer resolution keeps the continuum: R / r, K_r / r, strengths / r^2.
+  const json fine = job_for(c.job_template, model, plan.runs[0], {{40, 80, "", 0}, {1, 1, 2.0}});
+  EXPECT_DOUBLE_EQ(fine["sample"]["radius"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(fine["material"]["kr"].get<double>(), 4000);
+  EXPECT_DOUBLE_EQ(fine["bond"]["fr0"].get<double>(), 10);
+  const json slow = job_for(c.job_template, model, plan.runs[0], {{40, 80, "", 0}, {5, 0.5, 1}});
+  EXPECT_DOUBLE_EQ(slow["loading"]["platen_velocity"].get<double>(), 0.025);
+  EXPECT_EQ(slow["sample"]["seed"], 5);
+}
+
+// The example request, with its dataset_file inlined the way `rockcal diagnose` does.
+TEST(DiagnosisRequest, ExampleRequestParses) {
+  const std::string dir = std::string(ROCKCAL_SOURCE_DIR) + "/examples/";
+  json r = json::parse(std::ifstream(dir + "diagnose_twin.json"));
+  r["dataset"] = json::parse(std::ifstream(dir + r["dataset_file"].get<std::string>()));
+  r.erase("dataset_file");
+  const DiagnosisCampaign c = parse_diagnosis_campaign(r);
+  EXPECT_EQ(c.targets.size(), 8u);
+  EXPECT_EQ(count_role(c.targets, Role::held_out), 4u);
+  EXPECT_EQ(plan_runs(c.targets).runs.size(), 7u);  // the UCT's peak and modulus share a run
+  EXPECT_EQ(c.candidates.size(), effect_registry().size());
+  EXPECT_EQ(planned_jobs(c), (16 + 7 * 32 + 5 + 3 * 3) * 7u);
+}
+
+}  // namespace
+}  // namespace rockcal::diagnosis

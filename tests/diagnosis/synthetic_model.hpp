@@ -1,0 +1,46 @@
+// A formula "engine" for the diagnosis's unit tests: closed-form observables of the twin design in
+// which each hidden effect leaves its own signature, and numerics that move values by about 1%,
+// so the whole algorithm runs in milliseconds.
+// An effect's parameter is fitted on the calibration observations, so each effect leaves a mark
+// there that the bond strengths cannot absorb (on the modulus or the triaxial gain; two strengths
+// absorb any change of the UCT and BTT peaks), and a different one on the held-out observations:
+//   size        the modulus falls, and strength falls with specimen size (a Weibull-like size
+//               effect): the 1.5x specimens
+//   confinement the triaxial gain grows with s: the two confinements move differently
+//   rate        the modulus rises, and peaks rise faster with platen speed: the fast UCT
+//   uniform     every peak falls by the same factor: the bond strengths absorb it (not
+//               identifiable)
+//   modulus     only the UCT's Young's modulus moves, as under size: it fits the calibration
+//               observations as well as size does and predicts nothing held out
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "orchestrator/diagnosis/campaign.hpp"
+#include "orchestrator/diagnosis/evaluator.hpp"
+
+namespace rockcal::diagnosis::testing {
+
+// The twin design on a D = 10, H = 20 template at 0.05 m/s: calibration UCT peak and modulus, BTT
+// peak, triaxial at p1; held out triaxial at p2, UCT and BTT at 1.5 D, UCT at 4x speed.
+std::vector<Target> twin_targets();
+
+std::vector<Candidate> synthetic_candidates();  // size, confinement, rate, uniform, modulus
+
+struct SyntheticModel : Evaluator {
+  std::vector<Target> targets;
+  double numerical_noise = 0.005;  // seed-to-seed scatter, relative
+  int runs = 0;                    // model points run
+
+  explicit SyntheticModel(std::vector<Target> t) : targets(std::move(t)) {}
+  std::vector<double> values(const RunRequest& r) const;
+  std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override;
+};
+
+// A campaign whose lab values are the model's at (fr0, fs0) = (60, 120) with `effect` at `s`
+// ("" = none), times lab noise exp(noise x N(0,1)) drawn from `seed`, uncertainty 2%.
+DiagnosisCampaign twin_campaign(const std::string& effect, double s, double noise = 0.01,
+                                std::uint64_t seed = 7);
+
+}  // namespace rockcal::diagnosis::testing

@@ -1,0 +1,173 @@
+// The diagnosis on a formula engine: each hidden effect is found with its parameter, the null case
+// needs no effect, an effect the strengths can absorb is not identifiable, and G is judged on
+// held-out data only. Milliseconds per diagnosis.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "orchestrator/diagnosis/driver.hpp"
+#include "orchestrator/diagnosis/report.hpp"
+#include "orchestrator/diagnosis/verdict.hpp"
+#include "synthetic_model.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+using testing::SyntheticModel;
+using testing::twin_campaign;
+
+struct Diagnosed {
+  DiagnosisCampaign campaign;
+  DiagnosisReport report;
+  json summary;
+};
+
+Diagnosed diagnose(const std::string& effect, double s, double noise = 0.01,
+                   std::uint64_t seed = 7) {
+  Diagnosed r{twin_campaign(effect, s, noise, seed), {}, {}};
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  return r;
+}
+
+const CandidateResult& candidate(const DiagnosisReport& r, const std::string& effect) {
+  for (const CandidateResult& c : r.candidates) {
+    if (c.candidate.effect == effect) return c;
+  }
+  throw std::runtime_error("no candidate " + effect);
+}
+
+class HiddenEffect : public ::testing::TestWithParam<std::pair<const char*, double>> {};
+
+TEST_P(HiddenEffect, IsTheVerdictWithItsParameter) {
+  const auto [effect, s] = GetParam();
+  const auto start = std::chrono::steady_clock::now();
+  const Diagnosed r = diagnose(effect, s);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const json& v = r.summary["verdict"];
+  EXPECT_EQ(v["effect"], effect) << v.dump(2);
+  EXPECT_NEAR(v["parameter"]["value"].get<double>(), s, 0.2) << v.dump(2);
+  EXPECT_GE(v["gap_closure"].get<double>(), 0.6);
+  EXPECT_LT(v["gap"]["held_out"]["after"].get<double>(),
+            v["gap"]["held_out"]["before"].get<double>());
+  EXPECT_TRUE(r.summary["gap"]["exceeds_budget"].get<bool>());
+  EXPECT_NE(v["runner_up"]["effect"], effect);
+  EXPECT_EQ(v["confidence"]["level"], "high") << v["confidence"].dump(2);
+  // The bond strengths come back near the truth (60, 120) within the grid's resolution.
+  EXPECT_NEAR(std::log(v["fr0"].get<double>() / 60), 0, 0.25);
+  EXPECT_NEAR(std::log(v["fs0"].get<double>() / 120), 0, 0.25);
+  std::printf("%s at s = %.2f: G = %.3f, fitted s = %.3f, runner-up %s, %.0f ms\n", effect, s,
+              v["gap_closure"].get<double>(), v["parameter"]["s"].get<double>(),
+              v["runner_up"]["effect"].get<std::string>().c_str(), ms);
+}
+
+INSTANTIATE_TEST_SUITE_P(Synthetic, HiddenEffect,
+                         ::testing::Values(std::pair{"size", 0.8}, std::pair{"confinement", 0.6},
+                                           std::pair{"rate", 0.7}),
+                         [](const auto& info) { return std::string(info.param.first); });
+
+TEST(Diagnosis, NullCaseNeedsNoEffect) {
+  const Diagnosed r = diagnose("", 0.0);
+  const json& v = r.summary["verdict"];
+  EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
+  EXPECT_EQ(v["label"], "no effect needed");
+  EXPECT_FALSE(r.summary["gap"]["exceeds_budget"].get<bool>()) << r.summary["gap"].dump(2);
+  EXPECT_NE(v["reason"].get<std::string>().find("within the combined budget"), std::string::npos);
+  EXPECT_GE(v["confidence"]["bootstrap"]["agreement"].get<double>(), 0.7);
+}
+
+TEST(Diagnosis, AnEffectTheStrengthsAbsorbIsNotIdentifiable) {
+  const Diagnosed r = diagnose("uniform", 1.0);
+  const CandidateResult& uniform = candidate(r.report, "uniform");
+  ASSERT_TRUE(uniform.identifiability);
+  EXPECT_FALSE(uniform.identifiability->identifiable);
+  // Its world is the base model's with other strengths: nothing to explain.
+  EXPECT_TRUE(r.summary["verdict"]["effect"].is_null()) << r.summary["verdict"].dump(2);
+  for (const char* seen : {"size", "confinement", "rate"}) {
+    EXPECT_TRUE(candidate(r.report, seen).identifiability->identifiable) << seen;
+  }
+}
+
+TEST(Diagnosis, GapClosureUsesHeldOutDataOnly) {
+  // Hidden: the size effect, and the lab's modulus 15% below the model's. The "modulus" effect
+  // fits the calibration observations better than any other (it fixes the modulus), yet it
+  // predicts nothing held out: it must not win.
+  Diagnosed r{twin_campaign("size", 0.8), {}, {}};
+  r.campaign.targets[1].value *= std::exp(-0.15);
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  const CandidateResult& base = r.report.candidates[0];
+  const CandidateResult& modulus = candidate(r.report, "modulus");
+  ASSERT_TRUE(modulus.fitted);
+  EXPECT_LT(*modulus.surface_rms.calibration, 0.5 * *base.surface_rms.calibration);
+  EXPECT_LT(std::abs(*modulus.g()), 0.1);
+  EXPECT_EQ(verdict_label(r.report.candidates, r.report.verdict.candidate), "size");
+  EXPECT_GT(*candidate(r.report, "size").g(), *modulus.g());
+}
+
+TEST(Diagnosis, ReportHasTheGapTableBudgetRatioAndHistory) {
+  const Diagnosed r = diagnose("size", 0.8);
+  const json& s = r.summary;
+  ASSERT_EQ(s["observations"].size(), 8u);
+  for (const json& o : s["observations"]) {
+    EXPECT_TRUE(o["budget"].is_number()) << o.dump();
+    EXPECT_GT(o["budget"].get<double>(), 0.0);
+    EXPECT_NEAR(o["lab_uncertainty"].get<double>(), 0.02, 1e-12);
+    EXPECT_TRUE(o["base"]["residual"].is_number());
+  }
+  // Only the 1.5x specimens carry a gap under a hidden size effect.
+  std::set<std::string> gaps;
+  for (const json& id : s["gap"]["significant"]) gaps.insert(id.get<std::string>());
+  EXPECT_TRUE(gaps.count("uct-large") && gaps.count("btt-large")) << s["gap"].dump();
+  EXPECT_EQ(s["budget"]["variants"].size(), 4u);  // 2 seeds, half speed, 1.25x resolution
+  EXPECT_TRUE(s["ratio"]["inside"].is_boolean());
+  EXPECT_LT(s["ratio"]["min"].get<double>(), s["ratio"]["max"].get<double>());
+  EXPECT_EQ(s["candidates"].size(), 6u);
+  EXPECT_FALSE(s["candidates"][0]["history"].empty());
+  EXPECT_EQ(s["verdict"]["confidence"]["seeds"].size(), 2u);
+  // No NaN can reach JSON; the page is self-contained.
+  EXPECT_EQ(s.dump().find("NaN"), std::string::npos);
+  const std::string html = report_html(s);
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org/2000/svg"));  // SVG namespace only
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_NE(html.find("Verdict: size"), std::string::npos);
+}
+
+TEST(Diagnosis, HtmlEscapesWhatTheRequestNamed) {
+  Diagnosed r{twin_campaign("", 0.0), {}, {}};
+  r.campaign.name = "<script>alert(1)</script>";
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  const std::string html = report_html(to_json(r.report, r.campaign));
+  EXPECT_EQ(html.find("<script>"), std::string::npos);
+  EXPECT_NE(html.find("&lt;script&gt;"), std::string::npos);
+}
+
+TEST(Diagnosis, DeterministicAndCheapToReplay) {
+  const Diagnosed a = diagnose("rate", 0.7);
+  const Diagnosed b = diagnose("rate", 0.7);
+  EXPECT_EQ(a.summary.dump(), b.summary.dump());
+  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 budget points, <= 3 x 3 checks.
+  DiagnosisCampaign c = twin_campaign("rate", 0.7);
+  SyntheticModel model(c.targets);
+  run_diagnosis(c, model);
+  EXPECT_EQ(model.runs, 16 + 5 * 32 + 5 + 3 * 3);
+}
+
+TEST(Diagnosis, CancelledBeforeABatchThrows) {
+  DiagnosisCampaign c = twin_campaign("size", 0.8);
+  SyntheticModel model(c.targets);
+  std::stop_source stop;
+  stop.request_stop();
+  EXPECT_THROW(run_diagnosis(c, model, {stop.get_token(), {}}), DiagnosisCancelled);
+  EXPECT_EQ(model.runs, 0);
+}
+
+}  // namespace
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,222 @@
+// The synthetic twin: its design for a template, the seeded truth and noise (with a formula
+// standing in for the engine), and the real thing: rockcal-dem runs on a tiny sample, through the
+// library and through `rockcal twin`.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "orchestrator/diagnosis/engine_runs.hpp"
+#include "orchestrator/diagnosis/twin.hpp"
+#include "orchestrator/diagnosis/twin_design.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A formula engine: loads grow with the bond strengths and the specimen, so the twin's
+// bookkeeping can be checked without physics.
+json formula_result(const json& job) {
+  const double fr0 = job["bond"]["fr0"], fs0 = job["bond"]["fs0"];
+  const double d = job["sample"]["diameter"];
+  const double p = job["loading"].value("confining_pressure", 0.0);
+  const double load = std::sqrt(fr0 * fs0) * d * d + 5 * p * d * d;
+  return {
+      {"test", job["test"]},      {"peak_load", load},    {"strength", load / (M_PI * d * d / 4)},
+      {"youngs_modulus", 1000.0}, {"peak_reached", true}, {"engine_version", "formula"}};
+}
+
+RunJobs formula_engine(std::vector<json>* seen = nullptr) {
+  return [seen](const std::vector<json>& jobs) {
+    std::vector<json> results;
+    for (const json& job : jobs) {
+      if (seen) seen->push_back(job);
+      results.push_back(formula_result(job));
+    }
+    return results;
+  };
+}
+
+const Observation& find(const std::vector<Observation>& list, const std::string& id) {
+  for (const Observation& o : list)
+    if (o.id == id) return o;
+  throw std::runtime_error("no observation " + id);
+}
+
+TEST(DiagnosisTwin, DesignFollowsTheTemplate) {
+  json t = demo_twin_template();
+  t["sample"]["thickness"] = 3;
+  std::vector<json> jobs;
+  const TwinDesign d = make_twin_design(t, formula_engine(&jobs));
+  ASSERT_EQ(jobs.size(), 1u);  // the base UCT, at the engine's default bond strengths
+  EXPECT_EQ(jobs[0]["test"], "uct");
+  EXPECT_EQ(jobs[0]["bond"]["fr0"], 64.0);
+  EXPECT_FALSE(jobs[0].contains("effects"));
+  EXPECT_DOUBLE_EQ(d.base_ucs_pa, formula_result(jobs[0])["strength"].get<double>());
+  EXPECT_DOUBLE_EQ(d.p_low_pa, round_to_two_digits(0.1 * d.base_ucs_pa));
+  EXPECT_DOUBLE_EQ(d.p_high_pa, round_to_two_digits(0.3 * d.base_ucs_pa));
+  EXPECT_DOUBLE_EQ(round_to_two_digits(48.55), 49);
+  EXPECT_DOUBLE_EQ(round_to_two_digits(0.014563), 0.015);
+
+  ASSERT_EQ(d.observations.size(), 8u);
+  const auto& o = d.observations;
+  const auto role = [&](const std::string& id) { return find(o, id).role; };
+  for (const char* id : {"uct-peak", "uct-modulus", "btt-peak", "tri-low"})
+    EXPECT_EQ(role(id), Role::calibration) << id;
+  for (const char* id : {"tri-high", "uct-large", "btt-large", "uct-fast"})
+    EXPECT_EQ(role(id), Role::held_out) << id;
+  EXPECT_EQ(find(o, "uct-modulus").observable, Observable::youngs_modulus);
+  EXPECT_EQ(find(o, "tri-low").test, TestKind::triaxial);
+  EXPECT_EQ(find(o, "tri-low").conditions.confining_pressure_pa, d.p_low_pa);
+  EXPECT_EQ(find(o, "tri-high").conditions.confining_pressure_pa, d.p_high_pa);
+  EXPECT_EQ(*find(o, "uct-large").conditions.diameter_m, 12);
+  EXPECT_EQ(*find(o, "uct-large").conditions.height_m, 24);
+  EXPECT_EQ(*find(o, "btt-peak").conditions.thickness_m, 3);
+  EXPECT_EQ(*find(o, "btt-large").conditions.thickness_m, 4.5);
+  EXPECT_EQ(*find(o, "uct-fast").conditions.loading_rate_m_s, 0.2);
+
+  // A template's own bond strengths are the reference (and the centre of the truth draw).
+  t["bond"] = {{"fr0", 100}, {"fs0", 50}};
+  jobs.clear();
+  EXPECT_EQ(make_twin_design(t, formula_engine(&jobs)).model.bond.fs0_n, 50);
+  EXPECT_EQ(jobs[0]["bond"]["fr0"], 100.0);
+}
+
+TEST(DiagnosisTwin, BadTemplatesAndRequestsAreRefused) {
+  const auto field = [](const json& t) {
+    try {
+      make_twin_design(t, formula_engine());
+    } catch (const DatasetError& e) {
+      return e.field;
+    }
+    return std::string();
+  };
+  json t = demo_twin_template();
+  t["test"] = "uct";
+  EXPECT_EQ(field(t), "job.test");
+  t = demo_twin_template();
+  t["effects"] = {{"rate", {}}};
+  EXPECT_EQ(field(t), "job.effects");
+  t = demo_twin_template();
+  t["sample"]["diameter"] = -1;
+  EXPECT_EQ(field(t), "job.sample.diameter");
+
+  EXPECT_THROW(twin_effects({"bogus", 1, 1, 0.02}), std::invalid_argument);
+  EXPECT_THROW(twin_effects({"rate", 100, 1, 0.02}), std::invalid_argument);
+  EXPECT_EQ(twin_effects({"none", 0, 1, 0.02}), json::object());
+  EXPECT_EQ(twin_effects({"heterogeneity", 3, 1, 0.02}),
+            json({{"heterogeneity", {{"weibull_m", 3.0}}}}));
+  const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
+  EXPECT_THROW(make_twin(d, {"none", 0, 1, 0.0}, formula_engine()), std::invalid_argument);
+}
+
+TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
+  const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
+  std::vector<json> jobs;
+  const TwinRequest request{"heterogeneity", 3, 11, 0.05};
+  const Twin a = make_twin(d, request, formula_engine(&jobs));
+  const Twin b = make_twin(d, request, formula_engine());
+  EXPECT_EQ(to_json(a.dataset), to_json(b.dataset));
+  EXPECT_EQ(a.truth, b.truth);
+  const Twin other = make_twin(d, {"heterogeneity", 3, 12, 0.05}, formula_engine());
+  EXPECT_NE(a.truth["fr0"], other.truth["fr0"]);
+
+  // The UCT's peak and modulus share a run: 7 distinct jobs, each with the hidden effect.
+  EXPECT_EQ(jobs.size(), 7u);
+  for (const json& job : jobs) {
+    EXPECT_EQ(job["effects"]["heterogeneity"]["weibull_m"], 3.0);
+    EXPECT_EQ(job["bond"]["fr0"], a.truth["fr0"]);
+  }
+  const TruthBonds truth = draw_truth_bonds(d.model, 11);
+  EXPECT_EQ(a.truth["fr0"], truth.fr0_n);
+  EXPECT_LE(std::abs(std::log(truth.fr0_n / 64)), 0.5);
+  EXPECT_LE(std::abs(std::log(truth.fs0_n / truth.fr0_n)), 0.5);
+
+  // Lab-like noise: value = noise-free x exp(noise N(0,1)), uncertainty = noise x value.
+  ASSERT_EQ(a.truth["observations"].size(), a.dataset.observations.size());
+  for (std::size_t i = 0; i < a.dataset.observations.size(); ++i) {
+    const Observation& o = a.dataset.observations[i];
+    const double clean = a.truth["observations"][i]["noise_free"];
+    EXPECT_LT(std::abs(std::log(o.value / clean)), 5 * 0.05) << o.id;
+    EXPECT_NE(o.value, clean) << o.id;
+    EXPECT_DOUBLE_EQ(o.uncertainty, 0.05 * o.value) << o.id;
+  }
+  // The dataset does not give the effect away.
+  const std::string dumped = to_json(a.dataset).dump() + to_csv(a.dataset);
+  EXPECT_EQ(dumped.find("heterogeneity"), std::string::npos);
+  EXPECT_EQ(dumped.find("weibull"), std::string::npos);
+  EXPECT_EQ(a.truth["effect"], "heterogeneity");
+  EXPECT_EQ(a.truth["parameter"], "weibull_m");
+  EXPECT_EQ(truth_file_for("out/twin.json"), "out/twin.truth.json");
+  EXPECT_EQ(truth_file_for("twin.csv"), "twin.truth.json");
+}
+
+class DiagnosisTwinEngine : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // rockcal-dem runs as an MPI singleton; Open MPI refuses root (CI) without these.
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
+    work_ = fs::temp_directory_path() / ("rockcal-dtwin-" + std::to_string(getpid()));
+    fs::create_directories(work_);
+  }
+  void TearDown() override { fs::remove_all(work_); }
+  fs::path work_;
+};
+
+// The null case on the real engine: a dataset any diagnosis can read, with calibration and
+// held-out observations, the same for the same seed.
+TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
+  EngineRunner runner({ROCKCAL_DEM, 2, work_ / "runs"});
+  const RunJobs run = [&](const std::vector<json>& jobs) { return runner.run(jobs); };
+  const TwinDesign design = make_twin_design(demo_twin_template(), run);
+  EXPECT_GT(design.p_low_pa, 0);
+  const Twin a = make_twin(design, {"none", 0, 5, 0.02}, run);
+  EXPECT_EQ(runner.runs_started(), 1 + 7);
+  const Dataset parsed = parse_dataset_json(to_json(a.dataset));
+  EXPECT_EQ(to_json(parse_dataset_csv(to_csv(parsed))), to_json(parsed));
+  int calibration = 0, held_out = 0;
+  for (const Observation& o : parsed.observations) {
+    (o.role == Role::calibration ? calibration : held_out)++;
+    EXPECT_GT(o.value, 0) << o.id;
+  }
+  EXPECT_EQ(calibration, 4);
+  EXPECT_EQ(held_out, 4);
+  EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
+  // The same seed again: the engine is deterministic, so is the noise.
+  const Twin b = make_twin(design, {"none", 0, 5, 0.02}, run);
+  EXPECT_EQ(to_json(a.dataset), to_json(b.dataset));
+  EXPECT_EQ(a.truth["observations"], b.truth["observations"]);
+  // A larger specimen carries more load; a confined one too.
+  const auto value = [&](const std::string& id) { return find(a.dataset.observations, id).value; };
+  EXPECT_GT(value("uct-large"), value("uct-peak"));
+  EXPECT_GT(value("tri-high"), value("tri-low"));
+}
+
+// `rockcal twin` end to end, with an effect on: the files it writes and what they hide.
+TEST_F(DiagnosisTwinEngine, CommandWritesTheDatasetAndItsTruth) {
+  const fs::path out = work_ / "twin.csv";
+  const std::string command = std::string(ROCKCAL_BIN) + " twin --effect heterogeneity --value 3" +
+                              " --seed 2 --out " + out.string() + " --engine " + ROCKCAL_DEM +
+                              " > " + (work_ / "stdout").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << std::ifstream(work_ / "stdout").rdbuf();
+  const Dataset d = read_dataset_file(out);
+  EXPECT_EQ(d.observations.size(), 8u);
+  const json truth = json::parse(std::ifstream(work_ / "twin.truth.json"));
+  EXPECT_EQ(truth["effect"], "heterogeneity");
+  EXPECT_EQ(truth["value"], 3.0);
+  EXPECT_EQ(truth["jobs"][0]["effects"]["heterogeneity"]["weibull_m"], 3.0);
+  EXPECT_FALSE(fs::exists(work_ / "twin.csv.runs"));  // removed without --keep-runs
+  std::ifstream text(out);
+  std::stringstream all;
+  all << text.rdbuf();
+  EXPECT_EQ(all.str().find("heterogeneity"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rockcal::diagnosis
