@@ -96,9 +96,10 @@ std::vector<Candidate> parse_effects(JsonFields& root, const JobSpec& model) {
   std::vector<Candidate> all = registry_candidates(model);
   const json* v = root.get("effects");
   if (!v) return all;
-  if (!v->is_array() || v->empty()) {
-    throw CampaignError("effects", "must be a non-empty list of effect names (known: " +
-                                       known_effect_names() + ")");
+  // [] asks for the base model alone: where the gap lies, without ranking effects.
+  if (!v->is_array()) {
+    throw CampaignError("effects",
+                        "must be a list of effect names (known: " + known_effect_names() + ")");
   }
   std::vector<Candidate> out;
   std::set<std::string> seen;
@@ -238,10 +239,13 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
   } catch (const CampaignError& e) {
     throw under("dataset", e);
   }
-  if (count_role(c.targets, Role::held_out) == 0) {
+  // Effects are ranked on held-out data only (a better calibration fit proves nothing). Without
+  // any, the diagnosis can still locate the gap, but only when asked for no effects.
+  if (count_role(c.targets, Role::held_out) == 0 && !c.candidates.empty()) {
     throw CampaignError("dataset.observations",
-                        "needs at least one held_out observation: effects are ranked on held-out "
-                        "data only (a better calibration fit proves nothing)");
+                        "needs at least one held_out observation to rank effects (a better "
+                        "calibration fit proves nothing); with \"effects\": [] the diagnosis "
+                        "only locates the gap");
   }
   validate_runs(c, model);
   return c;

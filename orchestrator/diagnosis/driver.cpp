@@ -209,6 +209,12 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   conf.level = confidence_level(conf);
   report.ratio = ratio_range(c.targets, samples[0]);
   count_failures(report, samples);
+  if (count_role(c.targets, Role::held_out) == 0) {
+    report.verdict.reason =
+        "no held-out observations: the gap is located (calibration residuals, UCT/BTT ratio "
+        "range) but no effect can be judged";
+    return report;
+  }
   // Without held-out residuals there is nothing to judge; say what stopped the runs.
   if (!report.candidates[0].confirmed_rms.held_out && !report.first_error.empty()) {
     report.verdict.reason += " (first failure: " + report.first_error + ")";

@@ -97,7 +97,7 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
        [](json& r) {
          r["effects"] = {"flaws", "flaws"};
        }},
-      {"effects", [](json& r) { r["effects"] = json::array(); }},
+      {"effects", [](json& r) { r["effects"] = "heterogeneity"; }},
       {"job.bond",
        [](json& r) {
          r["job"]["bond"] = {{"fr0", 1}, {"fs0", 1}};
@@ -166,6 +166,18 @@ TEST(DiagnosisRequest, JobsAreCanonicalAndCarryTheEffectAndNumerics) {
   const json slow = job_for(c.job_template, model, plan.runs[0], {{40, 80, "", 0}, {5, 0.5, 1}});
   EXPECT_DOUBLE_EQ(slow["loading"]["platen_velocity"].get<double>(), 0.025);
   EXPECT_EQ(slow["sample"]["seed"], 5);
+}
+
+// Without held-out observations effects cannot be ranked; with "effects": [] the request is a
+// gap location and is accepted.
+TEST(DiagnosisRequest, CalibrationOnlyDatasetNeedsNoEffects) {
+  json r = request();
+  for (json& o : r["dataset"]["observations"]) o["role"] = "calibration";
+  EXPECT_THROW(parse_diagnosis_campaign(r), calibration::CampaignError);
+  r["effects"] = json::array();
+  const DiagnosisCampaign c = parse_diagnosis_campaign(r);
+  EXPECT_TRUE(c.candidates.empty());
+  EXPECT_EQ(count_role(c.targets, Role::held_out), 0u);
 }
 
 // The example request, with its dataset_file inlined the way `rockcal diagnose` does.

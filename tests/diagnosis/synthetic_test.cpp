@@ -139,6 +139,30 @@ TEST(Diagnosis, ReportHasTheGapTableBudgetRatioAndHistory) {
   EXPECT_NE(html.find("Verdict: size"), std::string::npos);
 }
 
+// A dataset with calibration observations only (the seed lab case) and no effects asked for: the
+// gap is located (residuals, ratio range) and nothing is judged.
+TEST(Diagnosis, WithoutHeldOutDataLocatesTheGapAndJudgesNothing) {
+  Diagnosed r{twin_campaign("size", 0.8), {}, {}};
+  std::vector<Target> calibration;
+  for (const Target& t : r.campaign.targets) {
+    if (t.role == Role::calibration) calibration.push_back(t);
+  }
+  r.campaign.targets = calibration;
+  r.campaign.candidates.clear();
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  const json& v = r.summary["verdict"];
+  EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
+  EXPECT_NE(v["reason"].get<std::string>().find("no held-out observations"), std::string::npos);
+  ASSERT_EQ(r.summary["observations"].size(), calibration.size());
+  for (const json& o : r.summary["observations"]) EXPECT_TRUE(o["base"]["residual"].is_number());
+  EXPECT_LT(r.summary["ratio"]["min"].get<double>(), r.summary["ratio"]["max"].get<double>());
+  EXPECT_EQ(r.summary["candidates"].size(), 1u);
+  EXPECT_EQ(r.summary.dump().find("NaN"), std::string::npos);
+  EXPECT_NE(report_html(r.summary).find("no held-out observations"), std::string::npos);
+}
+
 TEST(Diagnosis, HtmlEscapesWhatTheRequestNamed) {
   Diagnosed r{twin_campaign("", 0.0), {}, {}};
   r.campaign.name = "<script>alert(1)</script>";

@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+"""Confusion matrix of the gap diagnosis on synthetic twins (issue 6, docs/diagnosis.md).
+
+For every engine effect and the null case, makes twins with `rockcal twin` (the effect hidden at a
+known value, a seeded truth and 2% lab noise), diagnoses each through one `rockcal serve` (so the
+grid runs, which do not depend on the lab data, are run once and then come from the job store),
+and prints the matrix: hidden effect x verdict, the top-1 identification rate, the null case's
+false-positive rate, the median held-out gap closure G of the correct verdicts, and wall times.
+
+Values: by default each effect at s = 0.5, 0.75 and 1 of its diagnosis walk (neutral -> strong,
+docs/effects.md), seeds 1, 2, 3; the null case with seeds 1, 2, 3.
+
+  bench/diagnosis_confusion.py [--build build] [--out DIR] [--effects a,b] [--twins 3]
+                               [--request examples/diagnose_twin.json]
+
+On demand only (tens of minutes on 2 cores); it builds nothing. Writes DIR/results.json (one row
+per twin, with the campaign summary's verdict, gap and candidates) and DIR/matrix.md.
+"""
+import argparse
+import json
+import os
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# s = 0.5, 0.75, 1 along each effect's walk (engine/effects, effect_value_at): the value the twin
+# hides. Linear walks: neutral + s (strong - neutral); heterogeneity is linear in 1/m; rate in log.
+VALUES = {
+    "heterogeneity": [4.0, 2.667, 2.0],
+    "packing": [1.5, 1.75, 2.0],
+    "platen_friction": [0.25, 0.375, 0.5],
+    "flaws": [0.075, 0.1125, 0.15],
+    "rate": [2.828, 4.757, 8.0],
+    "compression_coupling": [0.5, 0.25, 0.0],
+    "post_break_friction": [0.325, 0.1875, 0.05],
+}
+
+
+def get(url):
+    with urllib.request.urlopen(url, timeout=60) as r:
+        return json.load(r)
+
+
+def start_server(build, work):
+    port_file = os.path.join(work, "port")
+    log = open(os.path.join(work, "serve.log"), "w")
+    proc = subprocess.Popen(
+        [os.path.join(build, "api", "rockcal"), "serve", "--db", os.path.join(work, "bench.db"),
+         "--listen", "127.0.0.1:0", "--port-file", port_file, "--workers", "2",
+         "--ranks-per-job", "0", "--engine", os.path.join(build, "engine", "rockcal-dem"),
+         "--max-jobs", "100000"],
+        stdout=log, stderr=subprocess.STDOUT)
+    for _ in range(300):
+        if os.path.exists(port_file) and open(port_file).read().strip():
+            return proc, "http://127.0.0.1:" + open(port_file).read().strip()
+        time.sleep(0.1)
+    proc.kill()
+    sys.exit("diagnosis_confusion: the server did not start (see serve.log)")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--out", default=None)
+    ap.add_argument("--effects", default=",".join(["none"] + list(VALUES)))
+    ap.add_argument("--twins", type=int, default=3)
+    ap.add_argument("--request", default=os.path.join(ROOT, "examples", "diagnose_twin.json"))
+    a = ap.parse_args()
+    work = a.out or tempfile.mkdtemp(prefix="rockcal-confusion.")
+    os.makedirs(work, exist_ok=True)
+    rockcal = os.path.join(a.build, "api", "rockcal")
+    base_request = json.load(open(a.request))
+    base_request.pop("dataset_file", None)
+    proc, url = start_server(a.build, work)
+    rows = []
+    t_all = time.time()
+    try:
+        for effect in a.effects.split(","):
+            for k in range(a.twins):
+                seed = k + 1
+                name = f"{effect}-{seed}"
+                twin = os.path.join(work, f"twin_{name}.json")
+                cmd = [rockcal, "twin", "--effect", effect, "--seed", str(seed), "--out", twin,
+                       "--engine", os.path.join(a.build, "engine", "rockcal-dem")]
+                value = None
+                if effect != "none":
+                    value = VALUES[effect][k % len(VALUES[effect])]
+                    cmd += ["--value", str(value)]
+                t0 = time.time()
+                subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+                t_twin = time.time() - t0
+                req = dict(base_request)
+                req["name"] = f"confusion {name}"
+                req["dataset_file"] = os.path.basename(twin)
+                req_file = os.path.join(work, f"request_{name}.json")
+                json.dump(req, open(req_file, "w"), indent=1)
+                t0 = time.time()
+                out = subprocess.run(
+                    [rockcal, "diagnose", req_file, "--server", url, "--html",
+                     os.path.join(work, f"report_{name}.html")],
+                    check=True, capture_output=True, text=True).stdout
+                t_diag = time.time() - t0
+                cid = int(out.split("diagnosis campaign ", 1)[1].split()[0])
+                c = get(f"{url}/api/v1/campaigns/{cid}")
+                s = c["summary"]
+                v = s.get("verdict", {})
+                found = v.get("effect") or "none"
+                row = {
+                    "hidden": effect, "value": value, "seed": seed, "campaign": cid,
+                    "verdict": found, "parameter": (v.get("parameter") or {}).get("value"),
+                    "gap_closure": v.get("gap_closure"), "gap": v.get("gap"),
+                    "confidence": (v.get("confidence") or {}).get("level"),
+                    "runner_up": (v.get("runner_up") or {}).get("effect"),
+                    "ranking": [x.get("effect") for x in s.get("candidates", [])[1:]],
+                    "candidates_g": {x.get("effect"): (x.get("gap_closure") or {}).get("value")
+                                     for x in s.get("candidates", [])[1:]},
+                    "base_gap": s.get("gap"), "reason": v.get("reason"),
+                    "twin_seconds": round(t_twin, 1), "diagnosis_seconds": round(t_diag, 1),
+                    "jobs": c.get("progress", {}).get("total"),
+                }
+                rows.append(row)
+                print(f"{name:26} verdict {found:22} G {row['gap_closure']} "
+                      f"conf {row['confidence']} twin {t_twin:.0f} s diagnosis {t_diag:.0f} s",
+                      flush=True)
+                json.dump(rows, open(os.path.join(work, "results.json"), "w"), indent=1)
+    finally:
+        proc.send_signal(signal.SIGTERM)
+        proc.wait(timeout=60)
+    write_matrix(rows, work, time.time() - t_all)
+
+
+def write_matrix(rows, work, wall):
+    hidden = list(dict.fromkeys(r["hidden"] for r in rows))
+    found = sorted(set(r["verdict"] for r in rows) | set(hidden), key=lambda e: (e != "none", e))
+    lines = ["| hidden \\ verdict | " + " | ".join(found) + " |",
+             "| --- | " + " | ".join("---" for _ in found) + " |"]
+    for h in hidden:
+        counts = [sum(1 for r in rows if r["hidden"] == h and r["verdict"] == f) for f in found]
+        lines.append(f"| {h} | " + " | ".join(str(n) for n in counts) + " |")
+    eff = [r for r in rows if r["hidden"] != "none"]
+    null = [r for r in rows if r["hidden"] == "none"]
+    hits = [r for r in eff if r["verdict"] == r["hidden"]]
+    g = [r["gap_closure"] for r in hits if r["gap_closure"] is not None]
+    g_all = [r["candidates_g"].get(r["hidden"]) for r in eff]
+    g_all = [x for x in g_all if x is not None]
+    lines += ["",
+              f"- top-1 identification: {len(hits)} of {len(eff)}"
+              + (f" ({100 * len(hits) / len(eff):.0f}%)" if eff else ""),
+              f"- null false positives: {sum(1 for r in null if r['verdict'] != 'none')} of {len(null)}",
+              f"- median held-out gap closure of the correct verdicts: "
+              + (f"{statistics.median(g):.2f}" if g else "n/a (none)"),
+              f"- median G of the hidden effect's own candidate (verdict or not): "
+              + (f"{statistics.median(g_all):.2f}" if g_all else "n/a"),
+              f"- wall time: {wall / 60:.1f} min in all; one diagnosis "
+              f"{max(r['diagnosis_seconds'] for r in rows):.0f} s at most (the first, which runs "
+              f"the grids), median {statistics.median(r['diagnosis_seconds'] for r in rows):.0f} s"]
+    text = "\n".join(lines) + "\n"
+    open(os.path.join(work, "matrix.md"), "w").write(text)
+    print(text)
+    print("results:", os.path.join(work, "results.json"))
+
+
+if __name__ == "__main__":
+    main()
