@@ -35,7 +35,7 @@ class LocalExecutor : public Executor {
 
   LocalExecutorConfig config_;
   std::mutex mutex_;
-  std::map<pid_t, ExitStatus> finished_;  // reaped children, until their handle is polled again
+  std::map<pid_t, ExitStatus> finished_;  // reaped children, until their pid is reused by a launch
 };
 
 }  // namespace rockcal::orch

@@ -84,11 +84,11 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
                         {"name", "engine twin"},
                         {"job", demo_twin_template()},
                         {"dataset", to_json(twin.dataset)},
-                        {"effects", {"heterogeneity", "platen_friction"}},
+                        {"effects", {"heterogeneity", "rate"}},
                         {"grid", {{"fr0", 3}, {"fs0", 3}, {"s", 3}}},
                         {"budget", {{"seeds", {2}}}}};
   start();
-  const json s = run_to_summary(request, 170s);
+  const json s = run_to_summary(request, 280s);
   ASSERT_TRUE(s.is_object());
   const auto t2 = std::chrono::steady_clock::now();
   const std::int64_t first_runs = jobs_run();
@@ -135,7 +135,7 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
   std::printf(
       "twin %.0f s (%d runs); diagnosis %.0f s (%lld engine runs, %d model points); again %.1f "
-      "s\nverdict %s: %s\nbudget %s\nheterogeneity G %s, platen_friction G %s\n",
+      "s\nverdict %s: %s\nbudget %s\nheterogeneity G %s, rate G %s\n",
       secs(t0, t1), runner.runs_started(), secs(t1, t2), static_cast<long long>(first_runs),
       s["runs"]["model_points"].get<int>(), secs(t2, t3), v["label"].get<std::string>().c_str(),
       reason.c_str(), s["budget"]["per_observation"].dump().c_str(),

@@ -121,3 +121,22 @@ TEST(Mpi, TriaxialWithBondEffectsTwoRanksAgreeWithOne) {
   EXPECT_NEAR(p2 / p1, 1.0, 0.02);
   fs::remove_all(base);
 }
+
+// Started without a launcher, the engine runs serially without MPI (no 0.3 s singleton MPI_Init per
+// job, which dominated the service's small jobs) and gives the one-rank result bit for bit.
+TEST(Mpi, PlainStartRunsSeriallyAndMatchesOneRank) {
+  const fs::path base = fs::temp_directory_path() / ("rockcal_plain_" + std::to_string(::getpid()));
+  const auto one = run_on(1, base / "np1");
+  fs::remove_all(base / "plain");
+  const std::string cmd = std::string("env -u OMPI_COMM_WORLD_SIZE -u PMIX_RANK -u PMI_RANK ") +
+                          "-u PMI_SIZE -u SLURM_PROCID -u ROCKCAL_MPI " + ROCKCAL_DEM + " run " +
+                          ROCKCAL_EXAMPLES + "/uct_small.json --out " + (base / "plain").string() +
+                          " > /dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd;
+  const auto plain = nlohmann::json::parse(std::ifstream(base / "plain" / "result.json"));
+  EXPECT_EQ(plain["ranks"], 1);
+  EXPECT_EQ(plain["peak_load"].get<double>(), one["peak_load"].get<double>());
+  EXPECT_EQ(plain["broken_bonds"], one["broken_bonds"]);
+  fs::remove_all(base);
+}
