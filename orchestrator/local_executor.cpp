@@ -101,7 +101,7 @@ std::string LocalExecutor::launch(const LaunchRequest& request) {
   posix_spawnattr_destroy(&attr);
   if (rc != 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(rc));
   {
-    // pids are reused (pid_max may be 32768): a reaped child's status must not answer for a new one.
+    // pids are reused (pid_max may be 32768): an old child's status must not answer for this one.
     std::lock_guard lock(mutex_);
     finished_.erase(pid);
   }

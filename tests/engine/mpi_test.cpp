@@ -110,9 +110,10 @@ TEST(Mpi, TriaxialWithBondEffectsTwoRanksAgreeWithOne) {
   // The decomposition changes only the order in which bond forces are summed (round-off). Under
   // confinement a tiny specimen's breakage cascade amplifies that, and where the two runs part
   // depends on the build (an inlining change moved it from 3/4 of the peak to earlier): peaks
-  // measured 0.9% apart, and 2.4% with the bond kernel inlined. So: the same curve to 1e-6 up to the first break (confinement, flaws and
-  // the stiffness agree), the same first breaks, in step, place and mode (the heterogeneity draws
-  // agree: different draws would break different bonds first), and peaks within 5%.
+  // measured 0.9% apart, and 2.4% with the bond kernel inlined. So: the same curve to 1e-6 up to
+  // the first break (confinement, flaws and the stiffness agree), the same first breaks, in step,
+  // place and mode (the heterogeneity draws agree: different draws would break different bonds
+  // first), and peaks within 5%.
   const double p1 = one["peak_load"], p2 = two["peak_load"];
   const auto c1 = read_curve(base / "np1"), c2 = read_curve(base / "np2");
   std::size_t compared = 0;
