@@ -9,19 +9,18 @@
 #include "orchestrator/calibration/lab_case.hpp"
 
 namespace rockcal::calibration {
-namespace {
 
-using nlohmann::json;
-
-Range parse_range(JsonFields& bounds, const std::string& key) {
-  const std::string field = bounds.path_of(key);
-  const json& v = bounds.require(key);
+Range parse_log_range(const nlohmann::json& v, const std::string& field) {
   if (!v.is_array() || v.size() != 2) throw CampaignError(field, "must be [lower, upper]");
   Range r{finite_number(v[0], field + "[0]"), finite_number(v[1], field + "[1]")};
-  if (!(r.lo > 0)) throw CampaignError(field, "lower bound must be positive (log-space search)");
+  if (!(r.lo > 0)) throw CampaignError(field, "lower bound must be positive (log space)");
   if (!(r.hi > r.lo)) throw CampaignError(field, "upper bound must exceed the lower bound");
   return r;
 }
+
+namespace {
+
+using nlohmann::json;
 
 TargetValue parse_target(JsonFields& targets, const std::string& test) {
   JsonFields t(targets.require(test), targets.path_of(test));
@@ -118,8 +117,8 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.name = root.string("name").value_or("");
   {
     JsonFields bounds(root.require("bounds"), "bounds");
-    c.fr0_n = parse_range(bounds, "fr0");
-    c.fs0_n = parse_range(bounds, "fs0");
+    c.fr0_n = parse_log_range(bounds.require("fr0"), bounds.path_of("fr0"));
+    c.fs0_n = parse_log_range(bounds.require("fs0"), bounds.path_of("fs0"));
     bounds.reject_unknown();
   }
   c.job_template = root.require("job");

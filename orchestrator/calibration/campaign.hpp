@@ -21,6 +21,10 @@ struct Range {
   double hi;
 };
 
+// A [lower, upper] pair of bond strengths for a search in log space: finite, 0 < lower < upper.
+// Errors name `field` (e.g. "bounds.fr0[1]").
+Range parse_log_range(const nlohmann::json& value, const std::string& field);
+
 struct CalibrationCampaign {
   std::string name;
   nlohmann::json job_template;    // the "job" block: no "test", no "bond" (the search sets both)

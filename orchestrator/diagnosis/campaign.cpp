@@ -25,18 +25,6 @@ CampaignError under(const std::string& prefix, const Error& e) {
   return CampaignError(prefix + "." + e.field, message);
 }
 
-calibration::Range parse_range(JsonFields& bounds, const std::string& key, calibration::Range r) {
-  const json* v = bounds.get(key);
-  if (!v) return r;
-  const std::string field = bounds.path_of(key);
-  if (!v->is_array() || v->size() != 2) throw CampaignError(field, "must be [lower, upper]");
-  r = {calibration::finite_number((*v)[0], field + "[0]"),
-       calibration::finite_number((*v)[1], field + "[1]")};
-  if (!(r.lo > 0)) throw CampaignError(field, "lower bound must be positive (log-space grid)");
-  if (!(r.hi > r.lo)) throw CampaignError(field, "upper bound must exceed the lower bound");
-  return r;
-}
-
 GridSpec parse_grid(JsonFields& root) {
   GridSpec g;
   const json* v = root.get("grid");
@@ -221,8 +209,10 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
   c.sample_seed = model.sample.seed;
   if (const json* v = root.get("bounds")) {
     JsonFields bounds(*v, "bounds");
-    c.fr0_n = parse_range(bounds, "fr0", c.fr0_n);
-    c.fs0_n = parse_range(bounds, "fs0", c.fs0_n);
+    for (auto [key, range] : {std::pair{"fr0", &c.fr0_n}, std::pair{"fs0", &c.fs0_n}}) {
+      if (const json* v = bounds.get(key))
+        *range = calibration::parse_log_range(*v, bounds.path_of(key));
+    }
     bounds.reject_unknown();
   }
   c.grid = parse_grid(root);
