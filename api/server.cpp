@@ -47,7 +47,10 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
   server_.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   server_.set_payload_max_length(config_.max_body_bytes);
   server_.set_keep_alive_max_count(100);
-  server_.set_keep_alive_timeout(2);  // keep-alive connections pin pool threads; release them soon
+  // An idle keep-alive connection pins a pool thread until this timeout, but a client that sends
+  // just as the server gives up sees its request dropped (a transport error, nothing stored).
+  // 2 s was too short on a loaded 2-core CI machine; 5 s is httplib's default.
+  server_.set_keep_alive_timeout(5);
   server_.set_read_timeout(10, 0);
   server_.set_write_timeout(10, 0);
 

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <stdexcept>
 
 #include "db/migrations.hpp"
 #include "db/row_readers.hpp"
@@ -103,18 +104,32 @@ std::int64_t Store::add_job(std::int64_t campaign_id, const NewJob& job) {
 }
 
 std::optional<JobRow> Store::claim_job(const std::string& executor) {
+  // An explicit transaction, not one UPDATE ... RETURNING: with SQLite 3.40 that UPDATE was seen
+  // to change a row and yet return none (sqlite3_changes() = 1, no row; two workers claiming),
+  // which left a job "running" that no worker watched. BEGIN IMMEDIATE makes pick and claim one.
   auto conn = lease();
-  auto st = conn->prepare(std::string("UPDATE jobs SET state = 'running', attempts = attempts + 1, "
-                                      "started_at = ?, executor = ?, handle = NULL, progress = 0 "
-                                      "WHERE id = (SELECT id FROM jobs q WHERE q.state = 'queued' "
-                                      "AND NOT EXISTS (SELECT 1 FROM jobs r WHERE r.hash = q.hash "
-                                      "AND r.state = 'running') ORDER BY q.id LIMIT 1) "
-                                      "AND state = 'queued' RETURNING ") +
-                          kJobColumns);
-  st.bind_all(now_seconds(), executor);
+  Transaction tx(*conn);
+  std::int64_t id = 0;
+  {
+    auto pick = conn->prepare(
+        "SELECT id FROM jobs q WHERE q.state = 'queued' AND NOT EXISTS (SELECT 1 FROM jobs r "
+        "WHERE r.hash = q.hash AND r.state = 'running') ORDER BY q.id LIMIT 1");
+    if (!pick.step()) return std::nullopt;
+    id = pick.int64(0);
+  }
+  conn->prepare(
+          "UPDATE jobs SET state = 'running', attempts = attempts + 1, started_at = ?, "
+          "executor = ?, handle = NULL, progress = 0 WHERE id = ?")
+      .bind_all(now_seconds(), executor, id)
+      .run();
   std::optional<JobRow> row;
-  if (st.step()) row = read_job(st);
-  st.run();
+  {
+    auto st = conn->prepare(std::string("SELECT ") + kJobColumns + " FROM jobs WHERE id = ?");
+    st.bind_all(id);
+    if (!st.step()) throw std::logic_error("claimed job " + std::to_string(id) + " vanished");
+    row = read_job(st);
+  }
+  tx.commit();
   return row;
 }
 

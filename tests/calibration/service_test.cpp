@@ -63,6 +63,25 @@ class ServiceCalibration : public ::testing::Test {
     return condition();
   }
 
+  // Every job of the campaign, for a failure message: what a stuck driver is waiting for.
+  std::string job_table(std::int64_t id) {
+    std::string out = "driver " + driver_status(id).value_or("(none)") + "; jobs:\n";
+    service_->store().with_connection([&](db::Connection& conn) {
+      auto st = conn.prepare(
+          "SELECT id, state, cached, attempts, substr(hash, 1, 8), coalesce(error, '') || ' h=' || "
+          "coalesce(handle, '-') FROM jobs "
+          "WHERE campaign_id = ? ORDER BY id");
+      st.bind_all(id);
+      while (st.step()) {
+        out += std::to_string(st.int64(0)) + " " + st.text(1) +
+               " cached=" + std::to_string(st.int64(2)) +
+               " attempts=" + std::to_string(st.int64(3)) + " " + st.text(4) + " " + st.text(5) +
+               "\n";
+      }
+    });
+    return out;
+  }
+
   std::string runs_file() const { return (dir_ / "runs.txt").string(); }
   std::vector<std::string> runs() const {
     std::vector<std::string> lines;
@@ -111,7 +130,8 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   r["strategy"] = "direct_2d";
   start();
   const std::int64_t id = service_->create_campaign(r);
-  ASSERT_TRUE(wait_for([&] { return service_->store().counts(id).succeeded >= 16; }, 60s));
+  ASSERT_TRUE(wait_for([&] { return service_->store().counts(id).succeeded >= 16; }, 60s))
+      << job_table(id);
   // While it runs, the summary shows the history so far.
   const json progress = json::parse(service_->store().campaign(id)->summary.value_or("null"));
   ASSERT_TRUE(progress.is_object());
@@ -121,7 +141,7 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   service_.reset();
   const std::size_t before = runs().size();
   start();
-  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 60s));
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 60s)) << job_table(id);
   const json report = json::parse(*service_->store().campaign(id)->summary);
   EXPECT_EQ(report["verdict"], "feasible");
   // No finished (test, point) ran twice; only jobs cut short by the stop may have run again.

@@ -47,11 +47,13 @@ TEST(Load, FiftyConcurrentClientsGetNo5xxAndNoLockErrors) {
         ++posts;
         ++local_campaigns;
       }
+      std::string what;  // the request, for the first error's message
       httplib::Result r = [&] {
         if (pick == 0) {
           // A new point each time (fresh jobs), sometimes a repeat (cache).
           double fr0 = 20 + static_cast<double>(rng() % 2000) / 10.0;
           auto body = sweep_request({"uct"}, {fr0}, {64}).dump();
+          what = "POST /api/v1/campaigns";
           return c.Post("/api/v1/campaigns", body, "application/json");
         }
         if (pick <= 3) {
@@ -78,7 +80,10 @@ TEST(Load, FiftyConcurrentClientsGetNo5xxAndNoLockErrors) {
       if (!r) {
         ++transport;
         std::lock_guard lock(first_error_mutex);
-        if (first_error.empty()) first_error = "transport: " + httplib::to_string(r.error());
+        if (first_error.empty()) {
+          first_error = "transport: " + httplib::to_string(r.error()) + " on " +
+                        (what.empty() ? std::string("a GET") : what);
+        }
         continue;
       }
       if (r->body.find("locked") != std::string::npos) ++locked;
