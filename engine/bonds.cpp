@@ -50,31 +50,36 @@ Bond make_bond(std::int32_t i, std::int32_t j, std::int64_t id_i, std::int64_t i
   b.ks = ks;
   b.kb = kb;
   b.kt = kt;
-  b.fr0 = fr0;
-  b.fs0 = fs0;
   const double r_mean = 0.5 * (r_i + r_j);
-  b.gb0 = r_mean * fr0 / 4.0;
-  b.gt0 = r_mean * fs0 / 2.0;
+  set_strengths(b, fr0, fs0, r_mean * fr0 / 4.0, r_mean * fs0 / 2.0);
   return b;
 }
 
-BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& x_j,
-                   const Quat& q_j) {
+// The bond kernel: most of a time step is spent here. The divider (division and square root) is
+// its bottleneck, so each result is formed with as few of them as the formulas allow: one
+// reciprocal per normalisation, the bending axis's norm from |axis| = tn |v_perp|, |tau_b| from the
+// bending angle. kWithEnergy: the stored energy is wanted (energy checks, not the time step).
+template <bool kWithEnergy>
+[[gnu::always_inline]] inline BondLoad load_kernel(const Bond& b, const Vec3& x_i, const Quat& q_i,
+                                                   const Vec3& x_j, const Quat& q_j) {
   BondLoad out;
   const Vec3 d = x_j - x_i;
   const double len = d.norm();
-  const Vec3 n = d / len;
+  const Vec3 n = d * (1.0 / len);
 
   // Normal: tension positive; the force on i points to j when stretched.
-  out.f_r = b.kr * (len - b.r0);
+  const double stretch = len - b.r0;
+  out.f_r = b.kr * stretch;
   const Vec3 f_normal = out.f_r * n;
 
   // Shear: deviation of n from the body-carried reference direction.
   const double w_j = 1.0 - b.w_i;
-  const Vec3 m = (b.w_i * (q_i * b.n0) + w_j * (q_j * b.n0)).normalized();
+  const Vec3 m_raw = b.w_i * (q_i * b.n0) + w_j * (q_j * b.n0);
+  const Vec3 m = m_raw * (1.0 / m_raw.norm());
   const Vec3 ds = b.r0 * (m.dot(n) * n - m);  // displacement of j off the reference, normal to n
   const Vec3 f_shear = b.ks * ds;             // on i (and -f_shear on j)
-  out.f_s = f_shear.norm();
+  const double ds_sq = ds.squaredNorm();
+  out.f_s = b.ks * std::sqrt(ds_sq);
 
   out.force_i = f_normal + f_shear;
   out.force_j = -out.force_i;
@@ -86,7 +91,8 @@ BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& 
 
   // Twist and bending from the relative rotation q = (w, v), split about the current bond axis as
   // q = swing * twist. In closed form: twist angle 2 atan2(v.n, w); swing angle
-  // 2 atan2(|v_perp|, sqrt(w^2 + (v.n)^2)) about the axis (w v_perp - (v.n) v x n) / |...|.
+  // 2 atan2(|v_perp|, sqrt(w^2 + (v.n)^2)) about the axis (w v_perp - (v.n) v x n) / |...|, whose
+  // norm is sqrt(w^2 + (v.n)^2) |v_perp|.
   Quat rel = q_j * q_i.conjugate();
   if (rel.w() < 0) rel.coeffs() = -rel.coeffs();
   const Vec3 v = rel.vec();
@@ -98,28 +104,40 @@ BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& 
   // At exactly 180 degrees of bending (tn = 0) the twist is undefined: take none.
   const double twist_angle = tn > 1e-12 ? 2.0 * positive_atan2(p, w) : 0.0;
   Vec3 bend = Vec3::Zero();
-  if (s_perp > 0) {
-    const Vec3 axis = w * v_perp - p * v.cross(n);  // |axis| = tn * s_perp
-    const double axis_norm = axis.norm();
-    if (axis_norm > 0) bend = (2.0 * positive_atan2(s_perp, tn) / axis_norm) * axis;
+  double bend_angle = 0.0;
+  const double axis_norm = tn * s_perp;
+  if (axis_norm > 0) {
+    const Vec3 axis = w * v_perp - p * v.cross(n);
+    bend_angle = 2.0 * positive_atan2(s_perp, tn);
+    bend = (bend_angle / axis_norm) * axis;
   }
 
-  const Vec3 tau_t = b.kt * twist_angle * n;  // restoring torque on i; -tau on j
-  const Vec3 tau_b = b.kb * bend;
-  out.tau_t = std::abs(b.kt * twist_angle);
-  out.tau_b = tau_b.norm();
-  out.torque_i += tau_t + tau_b;
-  out.torque_j -= tau_t + tau_b;
+  const double twist_torque = b.kt * twist_angle;
+  const Vec3 tau = twist_torque * n + b.kb * bend;  // restoring torque on i; -tau on j
+  out.tau_t = std::abs(twist_torque);
+  out.tau_b = b.kb * bend_angle;
+  out.torque_i += tau;
+  out.torque_j -= tau;
 
-  out.energy = 0.5 * (b.kr * (len - b.r0) * (len - b.r0) + b.ks * ds.squaredNorm() +
-                      b.kt * twist_angle * twist_angle + b.kb * bend.squaredNorm());
+  if constexpr (kWithEnergy) {
+    out.energy = 0.5 * (b.kr * stretch * stretch + b.ks * ds_sq + b.kt * twist_angle * twist_angle +
+                        b.kb * bend_angle * bend_angle);
+  } else {
+    out.energy = 0.0;
+  }
   return out;
+}
+
+BondLoad bond_load(const Bond& b, const Vec3& x_i, const Quat& q_i, const Vec3& x_j,
+                   const Quat& q_j) {
+  return load_kernel<true>(b, x_i, q_i, x_j, q_j);
 }
 
 double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule,
                       BreakMode* dominant) {
   const double f_r = load.f_r >= 0 ? load.f_r : rule.compression_coupling * load.f_r;
-  const double terms[4] = {f_r / b.fr0, load.f_s / b.fs0, load.tau_t / b.gt0, load.tau_b / b.gb0};
+  const double terms[4] = {f_r * b.inv_fr0, load.f_s * b.inv_fs0, load.tau_t * b.inv_gt0,
+                           load.tau_b * b.inv_gb0};
   if (dominant) {
     int k = 0;
     for (int t = 1; t < 4; ++t)
@@ -135,9 +153,11 @@ void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakR
   std::size_t k = 0;
   while (k < bonds.size()) {
     const Bond& b = bonds[k];
-    const BondLoad load = bond_load(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
-    BreakMode mode;
-    if (breakage_index(b, load, rule, &mode) >= 1.0) {
+    const BondLoad load =
+        load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
+    if (breakage_index(b, load, rule, nullptr) >= 1.0) {
+      BreakMode mode;
+      breakage_index(b, load, rule, &mode);
       if (static_cast<std::size_t>(b.i) < p.n_owned)
         events.push_back({step, b.id_i, b.id_j, 0.5 * (p.pos[b.i] + p.pos[b.j]), mode});
       broken.push_back(b);

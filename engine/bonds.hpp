@@ -30,9 +30,23 @@ struct Bond {
   double w_i;               // R_i / (R_i + R_j): where the bond's contact point sits
   double kr, ks;            // N/m
   double kb, kt;            // N m / rad
-  double fr0, fs0;          // tensile and shear strengths, N
+  // Strengths: set them with set_strengths, which keeps the reciprocals eq. 2 multiplies by (a
+  // division per term per bond per step was a tenth of the time step).
+  double fr0, fs0;  // tensile and shear strengths, N
   double gb0, gt0;  // bending and twisting strengths, N m (G_b0 = R F_r0 / 4, G_t0 = R F_s0 / 2)
+  double inv_fr0, inv_fs0, inv_gb0, inv_gt0;  // 1/N, 1/(N m)
 };
+
+inline void set_strengths(Bond& b, double fr0, double fs0, double gb0, double gt0) {
+  b.fr0 = fr0;
+  b.fs0 = fs0;
+  b.gb0 = gb0;
+  b.gt0 = gt0;
+  b.inv_fr0 = 1.0 / fr0;
+  b.inv_fs0 = 1.0 / fs0;
+  b.inv_gb0 = 1.0 / gb0;
+  b.inv_gt0 = 1.0 / gt0;
+}
 
 // The state of one bond at the current configuration: what eq. 1 gives and what eq. 2 weighs.
 struct BondLoad {

@@ -31,10 +31,7 @@ Bond unpack_bond(const double* r, bool* intact) {
   b.ks = r[8];
   b.kb = r[9];
   b.kt = r[10];
-  b.fr0 = r[11];
-  b.fs0 = r[12];
-  b.gb0 = r[13];
-  b.gt0 = r[14];
+  set_strengths(b, r[11], r[12], r[13], r[14]);
   *intact = r[15] != 0.0;
   return b;
 }

@@ -29,10 +29,7 @@ void scatter_strengths(Simulation& sim, const JobSpec& spec, const EffectValues&
   // both ranks holding a border bond scale it alike.
   for (Bond& b : sim.bonds) {
     const double w = strength_multiplier(m, scale, spec.sample.seed, b);
-    b.fr0 *= w;
-    b.fs0 *= w;
-    b.gb0 *= w;
-    b.gt0 *= w;
+    set_strengths(b, b.fr0 * w, b.fs0 * w, b.gb0 * w, b.gt0 * w);
   }
 }
 
