@@ -47,10 +47,7 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
   server_.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   server_.set_payload_max_length(config_.max_body_bytes);
   server_.set_keep_alive_max_count(100);
-  // An idle keep-alive connection pins a pool thread until this timeout, but a client that sends
-  // just as the server gives up sees its request dropped (a transport error, nothing stored).
-  // 5 s, httplib's default: long against a client's pause between requests, short for a thread.
-  server_.set_keep_alive_timeout(5);
+  server_.set_keep_alive_timeout(2);  // keep-alive connections pin pool threads; release them soon
   server_.set_read_timeout(10, 0);
   server_.set_write_timeout(10, 0);
 

@@ -30,8 +30,8 @@ struct Bond {
   double w_i;               // R_i / (R_i + R_j): where the bond's contact point sits
   double kr, ks;            // N/m
   double kb, kt;            // N m / rad
-  // Strengths: set them with set_strengths, which keeps the reciprocals eq. 2 multiplies by (a
-  // division per term per bond per step was a tenth of the time step).
+  // Strengths: set them with set_strengths, which keeps the reciprocals eq. 2 multiplies by, so
+  // the time step divides by none of them.
   double fr0, fs0;  // tensile and shear strengths, N
   double gb0, gt0;  // bending and twisting strengths, N m (G_b0 = R F_r0 / 4, G_t0 = R F_s0 / 2)
   double inv_fr0, inv_fs0, inv_gb0, inv_gt0;  // 1/N, 1/(N m)

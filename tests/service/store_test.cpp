@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <condition_variable>
 #include <set>
 #include <thread>
 
@@ -75,62 +74,6 @@ TEST_F(StoreTest, ConcurrentClaimsNeverHandOutAJobTwice) {
   EXPECT_EQ(claimed.size(), 200u);
   EXPECT_EQ(std::set<std::int64_t>(claimed.begin(), claimed.end()).size(), 200u);
   EXPECT_EQ(store.counts().running, 200);
-}
-
-TEST_F(StoreTest, EveryClaimedJobReachesItsClaimerWhileJobsArrive) {
-  // Workers woken together claim while a driver adds jobs one by one (the calibration's
-  // pattern). A job marked running that no claimer received would never finish: its campaign
-  // would hang.
-  const std::int64_t campaign = store.create_campaign("calibration", "c", "{}", true, {});
-  const int total = 300;
-  std::atomic<bool> producing{true};
-  std::mutex m;
-  std::condition_variable wake;
-  std::uint64_t generation = 0;
-  std::thread producer([&] {
-    for (int i = 0; i < total; ++i) {
-      std::string hash = "h";
-      hash += std::to_string(i % (total / 2));  // half are twins of earlier jobs
-      store.add_job(campaign, job(hash, i));
-      {
-        std::lock_guard lock(m);
-        ++generation;
-      }
-      wake.notify_all();
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    producing = false;
-    wake.notify_all();
-  });
-  std::multiset<std::int64_t> claimed;
-  std::vector<std::thread> workers;
-  for (int t = 0; t < 2; ++t) {
-    workers.emplace_back([&] {
-      while (producing || store.counts(campaign).queued > 0) {
-        std::uint64_t seen;
-        {
-          std::lock_guard lock(m);
-          seen = generation;
-        }
-        if (auto j = store.claim_job("local")) {
-          {
-            std::lock_guard lock(m);
-            claimed.insert(j->id);
-          }
-          store.finish_success(j->id, result_for(*j, 1.0));
-          continue;
-        }
-        std::unique_lock lock(m);
-        wake.wait_for(lock, std::chrono::milliseconds(20), [&] { return generation != seen; });
-      }
-    });
-  }
-  producer.join();
-  for (auto& t : workers) t.join();
-  const StateCounts counts = store.counts(campaign);
-  EXPECT_EQ(counts.running, 0) << "a job was marked running but no worker received it";
-  EXPECT_EQ(counts.succeeded, total);
-  EXPECT_EQ(std::set<std::int64_t>(claimed.begin(), claimed.end()).size(), claimed.size());
 }
 
 TEST_F(StoreTest, SuccessStoresOneResultAndAnswersTwins) {
