@@ -1,6 +1,9 @@
 #include "engine/bonds.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "engine/bond_batch.hpp"
 
 namespace rockcal {
 namespace {
@@ -150,27 +153,53 @@ double breakage_index(const Bond& b, const BondLoad& load, const BreakRule& rule
 void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakRule& rule,
                             std::int64_t step, std::vector<Bond>& broken,
                             std::vector<BreakEvent>& events) {
-  std::size_t k = 0;
-  while (k < bonds.size()) {
-    const Bond& b = bonds[k];
-    const BondLoad load =
-        load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
-    if (breakage_index(b, load, rule, nullptr) >= 1.0) {
-      BreakMode mode;
-      breakage_index(b, load, rule, &mode);
-      if (static_cast<std::size_t>(b.i) < p.n_owned)
-        events.push_back({step, b.id_i, b.id_j, 0.5 * (p.pos[b.i] + p.pos[b.j]), mode});
-      broken.push_back(b);
-      bonds[k] = bonds.back();  // order is not meaningful; swap-remove keeps the array dense
-      bonds.pop_back();
-      continue;  // the moved-in bond is evaluated at index k
+  BondBatchIn in;
+  BondBatchOut out;
+  const std::size_t n = bonds.size();
+  std::size_t kept = 0;  // intact bonds move down over broken ones, keeping their locality order
+  for (std::size_t first = 0; first < n; first += kBondLanes) {
+    const int lanes = static_cast<int>(std::min<std::size_t>(kBondLanes, n - first));
+    // A short last batch repeats its first bond in the idle lanes, so that every bond, whatever
+    // its place in the list, goes through the same arithmetic.
+    for (int l = 0; l < kBondLanes; ++l) gather_bond(bonds[first + (l < lanes ? l : 0)], p, l, in);
+    load_batch(in, rule, out);
+
+    for (int l = 0; l < lanes; ++l) {
+      const Bond& b = bonds[first + l];
+      Vec3 f_i, t_i, t_j;
+      double index;
+      if (out.exact[l] != 0.0) {
+        f_i = Vec3(out.force_i[0][l], out.force_i[1][l], out.force_i[2][l]);
+        t_i = Vec3(out.torque_i[0][l], out.torque_i[1][l], out.torque_i[2][l]);
+        t_j = Vec3(out.torque_j[0][l], out.torque_j[1][l], out.torque_j[2][l]);
+        index = out.index[l];
+      } else {
+        const BondLoad load =
+            load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
+        f_i = load.force_i;
+        t_i = load.torque_i;
+        t_j = load.torque_j;
+        index = breakage_index(b, load, rule, nullptr);
+      }
+      if (index >= 1.0) {
+        BreakMode mode;
+        breakage_index(b,
+                       load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]),
+                       rule, &mode);
+        if (static_cast<std::size_t>(b.i) < p.n_owned)
+          events.push_back({step, b.id_i, b.id_j, 0.5 * (p.pos[b.i] + p.pos[b.j]), mode});
+        broken.push_back(b);
+        continue;
+      }
+      p.force[b.i] += f_i;
+      p.force[b.j] -= f_i;
+      p.torque[b.i] += t_i;
+      p.torque[b.j] += t_j;
+      if (kept != first + l) bonds[kept] = b;  // every bond below first + l has been read
+      ++kept;
     }
-    p.force[b.i] += load.force_i;
-    p.force[b.j] += load.force_j;
-    p.torque[b.i] += load.torque_i;
-    p.torque[b.j] += load.torque_j;
-    ++k;
   }
+  bonds.resize(kept);
 }
 
 double bond_energy(const std::vector<Bond>& bonds, const Particles& p) {

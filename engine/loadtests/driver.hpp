@@ -21,6 +21,10 @@ TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks);
 // speed. Returns the slowest run, with the study attached.
 TestResult run_rate_study(const JobSpec& spec, const RunHooks& hooks);
 
+// Fills s.extrapolated_peak_n, rate_error and converged from s.peaks_n (at halving speeds, at
+// least two): geometric extrapolation when the last differences shrink, else the last difference.
+void extrapolate_to_zero_speed(RateStudy& s);
+
 // Dispatches on spec.test (and loading.rate_study).
 TestResult run_test(const JobSpec& spec, const RunHooks& hooks = {});
 

@@ -13,13 +13,15 @@ namespace {
 // peak still moved 2-4.5% per halving below it, hence the extrapolation).
 constexpr double kTransitsToPeak = 20.0;
 
-// Peak at zero speed from peaks at halving speeds. If the last two differences shrink by a ratio
-// q in (0, 1), the remaining ones form a geometric series: P0 = P_n + d_n q / (1 - q). Otherwise
-// the last difference is the error estimate, and the sequence counts as converged only when both
-// last differences are below kSettled of the peak (they are then round-off-level noise).
+// Peak at zero speed: if the last two differences shrink by a ratio q in (0, 1), the remaining ones
+// form a geometric series: P0 = P_n + d_n q / (1 - q). Otherwise the last difference is the error
+// estimate, and the sequence counts as converged only when both last differences are below kSettled
+// of the peak (they are then round-off-level noise).
 constexpr double kSettled = 0.005;
 
-void extrapolate(RateStudy& s) {
+}  // namespace
+
+void extrapolate_to_zero_speed(RateStudy& s) {
   const std::size_t n = s.peaks_n.size();
   const double last = s.peaks_n[n - 1];
   const double d_last = last - s.peaks_n[n - 2];
@@ -35,8 +37,6 @@ void extrapolate(RateStudy& s) {
   s.rate_error = std::abs(d_last) / std::abs(last);
   s.converged = std::max(std::abs(d_last), std::abs(d_prev)) < kSettled * std::abs(last);
 }
-
-}  // namespace
 
 TestResult run_rate_study(const JobSpec& job, const RunHooks& hooks) {
   const JobSpec spec = effective_spec(job);  // the speeds below are the ones the runs use
@@ -64,7 +64,7 @@ TestResult run_rate_study(const JobSpec& job, const RunHooks& hooks) {
     study.peaks_n.push_back(slowest.peak_load_n);
     study.wall_seconds.push_back(slowest.wall_seconds);
   }
-  extrapolate(study);
+  extrapolate_to_zero_speed(study);
   double total_wall = 0.0;
   for (double w : study.wall_seconds) total_wall += w;
   slowest.wall_seconds = total_wall;
