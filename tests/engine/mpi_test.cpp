@@ -79,7 +79,8 @@ TEST(Mpi, TwoRanksAgreeWithOne) {
   EXPECT_GT(b1, 0);
   EXPECT_NEAR(b2 / b1, 1.0, 0.01);
   // And at the end, past the peak (since intact bonds keep their order when others break, the two
-  // runs sum each particle's bond forces in the same order: measured identical on 1, 2 and 4 ranks).
+  // runs sum each particle's bond forces in the same order: measured identical on 1, 2 and 4
+  // ranks).
   const double e1 = one["broken_bonds"], e2 = two["broken_bonds"];
   EXPECT_NEAR(e2 / e1, 1.0, 0.01);
   // Every break is reported once, with its mode, whichever rank counted it.
