@@ -79,6 +79,10 @@ def main():
     rockcal = os.path.join(a.build, "api", "rockcal")
     base_request = json.load(open(a.request))
     base_request.pop("dataset_file", None)
+    # The twins are made on the request's template, so that a larger template (--request with
+    # another "job") gets twins of its own resolution.
+    template = os.path.join(work, "template.json")
+    json.dump(base_request["job"], open(template, "w"), indent=1)
     proc, url = start_server(a.build, work)
     rows = []
     t_all = time.time()
@@ -89,7 +93,7 @@ def main():
                 name = f"{effect}-{seed}"
                 twin = os.path.join(work, f"twin_{name}.json")
                 cmd = [rockcal, "twin", "--effect", effect, "--seed", str(seed), "--out", twin,
-                       "--engine", os.path.join(a.build, "engine", "rockcal-dem")]
+                       "--job", template, "--engine", os.path.join(a.build, "engine", "rockcal-dem")]
                 value = None
                 if effect != "none":
                     value = VALUES[effect][k % len(VALUES[effect])]

@@ -173,7 +173,7 @@ std::string candidates_table(const json& s) {
   std::string out =
       "<h2>Candidates</h2>\n<table><tr><th>rank</th><th>model</th><th>identifiable</th>"
       "<th>moves</th><th>fitted parameter</th><th>F_r0</th><th>F_s0</th><th>G</th><th>basis</th>"
-      "<th>rms cal.</th><th>rms held out</th><th>surface fit rms (max)</th></tr>\n";
+      "<th>rms cal.</th><th>rms held out</th><th>surface leave-one-out rms (max)</th></tr>\n";
   // Base first (rank 0), then the effects in rank order.
   std::vector<json> ranked(at(s, "candidates").begin(), at(s, "candidates").end());
   std::stable_sort(ranked.begin(), ranked.end(), [](const json& a, const json& b) {
@@ -185,7 +185,7 @@ std::string candidates_table(const json& s) {
     const json& which =
         at(rms, "confirmed").is_object() ? at(rms, "confirmed") : at(rms, "surface");
     double fit = 0;
-    for (const json& v : at(c, "surface_fit_rms")) fit = std::max(fit, number(v));
+    for (const json& v : at(c, "surface_loo_rms")) fit = std::max(fit, number(v));
     std::string moves;
     for (const json& m : at(c, "moves")) moves += (moves.empty() ? "" : ", ") + show(m);
     out += "<tr><td>" + (c["effect"].is_string() ? show(at(c, "rank")) : "") + "</td><td>" +

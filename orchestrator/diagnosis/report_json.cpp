@@ -58,7 +58,7 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
   if (!c.error.empty()) j["error"] = c.error;
   std::vector<double> fit_rms;
   for (const auto& s : c.surfaces.per_target) fit_rms.push_back(s ? s->rms : NAN);
-  j["surface_fit_rms"] = by_target(targets, fit_rms);
+  j["surface_loo_rms"] = by_target(targets, fit_rms);
   if (!c.fitted) return j;
   j["parameter"] = parameter_json(c);
   j["fit"] = {{"fr0", c.point.fr0_n},

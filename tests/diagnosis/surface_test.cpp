@@ -2,7 +2,9 @@
 // fitted, and the surface calibration finds a known minimum.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "orchestrator/diagnosis/grid.hpp"
 #include "orchestrator/diagnosis/surface_fit.hpp"
@@ -46,6 +48,81 @@ TEST(Surface, ExactOnAQuadraticIn2DAnd3D) {
       EXPECT_NEAR(evaluate(*fit, q), quadratic(q), 1e-10);
     }
   }
+}
+
+// A smooth response that a quadratic cannot follow: a saturating strength dependence, as a peak
+// load limited by the weaker of two bond strengths.
+double saturating(const std::vector<double>& z) {
+  return -0.5 * std::log(std::exp(-6.0 * z[0]) + std::exp(-6.0 * z[1] - 0.6));  // a smooth min
+}
+
+double max_error_between_nodes(const Surface& fit, double (*f)(const std::vector<double>&)) {
+  double worst = 0.0;
+  for (double x = 0.05; x < 1.0; x += 0.1)
+    for (double y = 0.05; y < 1.0; y += 0.1) {
+      const std::vector<double> q{x, y};
+      worst = std::max(worst, std::abs(evaluate(fit, q) - f(q)));
+    }
+  return worst;
+}
+
+TEST(Surface, FollowsAResponseThatIsNotQuadratic) {
+  const auto z = grid(2);
+  std::vector<double> y;
+  for (const auto& p : z) y.push_back(saturating(p));
+  const auto fit = fit_surface(z, y);
+  ASSERT_TRUE(fit);
+  // The least-squares quadratic, the limit of large smoothing, for comparison.
+  const auto quad = fit_surface(z, y, 1e6);
+  ASSERT_TRUE(quad);
+  const double err = max_error_between_nodes(*fit, saturating);
+  const double err_quad = max_error_between_nodes(*quad, saturating);
+  EXPECT_LT(err, 0.5 * err_quad) << err << " vs " << err_quad;
+  EXPECT_EQ(fit->smoothing, 0.0);  // smooth data: interpolation wins the cross-validation
+  for (std::size_t k = 0; k < z.size(); ++k) EXPECT_NEAR(evaluate(*fit, z[k]), y[k], 1e-9);
+}
+
+TEST(Surface, LeaveOneOutRmsIsWhatRefittingWithoutEachPointGives) {
+  const auto z = grid(3);
+  std::vector<double> y;
+  for (const auto& p : z) y.push_back(saturating(p) + 0.5 * p[2] * p[0]);
+  for (double smoothing : {0.0, 0.01}) {
+    const auto fit = fit_surface(z, y, smoothing);
+    ASSERT_TRUE(fit);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < z.size(); ++k) {
+      auto zk = z;
+      auto yk = y;
+      zk.erase(zk.begin() + k);
+      yk.erase(yk.begin() + k);
+      const auto without = fit_surface(zk, yk, smoothing);
+      ASSERT_TRUE(without);
+      const double e = y[k] - evaluate(*without, z[k]);
+      sum += e * e;
+    }
+    EXPECT_NEAR(fit->rms, std::sqrt(sum / z.size()), 1e-8) << smoothing;
+  }
+}
+
+TEST(Surface, ScatteredRunsAreSmoothedNotInterpolated) {
+  // A quadratic plus run-to-run scatter of up to 0.05 (mt19937's raw draws: the same everywhere):
+  // the cross-validated surface averages it, and lands closer to the quadratic than the runs are.
+  const auto z = grid(3);
+  std::vector<double> y;
+  double scatter = 0.0;
+  std::mt19937 rng(4);
+  for (std::size_t k = 0; k < z.size(); ++k) {
+    const double noise = 0.1 * (double(rng()) / 4294967296.0 - 0.5);
+    scatter += noise * noise;
+    y.push_back(quadratic(z[k]) + noise);
+  }
+  scatter = std::sqrt(scatter / z.size());
+  const auto fit = fit_surface(z, y);
+  ASSERT_TRUE(fit);
+  EXPECT_GT(fit->smoothing, 0.0);
+  double off = 0.0;
+  for (const auto& p : z) off += std::pow(evaluate(*fit, p) - quadratic(p), 2);
+  EXPECT_LT(std::sqrt(off / z.size()), 0.8 * scatter);
 }
 
 TEST(Surface, RefusedWithTooFewOrDegeneratePoints) {
