@@ -166,31 +166,28 @@ void accumulate_bond_forces(std::vector<Bond>& bonds, Particles& p, const BreakR
 
     for (int l = 0; l < lanes; ++l) {
       const Bond& b = bonds[first + l];
-      Vec3 f_i, t_i, t_j;
-      double index;
-      if (out.exact[l] != 0.0) {
-        f_i = Vec3(out.force_i[0][l], out.force_i[1][l], out.force_i[2][l]);
-        t_i = Vec3(out.torque_i[0][l], out.torque_i[1][l], out.torque_i[2][l]);
-        t_j = Vec3(out.torque_j[0][l], out.torque_j[1][l], out.torque_j[2][l]);
-        index = out.index[l];
-      } else {
-        const BondLoad load =
-            load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
-        f_i = load.force_i;
-        t_i = load.torque_i;
-        t_j = load.torque_j;
-        index = breakage_index(b, load, rule, nullptr);
-      }
+      const bool exact = out.exact[l] != 0.0;
+      // The one-bond kernel: for lanes outside the batch's series, and for a break's mode.
+      BondLoad load;
+      if (!exact)
+        load = load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
+      const double index = exact ? out.index[l] : breakage_index(b, load, rule, nullptr);
       if (index >= 1.0) {
+        if (exact)
+          load = load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]);
         BreakMode mode;
-        breakage_index(b,
-                       load_kernel<false>(b, p.pos[b.i], p.orient[b.i], p.pos[b.j], p.orient[b.j]),
-                       rule, &mode);
+        breakage_index(b, load, rule, &mode);
         if (static_cast<std::size_t>(b.i) < p.n_owned)
           events.push_back({step, b.id_i, b.id_j, 0.5 * (p.pos[b.i] + p.pos[b.j]), mode});
         broken.push_back(b);
         continue;
       }
+      const Vec3 f_i =
+          exact ? Vec3(out.force_i[0][l], out.force_i[1][l], out.force_i[2][l]) : load.force_i;
+      const Vec3 t_i =
+          exact ? Vec3(out.torque_i[0][l], out.torque_i[1][l], out.torque_i[2][l]) : load.torque_i;
+      const Vec3 t_j =
+          exact ? Vec3(out.torque_j[0][l], out.torque_j[1][l], out.torque_j[2][l]) : load.torque_j;
       p.force[b.i] += f_i;
       p.force[b.j] -= f_i;
       p.torque[b.i] += t_i;

@@ -8,8 +8,8 @@ namespace rockcal::diagnosis {
 namespace {
 
 // Smoothing values tried, relative to the kernel's scale (|z - z_k|^3 is of order 1 on the unit
-// cube). 0 interpolates; at the largest the kernel part carries a few per mille of the residuals
-// of the least-squares quadratic, which is then what the surface is.
+// cube). 0 interpolates; the largest leaves the kernel part little weight, so the surface is then
+// close to the least-squares quadratic.
 constexpr double kSmoothing[] = {0.0, 1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0, 1000.0};
 
 double kernel(double r) {
@@ -41,13 +41,9 @@ std::optional<Solved> solve(const Eigen::MatrixXd& k, const Eigen::MatrixXd& p,
   if (n > m) {  // with n = m the quadratic alone takes every point: nothing to leave out
     const Eigen::MatrixXd inv = lu.inverse();
     double sum = 0.0;
-    bool ok = true;
-    for (int i = 0; i < n; ++i) {
-      const double d = inv(i, i);
-      if (!(std::abs(d) > 1e-14)) ok = false;
-      if (ok) sum += (x[i] / d) * (x[i] / d);
-    }
-    if (ok) s.loo_rms = std::sqrt(sum / n);
+    int i = 0;
+    for (; i < n && std::abs(inv(i, i)) > 1e-14; ++i) sum += std::pow(x[i] / inv(i, i), 2);
+    if (i == n) s.loo_rms = std::sqrt(sum / n);  // else a point the others cannot predict
   }
   return s;
 }

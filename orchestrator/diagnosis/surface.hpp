@@ -41,7 +41,7 @@ Eigen::VectorXd quadratic_terms(std::span<const double> z);
 
 // The surface through the points (z[k], y[k]); nullopt with fewer points than quadratic terms or
 // points that do not determine a quadratic (too many failed runs on one line of the grid).
-// `smoothing`: the kernel diagonal term; by default the one of a fixed ladder (0 to 100) with the
+// `smoothing`: the kernel diagonal term; by default the one of a fixed ladder (0 to 1000) with the
 // smallest leave-one-out rms.
 std::optional<Surface> fit_surface(const std::vector<std::vector<double>>& z,
                                    const std::vector<double>& y,
