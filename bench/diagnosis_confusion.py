@@ -73,6 +73,8 @@ def main():
     ap.add_argument("--effects", default=",".join(["none"] + list(VALUES)))
     ap.add_argument("--twins", type=int, default=3)
     ap.add_argument("--request", default=os.path.join(ROOT, "examples", "diagnose_twin.json"))
+    ap.add_argument("--reuse-twins", action="store_true",
+                    help="keep twin files already in --out (e.g. a copy of an earlier run's, with its job store)")
     a = ap.parse_args()
     work = a.out or tempfile.mkdtemp(prefix="rockcal-confusion.")
     os.makedirs(work, exist_ok=True)
@@ -99,7 +101,9 @@ def main():
                     value = VALUES[effect][k % len(VALUES[effect])]
                     cmd += ["--value", str(value)]
                 t0 = time.time()
-                subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+                truth = twin[:-len(".json")] + ".truth.json"
+                if not (a.reuse_twins and os.path.exists(twin) and os.path.exists(truth)):
+                    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
                 t_twin = time.time() - t0
                 req = dict(base_request)
                 req["name"] = f"confusion {name}"

@@ -34,6 +34,10 @@ struct EffectParam {
   // When the base model's value depends on the job (post_break_friction: the job's
   // contact.friction), this gives it; `neutral` then holds the value for the default job.
   double (*neutral_of)(const JobSpec& job) = nullptr;
+  // False when no value near `neutral` gives a model near the base one (packing: any radius ratio
+  // switches FCC to a random packing). The diagnosis then never interpolates across the jump: it
+  // explores such an effect from a floor above neutral and compares it with the base model whole.
+  bool continuous_at_neutral = true;
 };
 
 // Parameter values of one switched-on effect, by name (a job that omits one gets its default).

@@ -22,7 +22,8 @@ EffectDef packing_effect() {
                .neutral = 1.0,
                .strong = 2.0,
                .log_scale = false,
-               .doc = "max / min particle radius of the random packing"}};
+               .doc = "max / min particle radius of the random packing",
+               .continuous_at_neutral = false}};
   e.defaults = {1.5};
   e.apply_spec = [](JobSpec& spec, const EffectValues& v) {
     spec.sample.packing = "random";

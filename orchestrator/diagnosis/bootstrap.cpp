@@ -33,7 +33,12 @@ struct Normal {
 std::optional<double> replicate_rms(const CandidateResult& c, const std::vector<Target>& targets,
                                     const std::vector<double>& budget,
                                     const std::vector<double>& lab) {
-  const Objective objective = calibration_objective(targets, budget, c.surfaces, lab);
+  Objective objective = calibration_objective(targets, budget, c.surfaces, lab);
+  // A confirmed candidate re-fits on its surfaces as corrected through its real run, so that
+  // without noise the replicate lands where the nominal fit did.
+  for (std::size_t i = 0; i < c.surface_offset.size(); ++i) {
+    objective.ln_lab[i] -= c.surface_offset[i];
+  }
   std::vector<std::vector<double>> starts{c.calibration.z};
   for (auto& s : lattice_starts(c.surfaces.dims, 2)) starts.push_back(std::move(s));
   const SurfaceCalibration fit = calibrate_on_surfaces(c.surfaces, objective, starts);

@@ -191,7 +191,8 @@ std::vector<Candidate> registry_candidates(const JobSpec& model) {
     if (def.params.empty()) continue;
     const EffectDef* d = &def;  // the registry is static: the pointer outlives every campaign
     out.push_back({def.name, def.params[0].name, def.params[0].unit,
-                   [d, model](double s) { return effect_value_at(*d, s, model); }});
+                   [d, model](double s) { return effect_value_at(*d, s, model); },
+                   def.params[0].continuous_at_neutral ? 0.0 : kDiscontinuousFloor});
   }
   return out;
 }
@@ -218,6 +219,7 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
   c.grid = parse_grid(root);
   c.budget = parse_budget(root, c.sample_seed);
   c.confirm = int(root.integer("confirm", 1, 16).value_or(c.confirm));
+  c.refine = int(root.integer("refine", 0, 5).value_or(c.refine));
   c.bootstrap = int(root.integer("bootstrap", 0, 5000).value_or(c.bootstrap));
   c.random_seed = std::uint64_t(
       root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));

@@ -36,6 +36,7 @@ struct DiagnosisCampaign {
   GridSpec grid;
   BudgetSpec budget;
   int confirm = 2;                // top candidates confirmed by real runs (besides the base)
+  int refine = 2;                 // re-fits of each confirmed candidate on run-corrected surfaces
   int bootstrap = 200;            // replicates of the lab and numerical noise for the confidence
   std::uint64_t random_seed = 1;  // the bootstrap's draws
 };

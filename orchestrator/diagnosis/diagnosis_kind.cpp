@@ -1,6 +1,7 @@
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
 
 #include "orchestrator/diagnosis/driver.hpp"
+#include "orchestrator/diagnosis/grid.hpp"
 #include "orchestrator/diagnosis/jobs.hpp"
 #include "orchestrator/diagnosis/pool_evaluator.hpp"
 #include "orchestrator/diagnosis/report.hpp"
@@ -20,11 +21,10 @@ DiagnosisCampaign parse_request(const nlohmann::json& request) {
 }  // namespace
 
 std::size_t planned_jobs(const DiagnosisCampaign& c) {
-  const std::size_t plane = std::size_t(c.grid.fr0) * std::size_t(c.grid.fs0);
-  const std::size_t grid = plane * (1 + c.candidates.size() * std::size_t(c.grid.s - 1));
+  const std::size_t grid = std::size_t(grid_points(c));
   const std::size_t seeds = c.budget.seeds.size();
   const std::size_t budget = 3 + seeds;
-  const std::size_t confirm = (1 + std::size_t(c.confirm)) * (1 + seeds);
+  const std::size_t confirm = (1 + std::size_t(c.confirm)) * (1 + std::size_t(c.refine) + seeds);
   return (grid + budget + confirm) * plan_runs(c.targets).runs.size();
 }
 

@@ -16,8 +16,18 @@ ModelPoint model_point(const DiagnosisCampaign& c, const Candidate& candidate,
     return std::exp(std::log(r.lo) + u * (std::log(r.hi) - std::log(r.lo)));
   };
   ModelPoint p{along(c.fr0_n, z[0]), along(c.fs0_n, z[1]), candidate.effect, 0.0};
-  if (!candidate.is_base() && z.size() > 2) p.s = z[2];
+  if (!candidate.is_base() && z.size() > 2) p.s = candidate.s_at(z[2]);
   return p;
+}
+
+int grid_levels(const Candidate& candidate, int s_values) {
+  return candidate.shares_base_grid() ? s_values - 1 : s_values;
+}
+
+int grid_points(const DiagnosisCampaign& c) {
+  int levels = 1;
+  for (const Candidate& k : c.candidates) levels += grid_levels(k, c.grid.s);
+  return c.grid.fr0 * c.grid.fs0 * levels;
 }
 
 std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator) {
@@ -35,8 +45,9 @@ std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator)
   }
   const std::size_t base_runs = requests.size();
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
+    const Candidate& candidate = c.candidates[k];
     for (double s : grid_axis(c.grid.s)) {
-      if (s <= kEffectOffBelow) continue;  // the base grid
+      if (candidate.shares_base_grid() && s <= kEffectOffBelow) continue;  // the base grid
       for (double x : grid_axis(c.grid.fr0)) {
         for (double y : grid_axis(c.grid.fs0)) {
           samples[k + 1].z.push_back({x, y, s});
@@ -50,8 +61,9 @@ std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator)
   const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
   for (std::size_t r = 0; r < outcomes.size(); ++r)
     samples[owner[r]].outcomes.push_back(outcomes[r]);
-  // Every effect's s = 0 slice is the base grid.
+  // The s = 0 slice of every effect continuous at neutral is the base grid.
   for (std::size_t k = 1; k < samples.size(); ++k) {
+    if (!c.candidates[k - 1].shares_base_grid()) continue;
     for (std::size_t r = 0; r < base_runs; ++r) {
       std::vector<double> z = samples[0].z[r];
       z.push_back(0.0);

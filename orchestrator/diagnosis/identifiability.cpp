@@ -10,17 +10,18 @@ namespace rockcal::diagnosis {
 
 Identifiability identifiability(const SurfaceSet& surfaces, const Objective& objective,
                                 const std::vector<Target>& targets,
-                                const std::vector<double>& budget, int steps) {
+                                const std::vector<double>& budget, int steps,
+                                const std::vector<double>* base) {
   const std::size_t n = targets.size();
   const auto starts = lattice_starts(2, 3);
-  std::vector<double> at_zero;
+  std::vector<double> at_zero = base ? *base : std::vector<double>{};
   Identifiability out;
   out.max_change.assign(n, std::numeric_limits<double>::quiet_NaN());
   for (int k = 0; k < steps; ++k) {
     const double s = steps > 1 ? double(k) / double(steps - 1) : 0.0;
     const SurfaceCalibration fit = calibrate_on_surfaces(surfaces, objective, starts, s);
     const std::vector<double> ln_sim = predict(surfaces, fit.z);
-    if (k == 0) {
+    if (k == 0 && !base) {
       at_zero = ln_sim;
       continue;
     }

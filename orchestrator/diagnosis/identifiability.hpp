@@ -13,9 +13,12 @@
 
 namespace rockcal::diagnosis {
 
-// `steps` values of s from 0 to 1, each with the strengths re-fitted on the surfaces.
+// `steps` values of u from 0 to 1, each with the strengths re-fitted on the surfaces, compared
+// with u = 0, or with `base` (the base model's fitted ln values) for an effect whose u = 0 is not
+// the base model (one that jumps at neutral).
 Identifiability identifiability(const SurfaceSet& surfaces, const Objective& objective,
                                 const std::vector<Target>& targets,
-                                const std::vector<double>& budget, int steps = 11);
+                                const std::vector<double>& budget, int steps = 11,
+                                const std::vector<double>* base = nullptr);
 
 }  // namespace rockcal::diagnosis

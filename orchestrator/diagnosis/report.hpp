@@ -31,6 +31,13 @@ struct Identifiability {
   std::vector<std::size_t> moved;  // targets moved beyond budget + lab uncertainty
 };
 
+// One real run of the refinement: where, and its real calibration misfit (infinite when a
+// calibration observation had no value).
+struct RefineStep {
+  ModelPoint point;
+  double misfit = 0.0;
+};
+
 struct CandidateResult {
   Candidate candidate;
   bool fitted = false;
@@ -48,7 +55,11 @@ struct CandidateResult {
   RmsByRole confirmed_rms;
   std::optional<double> g_confirmed;
   std::vector<std::vector<double>> seed_ln;  // real runs with each budget seed (confirmed only)
-  int rank = 0;                              // 1 = best effect; 0 for the base
+  // Confirmed only: real minus surface ln values at the fitted point (0 where either is missing).
+  // The surfaces plus this offset pass through the real run; the refinement re-fits on them.
+  std::vector<double> surface_offset;
+  std::vector<RefineStep> refinement;  // the real runs at successive fits, first = surface fit
+  int rank = 0;                        // 1 = best effect; 0 for the base
 
   std::optional<double> g() const { return confirmed ? g_confirmed : g_surface; }
   const std::vector<double>& ln_sim() const { return confirmed ? confirmed_ln : predicted; }

@@ -81,6 +81,17 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
     j["moves"] = moved;
     j["max_change"] = by_target(targets, id.max_change);
   }
+  if (c.confirmed) {
+    json steps = json::array();
+    for (const RefineStep& step : c.refinement) {
+      json p = {{"fr0", step.point.fr0_n}, {"fs0", step.point.fs0_n}, {"misfit", num(step.misfit)}};
+      if (!c.candidate.is_base()) {
+        p["value"] = num(c.candidate.value_at ? c.candidate.value_at(step.point.s) : step.point.s);
+      }
+      steps.push_back(std::move(p));
+    }
+    j["refinement"] = std::move(steps);
+  }
   // The winning start's best misfit after each evaluation: the calibration history.
   j["history"] = c.calibration.history;
   return j;

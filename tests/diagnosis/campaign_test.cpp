@@ -7,6 +7,7 @@
 #include "engine/effects/effect.hpp"
 #include "orchestrator/diagnosis/campaign.hpp"
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
+#include "orchestrator/diagnosis/grid.hpp"
 #include "orchestrator/diagnosis/jobs.hpp"
 
 namespace rockcal::diagnosis {
@@ -64,8 +65,9 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   ASSERT_EQ(c.candidates.size(), 2u);
   EXPECT_EQ(c.candidates[0].effect, "heterogeneity");
   EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3}));
-  // 4 distinct runs; 9 + 2 x 18 grid points, 5 budget points, 3 x 3 confirmations.
-  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 5 + 9) * 4u);
+  // 4 distinct runs; 9 + 2 x 18 grid points, 5 budget points, 3 confirmed candidates x (3
+  // refinement runs + 2 seeds).
+  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 5 + 3 * 5) * 4u);
   // Without "effects", every registered effect is a candidate.
   json all = request();
   all.erase("effects");
@@ -191,7 +193,14 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   EXPECT_EQ(count_role(c.targets, Role::held_out), 4u);
   EXPECT_EQ(plan_runs(c.targets).runs.size(), 7u);  // the UCT's peak and modulus share a run
   EXPECT_EQ(c.candidates.size(), effect_registry().size());
-  EXPECT_EQ(planned_jobs(c), (16 + 7 * 32 + 5 + 3 * 3) * 7u);
+  // packing jumps at neutral: it runs its own s slice instead of sharing the base grid's.
+  EXPECT_EQ(c.candidates[1].effect, "packing");
+  EXPECT_GT(c.candidates[1].s_floor, 0.0);
+  EXPECT_FALSE(c.candidates[1].shares_base_grid());
+  const ModelPoint lowest = model_point(c, c.candidates[1], std::vector<double>{0.5, 0.5, 0.0});
+  EXPECT_TRUE(effect_on(lowest));  // u = 0 is a random packing, not the base model's FCC
+  EXPECT_DOUBLE_EQ(lowest.s, kDiscontinuousFloor);
+  EXPECT_EQ(planned_jobs(c), (16 + 6 * 32 + 48 + 5 + 3 * 5) * 7u);
 }
 
 }  // namespace

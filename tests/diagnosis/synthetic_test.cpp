@@ -177,11 +177,78 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   const Diagnosed a = diagnose("rate", 0.7);
   const Diagnosed b = diagnose("rate", 0.7);
   EXPECT_EQ(a.summary.dump(), b.summary.dump());
-  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 budget points, <= 3 x 3 checks.
+  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 budget points; per confirmed
+  // candidate (3) 1 to 3 refinement runs and 2 seed runs.
   DiagnosisCampaign c = twin_campaign("rate", 0.7);
   SyntheticModel model(c.targets);
-  run_diagnosis(c, model);
-  EXPECT_EQ(model.runs, 16 + 5 * 32 + 5 + 3 * 3);
+  const DiagnosisReport report = run_diagnosis(c, model);
+  int refinement_runs = 0;
+  for (const CandidateResult& r : report.candidates) refinement_runs += int(r.refinement.size());
+  EXPECT_GE(refinement_runs, 3);
+  EXPECT_LE(refinement_runs, 3 * (1 + c.refine));
+  EXPECT_EQ(model.runs, 16 + 5 * 32 + 5 + refinement_runs + 3 * 2);
+}
+
+// The synthetic model with a ripple along ln F_r0 that vanishes on every grid node: the surfaces
+// cannot see it, so a fit on them alone lands off the real optimum.
+struct RippledModel : SyntheticModel {
+  double lo, hi, amplitude;
+  int nodes;
+  RippledModel(const DiagnosisCampaign& c, double a)
+      : SyntheticModel(c.targets),
+        lo(c.fr0_n.lo),
+        hi(c.fr0_n.hi),
+        amplitude(a),
+        nodes(c.grid.fr0) {}
+  std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override {
+    std::vector<RunOutcome> out = SyntheticModel::run_batch(requests);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      const double u = std::log(requests[k].point.fr0_n / lo) / std::log(hi / lo);
+      const double ripple = std::exp(amplitude * std::sin(M_PI * (nodes - 1) * u));
+      // Only the peaks in compression: the strengths cannot absorb it everywhere at once.
+      for (std::size_t i = 0; i < out[k].values.size(); ++i) {
+        if (out[k].values[i] && targets[i].conditions.test != TestKind::btt &&
+            targets[i].observable == Observable::peak_load) {
+          *out[k].values[i] *= ripple;
+        }
+      }
+    }
+    return out;
+  }
+};
+
+TEST(Diagnosis, RefinementCorrectsTheSurfaceFitWithRealRuns) {
+  auto real_misfit = [](const CandidateResult& base, std::size_t step) {
+    return base.refinement.at(step).misfit;
+  };
+  DiagnosisCampaign c = twin_campaign("", 0.0);
+  c.candidates.resize(1);
+  RippledModel model(c, 0.08);
+  const DiagnosisReport with = run_diagnosis(c, model);
+  const CandidateResult& base = with.candidates[0];
+  ASSERT_GE(base.refinement.size(), 2u);
+  // The real misfit of the confirmed point is a fraction of the surface fit's.
+  const double first = real_misfit(base, 0);
+  double best = first;
+  for (std::size_t k = 0; k < base.refinement.size(); ++k)
+    best = std::min(best, real_misfit(base, k));
+  EXPECT_LT(best, 0.3 * first) << first;
+  // The confirmed point is the best real run, and its surfaces plus offset reproduce that run.
+  const std::vector<double> corrected = [&] {
+    std::vector<double> v = base.predicted;
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] += base.surface_offset[i];
+    return v;
+  }();
+  for (std::size_t i = 0; i < corrected.size(); ++i) {
+    EXPECT_NEAR(corrected[i], base.confirmed_ln[i], 1e-9);
+  }
+  // Without refinement the base model's real held-out residuals are larger.
+  c.refine = 0;
+  RippledModel plain(c, 0.08);
+  const DiagnosisReport without = run_diagnosis(c, plain);
+  ASSERT_EQ(without.candidates[0].refinement.size(), 1u);
+  EXPECT_LT(*base.confirmed_rms.calibration,
+            0.6 * *without.candidates[0].confirmed_rms.calibration);
 }
 
 TEST(Diagnosis, CancelledBeforeABatchThrows) {
