@@ -242,7 +242,11 @@ TEST(Diagnosis, RefinementCorrectsTheSurfaceFitWithRealRuns) {
   for (std::size_t i = 0; i < corrected.size(); ++i) {
     EXPECT_NEAR(corrected[i], base.confirmed_ln[i], 1e-9);
   }
-  // Without refinement the base model's real held-out residuals are larger.
+  // The report lists every real run of the refinement, in JSON and on the page.
+  const json summary = to_json(with, c);
+  EXPECT_EQ(summary["candidates"][0]["refinement"].size(), base.refinement.size());
+  EXPECT_NE(report_html(summary).find("Real runs of the confirmed candidates"), std::string::npos);
+  // Without refinement the base model's calibration residuals (real runs) are larger.
   c.refine = 0;
   RippledModel plain(c, 0.08);
   const DiagnosisReport without = run_diagnosis(c, plain);
