@@ -56,6 +56,7 @@ struct EffectDef {
   void (*apply_spec)(JobSpec& spec, const EffectValues& values) = nullptr;
   void (*apply_specimen)(Simulation& sim, const JobSpec& spec,
                          const EffectValues& values) = nullptr;
+  bool draws_from_seed = false;  // the job seed draws something (per-bond multipliers, cracks)
 };
 
 // Every effect the engine knows, in registration order.
@@ -83,6 +84,11 @@ void complete_effects(std::map<std::string, EffectValues>& effects);
 // The spec a run uses: `job` with every named effect's apply_spec applied, in registration order.
 // Idempotent: a spec that already is effective (spec_effects_applied) is returned unchanged.
 JobSpec effective_spec(const JobSpec& job);
+
+// Whether sample.seed changes anything in this job: a random packing, or an effect that draws from
+// it. An FCC job without such effects is the same run under every seed, so a service need not
+// run it twice.
+bool seed_matters(const JobSpec& job);
 
 // Runs every named effect's apply_specimen, in registration order: the one hook point at the end of
 // make_specimen (ghosts, local bond indices and the neighbour list exist; dt not yet computed).

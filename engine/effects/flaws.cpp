@@ -223,6 +223,7 @@ EffectDef flaws_effect() {
                .doc = "radius of the penny-shaped cracks; 0 = bonds cut one by one"}};
   e.defaults = {0.05, 0.0};
   e.apply_specimen = cut_flaws;
+  e.draws_from_seed = true;
   return e;
 }
 

@@ -53,6 +53,7 @@ EffectDef heterogeneity_effect() {
                .doc = "Weibull modulus of the bond strength multipliers"}};
   e.defaults = {4.0};
   e.apply_specimen = scatter_strengths;
+  e.draws_from_seed = true;
   return e;
 }
 

@@ -107,6 +107,15 @@ JobSpec effective_spec(const JobSpec& job) {
   return spec;
 }
 
+bool seed_matters(const JobSpec& job) {
+  const JobSpec spec = effective_spec(job);
+  if (spec.sample.packing != "fcc") return true;
+  for (const EffectDef& e : effect_registry()) {
+    if (e.draws_from_seed && spec.effects.count(e.name)) return true;
+  }
+  return false;
+}
+
 void apply_specimen_effects(Simulation& sim, const JobSpec& spec) {
   if (!spec.spec_effects_applied)
     throw std::logic_error("apply_specimen_effects needs the effective spec (effective_spec())");

@@ -79,7 +79,10 @@ BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidate
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
-      if (!c.fitted || !c.identifiability || !c.identifiability->identifiable) continue;
+      if (!c.fitted || !c.identifiability || !c.identifiability->identifiable ||
+          !c.fits_calibration) {
+        continue;
+      }
       if (const auto g = gap_closure(replicate_rms(c, targets, budget, lab), base_rms)) {
         contenders.push_back({i, *g});
       }

@@ -56,12 +56,15 @@ void fit_candidate(CandidateResult& r, const DiagnosisCampaign& c, const std::ve
   }
 }
 
-// Base first, then up to `confirm` identifiable effects by surface G.
+// Base first, then up to `confirm` identifiable effects that fit the calibration observations, by
+// surface G.
 std::vector<int> to_confirm(const std::vector<CandidateResult>& candidates, int confirm) {
   std::vector<int> effects;
   for (int i = 1; i < int(candidates.size()); ++i) {
     const CandidateResult& r = candidates[i];
-    if (r.fitted && r.identifiability->identifiable && r.g_surface) effects.push_back(i);
+    if (r.fitted && r.identifiability->identifiable && r.fits_calibration && r.g_surface) {
+      effects.push_back(i);
+    }
   }
   std::stable_sort(effects.begin(), effects.end(), [&](int a, int b) {
     return *candidates[a].g_surface > *candidates[b].g_surface;
@@ -101,6 +104,7 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
                         const std::vector<double>& lab, const std::vector<double>& budget) {
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
   constexpr double kSettled = 0.01;  // unit-cube step below which a re-fit counts as settled
+  constexpr double kMaxStep = 0.25;  // longest unit-cube step of one re-fit (a trust region)
   struct State {
     std::vector<double> z;
     bool active = true;
@@ -147,7 +151,10 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
       if (moved < kSettled) {
         st.active = false;
       } else {
-        st.z = fit.z;
+        // The shift is exact only at the run: a long step trusts the surface's shape far away,
+        // which on a coarse grid is what failed in the first place.
+        const double damp = std::min(1.0, kMaxStep / moved);
+        for (std::size_t d = 0; d < fit.z.size(); ++d) st.z[d] += damp * (fit.z[d] - st.z[d]);
       }
     }
   }
@@ -269,6 +276,7 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   }
 
   // 4. The base and the best candidates by real runs, with the replicate seeds.
+  mark_calibration_fits(report.candidates, report.combined_calibration);
   const std::vector<int> chosen = to_confirm(report.candidates, c.confirm);
   phase(options, "confirm", 3, int(chosen.size() * (1 + c.refine + c.budget.seeds.size())));
   confirm_candidates(report.candidates, c, chosen, evaluator, lab, budget);
@@ -278,6 +286,7 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
 
   // 5. G, ranking, verdict, confidence.
   phase(options, "analysis", 4, 0);
+  mark_calibration_fits(report.candidates, report.combined_calibration);
   const std::vector<int> order = rank_effects(report.candidates);
   report.verdict = decide(report.candidates, order, report.combined_held_out);
   Confidence& conf = report.confidence;

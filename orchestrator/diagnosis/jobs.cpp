@@ -47,7 +47,11 @@ json job_for(const json& job_template, const JobSpec& model, const RunConditions
         {effect->name,
          {{effect->params[0].name, effect_value_at(*effect, request.point.s, model)}}}};
   }
-  return to_json(parse_job(job));
+  JobSpec spec = parse_job(job);
+  // An FCC job without seeded effects is one run under every seed: keeping the template's makes the
+  // replicate seeds of such a job the same job, run once.
+  if (!seed_matters(spec)) spec.sample.seed = model.sample.seed;
+  return to_json(spec);
 }
 
 std::optional<double> observable_value(const json& result, Observable observable) {

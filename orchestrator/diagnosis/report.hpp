@@ -50,6 +50,9 @@ struct CandidateResult {
   RmsByRole surface_rms;
   std::optional<double> g_surface;
   std::optional<Identifiability> identifiability;  // effects only
+  // Whether it fits the calibration observations about as well as the best candidate does (see
+  // mark_calibration_fits): one that does not cannot be the explanation, however it predicts.
+  bool fits_calibration = true;
   bool confirmed = false;
   std::vector<double> confirmed_ln;  // ln(sim) of the real runs at the fitted point (NaN: failed)
   RmsByRole confirmed_rms;

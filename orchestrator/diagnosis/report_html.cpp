@@ -172,6 +172,7 @@ std::string history_plot(const json& s) {
 std::string candidates_table(const json& s) {
   std::string out =
       "<h2>Candidates</h2>\n<table><tr><th>rank</th><th>model</th><th>identifiable</th>"
+      "<th>fits calibration</th>"
       "<th>moves</th><th>fitted parameter</th><th>F_r0</th><th>F_s0</th><th>G</th><th>basis</th>"
       "<th>rms cal.</th><th>rms held out</th><th>surface leave-one-out rms (max)</th></tr>\n";
   // Base first (rank 0), then the effects in rank order.
@@ -190,7 +191,7 @@ std::string candidates_table(const json& s) {
     for (const json& m : at(c, "moves")) moves += (moves.empty() ? "" : ", ") + show(m);
     out += "<tr><td>" + (c["effect"].is_string() ? show(at(c, "rank")) : "") + "</td><td>" +
            escape_html(effect_name(c)) + "</td><td>" + show(at(c, "identifiable")) + "</td><td>" +
-           moves + "</td><td>" +
+           show(at(c, "fits_calibration")) + "</td><td>" + moves + "</td><td>" +
            (p.is_object() ? show(at(p, "name")) + " = " + show(at(p, "value")) : "") + "</td><td>" +
            show(at(at(c, "fit"), "fr0")) + "</td><td>" + show(at(at(c, "fit"), "fs0")) +
            "</td><td>" + show(at(at(c, "gap_closure"), "value"), "%.2f") + "</td><td>" +

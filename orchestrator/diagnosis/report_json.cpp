@@ -78,6 +78,7 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
     json moved = json::array();
     for (std::size_t i : id.moved) moved.push_back(targets[i].id);
     j["identifiable"] = id.identifiable;
+    j["fits_calibration"] = c.fits_calibration;
     j["moves"] = moved;
     j["max_change"] = by_target(targets, id.max_change);
   }

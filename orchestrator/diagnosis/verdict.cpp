@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "orchestrator/diagnosis/gap.hpp"
 
@@ -16,12 +17,13 @@ std::string fixed(double x, int digits = 3) {
 
 bool eligible(const CandidateResult& c) {
   return c.fitted && c.confirmed && c.identifiability && c.identifiability->identifiable &&
-         c.g_confirmed.has_value();
+         c.fits_calibration && c.g_confirmed.has_value();
 }
 
 int group(const CandidateResult& c) {
-  if (!c.fitted) return 3;
-  if (!c.identifiability || !c.identifiability->identifiable) return 2;
+  if (!c.fitted) return 4;
+  if (!c.identifiability || !c.identifiability->identifiable) return 3;
+  if (!c.fits_calibration) return 2;
   return c.confirmed ? 0 : 1;
 }
 
@@ -35,6 +37,20 @@ int choose_effect(std::optional<double> base_held_out_rms, double combined_held_
     if (!best || c.g > best->g) best = &c;
   }
   return best && best->g >= kMinGapClosure ? best->index : -1;
+}
+
+void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration) {
+  std::optional<double> best;
+  for (const CandidateResult& c : candidates) {
+    const auto r = c.fitted ? c.rms().calibration : std::nullopt;
+    if (r && (!best || *r < *best)) best = r;
+  }
+  for (CandidateResult& c : candidates) {
+    const auto r = c.fitted ? c.rms().calibration : std::nullopt;
+    c.fits_calibration =
+        r && best &&
+        *r <= std::max(*best + combined_calibration, kCalibrationFitBudgets * combined_calibration);
+  }
 }
 
 std::vector<int> rank_effects(std::vector<CandidateResult>& candidates) {
@@ -84,7 +100,9 @@ Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector
                fixed(c.confirmed_rms.held_out.value_or(0)) + ", combined budget " + budget + ")";
   } else if (contenders.empty()) {
     v.reason = "the base model's held-out rms " + fixed(*base_rms) + " exceeds the budget " +
-               budget + ", but no candidate effect is identifiable from these observations";
+               budget +
+               ", but no candidate effect is both identifiable from these observations and able "
+               "to fit the calibration observations";
   } else {
     const CandidateResult& c = candidates[contenders.front().index];
     v.reason = "the base model's held-out rms " + fixed(*base_rms) + " exceeds the budget " +

@@ -19,9 +19,19 @@ struct Contender {
 int choose_effect(std::optional<double> base_held_out_rms, double combined_held_out,
                   const std::vector<Contender>& contenders);
 
+// A candidate explains the data only if it fits the calibration observations: its calibration rms
+// (real runs if confirmed, else surfaces) must lie within the combined calibration budget of the
+// best candidate's, or within kCalibrationFitBudgets of those budgets. Held-out data rank the
+// candidates; this only keeps out those whose good held-out prediction comes with calibration
+// residuals many noise levels wide. Generous on purpose: one odd calibration value (a lab
+// modulus off by 15%) leaves the right effect at about 3 budgets, and it must stay eligible.
+inline constexpr double kCalibrationFitBudgets = 4.0;
+void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration);
+
 // Ranks the effects (candidates[1..]) and sets their `rank` (1 = best): confirmed identifiable
-// ones by their confirmed G, then the other identifiable ones by surface G, then the
-// non-identifiable ones, then those that could not be fitted. Returns the indices in rank order.
+// ones by their confirmed G, then the other identifiable ones by surface G, then identifiable ones
+// that do not fit the calibration observations, then the non-identifiable ones, then those that
+// could not be fitted. Returns the indices in rank order.
 std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
 
 // The verdict over the confirmed identifiable effects (real runs only) and the runner-up (the

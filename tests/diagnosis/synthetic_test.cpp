@@ -8,6 +8,7 @@
 #include <set>
 
 #include "orchestrator/diagnosis/driver.hpp"
+#include "orchestrator/diagnosis/gap.hpp"
 #include "orchestrator/diagnosis/report.hpp"
 #include "orchestrator/diagnosis/verdict.hpp"
 #include "synthetic_model.hpp"
@@ -182,11 +183,48 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   DiagnosisCampaign c = twin_campaign("rate", 0.7);
   SyntheticModel model(c.targets);
   const DiagnosisReport report = run_diagnosis(c, model);
-  int refinement_runs = 0;
-  for (const CandidateResult& r : report.candidates) refinement_runs += int(r.refinement.size());
+  int refinement_runs = 0, confirmed = 0;
+  for (const CandidateResult& r : report.candidates) {
+    refinement_runs += int(r.refinement.size());
+    confirmed += r.confirmed;
+  }
+  EXPECT_EQ(confirmed, 3);
   EXPECT_GE(refinement_runs, 3);
   EXPECT_LE(refinement_runs, 3 * (1 + c.refine));
   EXPECT_EQ(model.runs, 16 + 5 * 32 + 5 + refinement_runs + 3 * 2);
+}
+
+// Held-out data rank the candidates, but one that cannot fit the calibration observations is no
+// explanation: here B predicts the held-out data best while missing the calibration data by 1.65
+// in ln, against A's 0.45 and a calibration budget of 0.26.
+TEST(Verdict, ACandidateThatCannotFitTheCalibrationDataIsNotTheVerdict) {
+  auto result = [](const char* effect, double cal, double held_out) {
+    CandidateResult r;
+    r.candidate.effect = effect;
+    r.fitted = r.confirmed = true;
+    r.confirmed_rms = {cal, held_out};
+    if (*effect) r.identifiability = Identifiability{true, {}, {0}};
+    return r;
+  };
+  std::vector<CandidateResult> c{result("", 1.82, 1.20), result("packing", 0.45, 0.71),
+                                 result("post_break_friction", 1.65, 0.65)};
+  for (std::size_t i = 1; i < c.size(); ++i) {
+    c[i].g_confirmed = gap_closure(c[i].confirmed_rms.held_out, c[0].confirmed_rms.held_out);
+  }
+  mark_calibration_fits(c, 0.26);
+  EXPECT_TRUE(c[1].fits_calibration);
+  EXPECT_FALSE(c[2].fits_calibration);  // 6.3 budgets off
+  EXPECT_FALSE(c[0].fits_calibration);  // the base misses too; it is the reference, not a contender
+  const std::vector<int> order = rank_effects(c);
+  EXPECT_EQ(order.front(), 1);
+  const Verdict v = decide(c, order, 0.17);
+  EXPECT_EQ(v.candidate, 1);
+  EXPECT_EQ(v.runner_up, 2);
+  // With a calibration budget for which 1.65 is less than four budgets, both fit and held-out G
+  // decides.
+  mark_calibration_fits(c, 0.45);
+  EXPECT_TRUE(c[2].fits_calibration);
+  EXPECT_EQ(decide(c, rank_effects(c), 0.17).candidate, 2);
 }
 
 // The synthetic model with a ripple along ln F_r0 that vanishes on every grid node: the surfaces

@@ -193,6 +193,17 @@ TEST(Effects, PackingSwitchesToARandomPacking) {
   EXPECT_LE(r_max / r_min, 2.0 + 1e-9);
 }
 
+TEST(Effects, TheSeedMattersForRandomPackingsAndSeededEffectsOnly) {
+  EXPECT_FALSE(seed_matters(cylinder()));
+  EXPECT_FALSE(seed_matters(cylinder({{"platen_friction", {{"mu", 0.3}}}})));
+  EXPECT_TRUE(seed_matters(cylinder({{"heterogeneity", {{"weibull_m", 4.0}}}})));
+  EXPECT_TRUE(seed_matters(cylinder({{"flaws", {{"fraction", 0.05}}}})));
+  EXPECT_TRUE(seed_matters(cylinder({{"packing", {{"radius_ratio", 1.5}}}})));
+  JobSpec random = cylinder();
+  random.sample.packing = "random";
+  EXPECT_TRUE(seed_matters(random));
+}
+
 TEST(Effects, HeterogeneityMultipliersHaveMeanOneAndTheWeibullScatter) {
   for (const double m : {4.0, 2.0}) {
     const Stats s = multiplier_stats(m, 1);
