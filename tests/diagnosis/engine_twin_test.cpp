@@ -79,7 +79,8 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   const Twin twin = make_twin(design, {"heterogeneity", 2.5, 3, 0.02}, run);
   const auto t1 = std::chrono::steady_clock::now();
 
-  // Two candidates and a 3 x 3 (x 3) grid: 9 + 2 x 18 grid points, 4 budget, 3 x 2 confirmations.
+  // Two candidates and a 3 x 3 (x 3) grid: 9 + 2 x 18 grid points, 4 budget, then per confirmed
+  // model up to 3 refinement runs and one seed run (FCC without seeded effects: the same job).
   const json request = {{"kind", "diagnosis"},
                         {"name", "engine twin"},
                         {"job", demo_twin_template()},
