@@ -207,7 +207,10 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   const ModelPoint lowest = model_point(c, c.candidates[1], std::vector<double>{0.5, 0.5, 0.0});
   EXPECT_TRUE(effect_on(lowest));  // u = 0 is a random packing, not the base model's FCC
   EXPECT_DOUBLE_EQ(lowest.s, kDiscontinuousFloor);
-  EXPECT_EQ(planned_jobs(c), (16 + 6 * 32 + 48 + 5 + 3 * 5) * 7u);
+  // A 5 x 5 (x 5) grid: 25 + 6 x 25 x 4 (+ packing's own 25 x 5), 5 budget, 3 x (3 + 2).
+  EXPECT_EQ(c.grid.fr0, 5);
+  EXPECT_EQ(c.grid.s, 5);
+  EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 5 + 3 * 5) * 7u);
 }
 
 }  // namespace
