@@ -115,8 +115,8 @@ std::string diagnosis_text(const json& s) {
         << " values missing from the grids (first: " << fmt(at(runs, "first_error")) << ")\n";
   }
   out << "\nCandidates (ranked by held-out gap closure G):\n";
-  std::snprintf(line, sizeof line, "  %4s %-22s %-12s %8s %-10s %s\n", "rank", "effect",
-                "identifiable", "G", "basis", "fitted parameter");
+  std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %8s %-10s %s\n", "rank", "effect",
+                "identifiable", "fits cal", "G", "basis", "fitted parameter");
   out << line;
   std::vector<json> ranked;
   for (const json& k : at(s, "candidates")) {
@@ -129,12 +129,14 @@ std::string diagnosis_text(const json& s) {
     const json& kp = at(k, "parameter");
     const std::string param =
         kp.is_object() ? fmt(at(kp, "name")) + " = " + fmt(at(kp, "value")) : "";
-    std::snprintf(
-        line, sizeof line, "  %4s %-22s %-12s %8s %-10s %s\n", fmt(at(k, "rank")).c_str(),
-        k["effect"].get<std::string>().c_str(),
-        at(k, "identifiable").is_boolean() ? (k["identifiable"].get<bool>() ? "yes" : "no") : "-",
-        fmt(at(at(k, "gap_closure"), "value"), "%.3f").c_str(),
-        fmt(at(at(k, "gap_closure"), "basis")).c_str(), param.c_str());
+    auto yes_no = [&](const char* key) {
+      return at(k, key).is_boolean() ? (k[key].get<bool>() ? "yes" : "no") : "-";
+    };
+    std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %8s %-10s %s\n",
+                  fmt(at(k, "rank")).c_str(), k["effect"].get<std::string>().c_str(),
+                  yes_no("identifiable"), yes_no("fits_calibration"),
+                  fmt(at(at(k, "gap_closure"), "value"), "%.3f").c_str(),
+                  fmt(at(at(k, "gap_closure"), "basis")).c_str(), param.c_str());
     out << line;
   }
   const json& r = at(s, "ratio");
