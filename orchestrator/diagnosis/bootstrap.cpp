@@ -33,15 +33,11 @@ struct Normal {
 std::optional<double> replicate_rms(const CandidateResult& c, const std::vector<Target>& targets,
                                     const std::vector<double>& budget,
                                     const std::vector<double>& lab) {
-  Objective objective = calibration_objective(targets, budget, c.surfaces, lab);
   // A confirmed candidate re-fits on its surfaces as corrected through its real run, so that
   // without noise the replicate lands where the nominal fit did.
-  for (std::size_t i = 0; i < c.surface_offset.size(); ++i) {
-    objective.ln_lab[i] -= c.surface_offset[i];
-  }
-  std::vector<std::vector<double>> starts{c.calibration.z};
-  for (auto& s : lattice_starts(c.surfaces.dims, 2)) starts.push_back(std::move(s));
-  const SurfaceCalibration fit = calibrate_on_surfaces(c.surfaces, objective, starts);
+  const SurfaceCalibration fit =
+      refit_near(c.surfaces, calibration_objective(targets, budget, c.surfaces, lab),
+                 c.calibration.z, c.surface_offset);
   const std::vector<double> moved = predict(c.surfaces, fit.z);
   std::vector<double> sim = c.ln_sim();
   for (std::size_t i = 0; i < sim.size(); ++i) sim[i] += moved[i] - c.predicted[i];

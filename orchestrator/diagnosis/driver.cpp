@@ -139,12 +139,8 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
         st.active = false;
         continue;
       }
-      Objective shifted = objective;
-      const std::vector<double> offset = offset_of(ln, predict(r.surfaces, st.z));
-      for (std::size_t i = 0; i < offset.size(); ++i) shifted.ln_lab[i] -= offset[i];
-      std::vector<std::vector<double>> starts{st.z};
-      for (auto& s : lattice_starts(r.surfaces.dims, 2)) starts.push_back(std::move(s));
-      const SurfaceCalibration fit = calibrate_on_surfaces(r.surfaces, shifted, starts);
+      const SurfaceCalibration fit =
+          refit_near(r.surfaces, objective, st.z, offset_of(ln, predict(r.surfaces, st.z)));
       double moved = 0.0;
       for (std::size_t d = 0; d < fit.z.size(); ++d)
         moved = std::max(moved, std::abs(fit.z[d] - st.z[d]));

@@ -89,6 +89,14 @@ SurfaceCalibration calibrate_on_surfaces(const SurfaceSet& surfaces, const Objec
   return out;
 }
 
+SurfaceCalibration refit_near(const SurfaceSet& surfaces, Objective objective,
+                              const std::vector<double>& z, const std::vector<double>& offset) {
+  for (std::size_t i = 0; i < offset.size(); ++i) objective.ln_lab[i] -= offset[i];
+  std::vector<std::vector<double>> starts{z};
+  for (auto& s : lattice_starts(surfaces.dims, 2)) starts.push_back(std::move(s));
+  return calibrate_on_surfaces(surfaces, objective, starts);
+}
+
 std::vector<std::vector<double>> lattice_starts(int dims, int per_axis) {
   std::vector<std::vector<double>> out{{}};
   for (int d = 0; d < dims; ++d) {

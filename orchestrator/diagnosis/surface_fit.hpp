@@ -42,6 +42,12 @@ SurfaceCalibration calibrate_on_surfaces(const SurfaceSet& surfaces, const Objec
                                          const std::vector<std::vector<double>>& starts,
                                          std::optional<double> fixed_s = std::nullopt);
 
+// A re-fit near a known point `z`: from z and the 2^d lattice starts, on the surfaces shifted by
+// `offset` per target (real - surface at a run; empty = no shift). Fitting surface + offset to the
+// lab values is fitting the surface to lab - offset.
+SurfaceCalibration refit_near(const SurfaceSet& surfaces, Objective objective,
+                              const std::vector<double>& z, const std::vector<double>& offset);
+
 // The interior points {1/(2k), 3/(2k), ...}^d: k per axis, away from the bounds where BOBYQA's
 // first trust region would be clipped.
 std::vector<std::vector<double>> lattice_starts(int dims, int per_axis);
