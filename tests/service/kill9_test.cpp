@@ -31,9 +31,11 @@ TEST(Recovery, KillNineMidSweepThenRestartFinishesWithOneResultPerPoint) {
   ServerProcess server(dir.path(), options);
   server.start();
   auto c = server.client();
-  // A sample large enough that each job runs for about a second.
+  // Jobs long enough (about 1 s of loop each; D = 12 at the default speed took 0.1 s) that the
+  // crash finds some running: with shorter ones a job could finish between the poll and the kill.
   json request = sweep_request({"uct"}, {40, 80}, {50, 70, 90});
-  request["job"]["sample"] = {{"diameter", 12}, {"height", 24}, {"radius", 1}};
+  request["job"]["sample"] = {{"diameter", 16}, {"height", 32}, {"radius", 1}};
+  request["job"]["loading"]["platen_velocity"] = 0.02;
   auto r = c.Post("/api/v1/campaigns", request.dump(), "application/json");
   ASSERT_TRUE(r && r->status == 201);
   auto id = json::parse(r->body)["id"].get<std::int64_t>();
