@@ -7,37 +7,12 @@
 #include "engine/confinement.hpp"
 #include "engine/effects/effect.hpp"
 #include "engine/loadtests/driver.hpp"
+#include "engine/loadtests/modulus.hpp"
 #include "engine/loadtests/run_clock.hpp"
 #include "engine/loadtests/specimen.hpp"
 
 namespace rockcal {
 namespace {
-
-constexpr double kModulusLow = 0.2, kModulusHigh = 0.5;  // fraction of peak load for the E fit
-
-// Least-squares slope of stress against strain on the rising branch between the given fractions
-// of the peak load (ISRM-style average modulus). Loads count from `base_load` (the triaxial test's
-// load once confined: its modulus is that of the deviatoric loading).
-std::optional<double> prepeak_modulus(const std::vector<CurvePoint>& curve, double base_load,
-                                      double peak_load, double area_m2, double length_m) {
-  const double peak = peak_load - base_load;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int n = 0;
-  for (const CurvePoint& point : curve) {
-    const double load = point.load_n - base_load;
-    if (load >= peak) break;
-    if (load < kModulusLow * peak || load > kModulusHigh * peak) continue;
-    const double x = point.displacement_m / length_m, y = load / area_m2;
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-    ++n;
-  }
-  const double den = n * sxx - sx * sx;
-  if (n < 3 || den <= 0) return std::nullopt;
-  return (n * sxy - sx * sy) / den;
-}
 
 // Platen speed over time: a ramp up to the loading speed, then (two-rate loading) a ramp of the
 // same length down to the slow speed once damage has started.
