@@ -41,6 +41,7 @@ struct RunRequest {
 struct RunOutcome {
   std::vector<std::optional<double>> values;
   std::string error;
+  int censored = 0;  // values that are the largest load within loading.max_strain, not a peak
 };
 
 // Thrown by an evaluator when the campaign is cancelled or the server stops.

@@ -31,8 +31,11 @@ RunPlan plan_runs(const std::vector<Target>& targets);
 nlohmann::json job_for(const nlohmann::json& job_template, const JobSpec& model,
                        const RunConditions& conditions, const RunRequest& request);
 
-// What a finished run's result.json says about one observable; nullopt when it has no value, and
-// for peak observables when the run hit loading.max_strain first (its "peak" is a lower bound).
+// What a finished run's result.json says about one observable; nullopt when it has no value. A
+// peak observable of a run that reached loading.max_strain before its load fell is the largest
+// load within that strain (censored_value says so): the twin reports the same for its lab value,
+// and a lab's stroke limit does the same. A run stopped for any other reason has no peak.
 std::optional<double> observable_value(const nlohmann::json& result, Observable observable);
+bool censored_value(const nlohmann::json& result, Observable observable);
 
 }  // namespace rockcal::diagnosis

@@ -70,9 +70,10 @@ std::vector<RunOutcome> PoolEvaluator::run_batch(std::span<const RunRequest> req
     for (std::size_t i = 0; i < targets_.size(); ++i) {
       const JobResult& jr = results.at(spec_of[r][plan_.run_of[i]]);
       o.values.push_back(observable_value(jr.result, targets_[i].observable));
+      o.censored += o.values.back() && censored_value(jr.result, targets_[i].observable);
       if (!o.values.back() && o.error.empty()) {
         o.error = jr.error.empty() ? targets_[i].id + ": no " + to_string(targets_[i].observable) +
-                                         " (peak not reached before loading.max_strain?)"
+                                         " (run stopped before its peak)"
                                    : jr.error;
       }
     }

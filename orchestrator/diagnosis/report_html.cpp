@@ -278,7 +278,8 @@ std::string report_html(const json& s) {
       (at(at(s, "runs"), "first_error").is_string()
            ? " (first: " + show(at(at(s, "runs"), "first_error")) + ")"
            : std::string()) +
-      ".</p>\n";
+      ", " + show(at(at(s, "runs"), "censored_values")) +
+      " peak values taken as the largest load within loading.max_strain.</p>\n";
   out += verdict_section(s);
   out += gap_section(s);
   out += residual_plot(s);

@@ -207,10 +207,34 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   const ModelPoint lowest = model_point(c, c.candidates[1], std::vector<double>{0.5, 0.5, 0.0});
   EXPECT_TRUE(effect_on(lowest));  // u = 0 is a random packing, not the base model's FCC
   EXPECT_DOUBLE_EQ(lowest.s, kDiscontinuousFloor);
-  // A 5 x 5 (x 5) grid: 25 + 6 x 25 x 4 (+ packing's own 25 x 5), 5 budget, 3 x (3 + 2).
+  // A 5 x 5 (x 5) grid: 25 + 6 x 25 x 4 (+ packing's own 25 x 5), 5 budget, every effect
+  // confirmed: 8 x (3 + 2).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
-  EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 5 + 3 * 5) * 7u);
+  EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 5 + 8 * 5) * 7u);
+}
+
+TEST(DiagnosisRuns, APeakCutOffByTheStrainLimitIsTheLargestLoadAndSaysSo) {
+  const json peaked = {{"peak_load", 900.0},
+                       {"youngs_modulus", 50.0},
+                       {"peak_reached", true},
+                       {"stop_reason", "post_peak"}};
+  EXPECT_EQ(observable_value(peaked, Observable::peak_load), 900.0);
+  EXPECT_FALSE(censored_value(peaked, Observable::peak_load));
+  // What the twin reports for its lab value too: the largest load within loading.max_strain.
+  json cut = peaked;
+  cut["peak_reached"] = false;
+  cut["stop_reason"] = "max_strain";
+  EXPECT_EQ(observable_value(cut, Observable::peak_load), 900.0);
+  EXPECT_TRUE(censored_value(cut, Observable::peak_load));
+  EXPECT_EQ(observable_value(cut, Observable::youngs_modulus), 50.0);
+  EXPECT_FALSE(censored_value(cut, Observable::youngs_modulus));
+  // A run stopped by its step limit or a cancel has no peak to speak of.
+  for (const char* why : {"max_steps", "cancelled"}) {
+    json stopped = cut;
+    stopped["stop_reason"] = why;
+    EXPECT_FALSE(observable_value(stopped, Observable::peak_load).has_value()) << why;
+  }
 }
 
 }  // namespace
