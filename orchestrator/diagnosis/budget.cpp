@@ -22,22 +22,40 @@ std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t
   return out;
 }
 
-Budget numerical_budget(std::vector<BudgetVariant> variants, const RunOutcome& reference,
-                        const std::vector<RunOutcome>& outcomes) {
+std::vector<std::vector<double>> budget_offsets(int points) {
+  const double d = kBudgetStep;
+  const std::vector<std::vector<double>> all{{0, 0}, {d, 0},   {-d, 0}, {0, d}, {0, -d},
+                                             {d, d}, {-d, -d}, {d, -d}, {-d, d}};
+  return {all.begin(), all.begin() + std::clamp<std::size_t>(points, 1, all.size())};
+}
+
+Budget numerical_budget(std::vector<BudgetVariant> variants,
+                        const std::vector<RunOutcome>& references,
+                        const std::vector<std::vector<RunOutcome>>& outcomes) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::size_t n = reference.values.size();
+  const std::size_t n = references.empty() ? 0 : references.front().values.size();
   Budget b;
   b.variants = std::move(variants);
+  b.points = int(references.size());
   b.per_target.assign(n, 0.0);
   b.measured.assign(n, false);
-  for (const RunOutcome& o : outcomes) {
+  for (std::size_t v = 0; v < b.variants.size(); ++v) {
     std::vector<double> change(n, nan);
     for (std::size_t i = 0; i < n; ++i) {
-      if (reference.values[i] && o.values[i]) {
-        change[i] = std::abs(std::log(*o.values[i] / *reference.values[i]));
-        b.per_target[i] = std::max(b.per_target[i], change[i]);
-        b.measured[i] = true;
+      double sum = 0.0;
+      int count = 0;
+      for (std::size_t p = 0; p < references.size(); ++p) {
+        const auto& ref = references[p].values[i];
+        const auto& var = outcomes[p][v].values[i];
+        if (!ref || !var) continue;
+        const double c = std::log(*var / *ref);
+        sum += c * c;
+        ++count;
       }
+      if (count == 0) continue;
+      change[i] = std::sqrt(sum / count);
+      b.per_target[i] = std::max(b.per_target[i], change[i]);
+      b.measured[i] = true;
     }
     b.change.push_back(std::move(change));
   }

@@ -15,6 +15,10 @@ struct BudgetSpec {
   std::vector<std::uint64_t> seeds;  // replicate packing seeds (default: template seed + 1, + 2)
   double speed_factor = 0.5;         // platen speed multiplier
   double resolution = 1.25;          // particles per length multiplier
+  // Model points the variants are run at: the base fit and its neighbours (budget_offsets). One
+  // point gives one draw of a change that on a coarse packing jumps by x4 between neighbouring
+  // strengths; the rms over several is the spread the budget stands for.
+  int points = 5;
 };
 
 struct BudgetVariant {
@@ -25,16 +29,25 @@ struct BudgetVariant {
 // The seed replicates first, then the speed and the resolution variants.
 std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed);
 
+// Unit-cube offsets (fr0, fs0) of the budget's points from the base fit: the fit itself, then
+// +-kBudgetStep along each strength, then the diagonals; the first `points` of them.
+inline constexpr double kBudgetStep = 0.1;  // of the log box: x1.32 on the default bounds
+std::vector<std::vector<double>> budget_offsets(int points);
+
 struct Budget {
   std::vector<BudgetVariant> variants;
-  std::vector<std::vector<double>> change;  // [variant][target] |ln(variant / reference)|, NaN
+  std::vector<std::vector<double>> change;  // [variant][target] rms over points of |ln change|, NaN
   std::vector<double> per_target;           // the largest change; see numerical_budget
   std::vector<bool> measured;               // false where no variant measured the target
+  int points = 0;                           // model points the changes were averaged over
 };
 
-// Per target the largest |ln| change over the variants. A target no variant measured (every run
-// failed) gets the largest budget of the others: unknown noise is not counted as no noise.
-Budget numerical_budget(std::vector<BudgetVariant> variants, const RunOutcome& reference,
-                        const std::vector<RunOutcome>& outcomes);
+// Per variant and target the rms over the points of |ln(variant / reference)|, then per target the
+// largest over the variants. outcomes[p][v] is variant v at point p, references[p] the point's
+// nominal run. A target no variant measured (every run failed) gets the largest budget of the
+// others: unknown noise is not counted as no noise.
+Budget numerical_budget(std::vector<BudgetVariant> variants,
+                        const std::vector<RunOutcome>& references,
+                        const std::vector<std::vector<RunOutcome>>& outcomes);
 
 }  // namespace rockcal::diagnosis

@@ -76,6 +76,7 @@ BudgetSpec parse_budget(JsonFields& root, std::uint64_t template_seed) {
   if (!(b.resolution > 1.0 && b.resolution <= 3.0)) {
     throw CampaignError("budget.resolution", "must be in (1, 3] (a finer packing)");
   }
+  b.points = int(f.integer("points", 1, 9).value_or(b.points));
   f.reject_unknown();
   return b;
 }

@@ -189,14 +189,27 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
   candidates[0].g_confirmed.reset();
 }
 
-Budget measure_budget(const DiagnosisCampaign& c, const ModelPoint& point, Evaluator& evaluator) {
+// Every variant at the base fit and its neighbours (budget_offsets), one batch.
+Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
+                      const std::vector<double>& z, Evaluator& evaluator) {
   std::vector<BudgetVariant> variants = budget_variants(c.budget, c.sample_seed);
-  std::vector<RunRequest> requests{{point, {c.sample_seed, 1.0, 1.0}}};
-  for (const BudgetVariant& v : variants) requests.push_back({point, v.numerics});
-  std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
-  const RunOutcome reference = outcomes.front();
-  outcomes.erase(outcomes.begin());
-  return numerical_budget(std::move(variants), reference, outcomes);
+  std::vector<RunRequest> requests;
+  for (const std::vector<double>& offset : budget_offsets(c.budget.points)) {
+    std::vector<double> at = z;
+    for (std::size_t d = 0; d < at.size(); ++d) at[d] = std::clamp(at[d] + offset[d], 0.0, 1.0);
+    const ModelPoint point = model_point(c, base.candidate, at);
+    requests.push_back({point, {c.sample_seed, 1.0, 1.0}});
+    for (const BudgetVariant& v : variants) requests.push_back({point, v.numerics});
+  }
+  const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
+  const std::size_t per_point = 1 + variants.size();
+  std::vector<RunOutcome> references;
+  std::vector<std::vector<RunOutcome>> changed;
+  for (std::size_t k = 0; k < outcomes.size(); k += per_point) {
+    references.push_back(outcomes[k]);
+    changed.emplace_back(outcomes.begin() + k + 1, outcomes.begin() + k + per_point);
+  }
+  return numerical_budget(std::move(variants), references, changed);
 }
 
 // Values the grids left missing, and the first reason. The samples of every effect that shares the
@@ -254,9 +267,11 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   const SurfaceCalibration base_first =
       calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
   report.budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
-  phase(options, "budget", 2, 3 + int(c.budget.seeds.size()));
-  report.budget = measure_budget(c, report.budget_point, evaluator);
-  report.model_points += 3 + int(c.budget.seeds.size());
+  const int budget_runs =
+      int(budget_offsets(c.budget.points).size()) * (3 + int(c.budget.seeds.size()));
+  phase(options, "budget", 2, budget_runs);
+  report.budget = measure_budget(c, report.candidates[0], base_first.z, evaluator);
+  report.model_points += budget_runs;
   const std::vector<double>& budget = report.budget.per_target;
   report.combined_calibration = combined_budget(c.targets, budget, Role::calibration);
   report.combined_held_out = combined_budget(c.targets, budget, Role::held_out);

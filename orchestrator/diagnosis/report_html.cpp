@@ -229,8 +229,10 @@ std::string budget_table(const json& s) {
   const json& b = at(s, "budget");
   std::string out =
       "<h2>Numerical budget</h2>\n<p>Base model at F_r0 = " + show(at(at(b, "point"), "fr0")) +
-      ", F_s0 = " + show(at(at(b, "point"), "fs0")) +
-      " re-run with nothing physical changed; |ln| change per observation.</p>\n"
+      ", F_s0 = " + show(at(at(b, "point"), "fs0")) + " and its neighbours (" +
+      show(at(b, "points")) +
+      " points in all) re-run with nothing physical changed; per observation the rms over the "
+      "points of the |ln| change.</p>\n"
       "<table><tr><th>variant</th>";
   for (const json& o : at(s, "observations")) out += "<th>" + show(at(o, "id")) + "</th>";
   out += "</tr>\n";

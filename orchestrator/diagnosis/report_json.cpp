@@ -191,6 +191,7 @@ json budget_json(const DiagnosisReport& r, const std::vector<Target>& targets) {
   }
   return {
       {"point", {{"fr0", r.budget_point.fr0_n}, {"fs0", r.budget_point.fs0_n}}},
+      {"points", r.budget.points},
       {"per_observation", by_target(targets, r.budget.per_target)},
       {"combined", {{"calibration", r.combined_calibration}, {"held_out", r.combined_held_out}}},
       {"variants", variants}};

@@ -2,9 +2,11 @@
 // to change; a good request resolves into model-unit targets and registry candidates.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "engine/effects/effect.hpp"
+#include "orchestrator/diagnosis/budget.hpp"
 #include "orchestrator/diagnosis/campaign.hpp"
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
 #include "orchestrator/diagnosis/grid.hpp"
@@ -65,9 +67,9 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   ASSERT_EQ(c.candidates.size(), 2u);
   EXPECT_EQ(c.candidates[0].effect, "heterogeneity");
   EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3}));
-  // 4 distinct runs; 9 + 2 x 18 grid points, 5 budget points, 3 confirmed candidates x (3
+  // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points, 3 confirmed candidates x (3
   // refinement runs + 2 seeds).
-  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 5 + 3 * 5) * 4u);
+  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 5 * 5 + 3 * 5) * 4u);
   // Without "effects", every registered effect is a candidate.
   json all = request();
   all.erase("effects");
@@ -124,6 +126,10 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
       {"budget.speed_factor",
        [](json& r) {
          r["budget"] = {{"speed_factor", 2}};
+       }},
+      {"budget.points",
+       [](json& r) {
+         r["budget"] = {{"points", 10}};
        }},
       {"budget.seeds[0]",
        [](json& r) {
@@ -207,11 +213,11 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   const ModelPoint lowest = model_point(c, c.candidates[1], std::vector<double>{0.5, 0.5, 0.0});
   EXPECT_TRUE(effect_on(lowest));  // u = 0 is a random packing, not the base model's FCC
   EXPECT_DOUBLE_EQ(lowest.s, kDiscontinuousFloor);
-  // A 5 x 5 (x 5) grid: 25 + 6 x 25 x 4 (+ packing's own 25 x 5), 5 budget, every effect
+  // A 5 x 5 (x 5) grid: 25 + 6 x 25 x 4 (+ packing's own 25 x 5), 5 x 5 budget, every
   // confirmed: 8 x (3 + 2).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
-  EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 5 + 8 * 5) * 7u);
+  EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 5 * 5 + 8 * 5) * 7u);
 }
 
 TEST(DiagnosisRuns, APeakCutOffByTheStrainLimitIsTheLargestLoadAndSaysSo) {
@@ -235,6 +241,37 @@ TEST(DiagnosisRuns, APeakCutOffByTheStrainLimitIsTheLargestLoadAndSaysSo) {
     stopped["stop_reason"] = why;
     EXPECT_FALSE(observable_value(stopped, Observable::peak_load).has_value()) << why;
   }
+}
+
+TEST(DiagnosisBudget, IsTheRmsChangeOverItsPointsAndTheLargestOverTheVariants) {
+  // Two points, two variants, three targets. Target 0: the resolution moves it by e^0.3 at one
+  // point and e^-0.1 at the other: rms 0.2236, above the speed variant's 0.05. Target 1 failed at
+  // point 1's reference, so point 0 alone counts. Target 2 never ran: the largest budget.
+  const auto run = [](std::vector<std::optional<double>> v) { return RunOutcome{v, "", 0}; };
+  const std::vector<RunOutcome> refs{run({100.0, 50.0, std::nullopt}),
+                                     run({200.0, std::nullopt, std::nullopt})};
+  const std::vector<std::vector<RunOutcome>> changed{
+      {run({100.0 * std::exp(0.05), 50.0 * std::exp(0.02), std::nullopt}),
+       run({100.0 * std::exp(0.3), 50.0 * std::exp(-0.4), std::nullopt})},
+      {run({200.0 * std::exp(-0.05), 80.0, std::nullopt}),
+       run({200.0 * std::exp(-0.1), 90.0, std::nullopt})}};
+  const Budget b = numerical_budget(
+      {{"speed x0.5", {1, 0.5, 1}}, {"resolution x1.25", {1, 1, 1.25}}}, refs, changed);
+  EXPECT_EQ(b.points, 2);
+  EXPECT_NEAR(b.change[0][0], 0.05, 1e-12);
+  EXPECT_NEAR(b.change[1][0], std::sqrt((0.09 + 0.01) / 2), 1e-12);
+  EXPECT_NEAR(b.per_target[0], std::sqrt(0.05), 1e-12);
+  EXPECT_NEAR(b.per_target[1], 0.4, 1e-12);
+  EXPECT_TRUE(std::isnan(b.change[0][2]));
+  EXPECT_FALSE(b.measured[2]);
+  EXPECT_NEAR(b.per_target[2], 0.4, 1e-12);
+  // The points: the fit first, then its neighbours along each strength.
+  const auto offsets = budget_offsets(5);
+  ASSERT_EQ(offsets.size(), 5u);
+  EXPECT_EQ(offsets[0], (std::vector<double>{0, 0}));
+  EXPECT_EQ(offsets[1], (std::vector<double>{kBudgetStep, 0}));
+  EXPECT_EQ(budget_offsets(1).size(), 1u);
+  EXPECT_EQ(budget_offsets(9).size(), 9u);
 }
 
 }  // namespace

@@ -178,7 +178,7 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   const Diagnosed a = diagnose("rate", 0.7);
   const Diagnosed b = diagnose("rate", 0.7);
   EXPECT_EQ(a.summary.dump(), b.summary.dump());
-  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 budget points; per confirmed
+  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 x 5 budget points; per confirmed
   // candidate (3) 1 to 3 refinement runs and 2 seed runs.
   DiagnosisCampaign c = twin_campaign("rate", 0.7);
   SyntheticModel model(c.targets);
@@ -191,7 +191,7 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   EXPECT_EQ(confirmed, 3);
   EXPECT_GE(refinement_runs, 3);
   EXPECT_LE(refinement_runs, 3 * (1 + c.refine));
-  EXPECT_EQ(model.runs, 16 + 5 * 32 + 5 + refinement_runs + 3 * 2);
+  EXPECT_EQ(model.runs, 16 + 5 * 32 + 5 * 5 + refinement_runs + 3 * 2);
 }
 
 // Held-out data rank the candidates, but one that cannot fit the calibration observations is no
