@@ -10,6 +10,7 @@
 #include "orchestrator/diagnosis/grid.hpp"
 #include "orchestrator/diagnosis/identifiability.hpp"
 #include "orchestrator/diagnosis/ratio.hpp"
+#include "orchestrator/diagnosis/trust_region.hpp"
 #include "orchestrator/diagnosis/verdict.hpp"
 
 namespace rockcal::diagnosis {
@@ -104,12 +105,11 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
                         const std::vector<double>& lab, const std::vector<double>& budget) {
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
   constexpr double kSettled = 0.01;  // unit-cube step below which a re-fit counts as settled
-  constexpr double kMaxStep = 0.25;  // longest unit-cube step of one re-fit (a trust region)
+  constexpr double kMaxStep = 0.25;  // first trust radius: the longest unit-cube step of a re-fit
   struct State {
-    std::vector<double> z;
+    std::vector<double> z;  // the next trial
     bool active = true;
-    double best = std::numeric_limits<double>::infinity();
-    std::vector<double> best_z, best_ln;
+    TrustRegion trust{kMaxStep};
   };
   std::vector<State> state(chosen.size());
   for (std::size_t j = 0; j < chosen.size(); ++j) state[j].z = candidates[chosen[j]].calibration.z;
@@ -130,27 +130,24 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
       const std::vector<double> ln = ln_values(outcomes[k]);
       const double m = real_misfit(objective, ln);
       r.refinement.push_back({requests[k].point, m});
-      if (st.best_ln.empty() || m < st.best) {
-        st.best = m;
-        st.best_z = st.z;
-        st.best_ln = ln;
-      }
+      // A worse run shortens the next step (without it the D = 8 null twins' base fits bounced
+      // between two points a step apart, F_r0 32 and 64, never nearing the truth between them).
+      st.trust.record(st.z, m, ln);
       if (step == c.refine) {
         st.active = false;
         continue;
       }
-      const SurfaceCalibration fit =
-          refit_near(r.surfaces, objective, st.z, offset_of(ln, predict(r.surfaces, st.z)));
-      double moved = 0.0;
-      for (std::size_t d = 0; d < fit.z.size(); ++d)
-        moved = std::max(moved, std::abs(fit.z[d] - st.z[d]));
-      if (moved < kSettled) {
-        st.active = false;
+      // The next step starts from the best run, on the surfaces shifted through it (after a worse
+      // run: the same direction, half as far). The shift is exact only at the run, so a long step
+      // trusts the surface's shape far away, which on a coarse grid is what failed first.
+      const TrustRegion& t = st.trust;
+      const SurfaceCalibration fit = refit_near(
+          r.surfaces, objective, t.best_z, offset_of(t.best_ln, predict(r.surfaces, t.best_z)));
+      const auto z = st.trust.next(fit.z, kSettled);
+      if (z) {
+        st.z = *z;
       } else {
-        // The shift is exact only at the run: a long step trusts the surface's shape far away,
-        // which on a coarse grid is what failed in the first place.
-        const double damp = std::min(1.0, kMaxStep / moved);
-        for (std::size_t d = 0; d < fit.z.size(); ++d) st.z[d] += damp * (fit.z[d] - st.z[d]);
+        st.active = false;
       }
     }
   }
@@ -158,7 +155,7 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
   std::vector<RunRequest> seed_requests;
   for (std::size_t j = 0; j < chosen.size(); ++j) {
     CandidateResult& r = candidates[chosen[j]];
-    const State& st = state[j];
+    const TrustRegion& st = state[j].trust;
     r.calibration.z = st.best_z;
     r.point = model_point(c, r.candidate, st.best_z);
     if (!r.candidate.is_base()) {

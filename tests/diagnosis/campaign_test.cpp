@@ -11,6 +11,7 @@
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
 #include "orchestrator/diagnosis/grid.hpp"
 #include "orchestrator/diagnosis/jobs.hpp"
+#include "orchestrator/diagnosis/trust_region.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -272,6 +273,42 @@ TEST(DiagnosisBudget, IsTheRmsChangeOverItsPointsAndTheLargestOverTheVariants) {
   EXPECT_EQ(offsets[1], (std::vector<double>{kBudgetStep, 0}));
   EXPECT_EQ(budget_offsets(1).size(), 1u);
   EXPECT_EQ(budget_offsets(9).size(), 9u);
+}
+
+TEST(DiagnosisRefinement, AWorseRunHalvesTheNextStepTowardsTheSameFit) {
+  TrustRegion t{0.25};
+  EXPECT_TRUE(t.record({0.5, 0.5}, 4.0, {1.0}));
+  // A re-fit 0.4 away: the first step is cut to the radius, along the same direction.
+  auto z = t.next({0.9, 0.3}, 0.01);
+  ASSERT_TRUE(z.has_value());
+  EXPECT_NEAR((*z)[0], 0.75, 1e-12);
+  EXPECT_NEAR((*z)[1], 0.375, 1e-12);
+  // That run is worse: the best stays, and the same re-fit now gets half the step (0.125).
+  EXPECT_FALSE(t.record(*z, 6.0, {2.0}));
+  EXPECT_EQ(t.best_z, (std::vector<double>{0.5, 0.5}));
+  EXPECT_EQ(t.best_ln, (std::vector<double>{1.0}));
+  z = t.next({0.9, 0.3}, 0.01);
+  ASSERT_TRUE(z.has_value());
+  EXPECT_NEAR((*z)[0], 0.625, 1e-12);
+  EXPECT_NEAR((*z)[1], 0.4375, 1e-12);
+  // A better run is the new best; a re-fit within the radius is taken whole.
+  EXPECT_TRUE(t.record(*z, 3.0, {3.0}));
+  z = t.next({0.7, 0.45}, 0.01);
+  ASSERT_TRUE(z.has_value());
+  EXPECT_NEAR((*z)[0], 0.7, 1e-12);
+  // Worse again after that 0.075 step: the radius is 0.0375.
+  EXPECT_FALSE(t.record(*z, 5.0, {}));
+  EXPECT_NEAR(t.radius, 0.0375, 1e-12);
+  // A re-fit that no longer moves has settled.
+  EXPECT_FALSE(t.next({0.625 + 0.005, 0.4375}, 0.01).has_value());
+  // Worse runs keep halving: 0.0375 -> 0.01875 -> 0.009375, below the settling step: done.
+  for (double expected : {0.01875, 0.009375}) {
+    z = t.next({0.7, 0.45}, 0.01);
+    ASSERT_TRUE(z.has_value());
+    EXPECT_FALSE(t.record(*z, 5.0, {}));
+    EXPECT_NEAR(t.radius, expected, 1e-12);
+  }
+  EXPECT_FALSE(t.next({0.7, 0.45}, 0.01).has_value());
 }
 
 }  // namespace
