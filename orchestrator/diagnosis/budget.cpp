@@ -29,6 +29,16 @@ std::vector<std::vector<double>> budget_offsets(int points) {
   return {all.begin(), all.begin() + std::clamp<std::size_t>(points, 1, all.size())};
 }
 
+std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int points) {
+  std::vector<std::vector<double>> out;
+  for (const std::vector<double>& offset : budget_offsets(points)) {
+    std::vector<double> at = z;
+    for (std::size_t d = 0; d < at.size(); ++d) at[d] = std::clamp(at[d] + offset[d], 0.0, 1.0);
+    if (std::find(out.begin(), out.end(), at) == out.end()) out.push_back(std::move(at));
+  }
+  return out;
+}
+
 Budget numerical_budget(std::vector<BudgetVariant> variants,
                         const std::vector<RunOutcome>& references,
                         const std::vector<std::vector<RunOutcome>>& outcomes) {

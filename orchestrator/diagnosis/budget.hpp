@@ -33,6 +33,9 @@ std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t
 // +-kBudgetStep along each strength, then the diagonals; the first `points` of them.
 inline constexpr double kBudgetStep = 0.1;  // of the log box: x1.32 on the default bounds
 std::vector<std::vector<double>> budget_offsets(int points);
+// The budget's points around the unit-cube fit z: z + each offset, clamped to the cube, each once
+// (a fit on the edge of the box would otherwise count its own point twice).
+std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int points);
 
 struct Budget {
   std::vector<BudgetVariant> variants;

@@ -186,14 +186,12 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
   candidates[0].g_confirmed.reset();
 }
 
-// Every variant at the base fit and its neighbours (budget_offsets), one batch.
+// Every variant at the base fit and its neighbours (budget_points), one batch.
 Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
                       const std::vector<double>& z, Evaluator& evaluator) {
   std::vector<BudgetVariant> variants = budget_variants(c.budget, c.sample_seed);
   std::vector<RunRequest> requests;
-  for (const std::vector<double>& offset : budget_offsets(c.budget.points)) {
-    std::vector<double> at = z;
-    for (std::size_t d = 0; d < at.size(); ++d) at[d] = std::clamp(at[d] + offset[d], 0.0, 1.0);
+  for (const std::vector<double>& at : budget_points(z, c.budget.points)) {
     const ModelPoint point = model_point(c, base.candidate, at);
     requests.push_back({point, {c.sample_seed, 1.0, 1.0}});
     for (const BudgetVariant& v : variants) requests.push_back({point, v.numerics});
@@ -264,11 +262,10 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   const SurfaceCalibration base_first =
       calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
   report.budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
-  const int budget_runs =
-      int(budget_offsets(c.budget.points).size()) * (3 + int(c.budget.seeds.size()));
-  phase(options, "budget", 2, budget_runs);
+  const int runs_per_point = 3 + int(c.budget.seeds.size());
+  phase(options, "budget", 2, int(budget_offsets(c.budget.points).size()) * runs_per_point);
   report.budget = measure_budget(c, report.candidates[0], base_first.z, evaluator);
-  report.model_points += budget_runs;
+  report.model_points += report.budget.points * runs_per_point;
   const std::vector<double>& budget = report.budget.per_target;
   report.combined_calibration = combined_budget(c.targets, budget, Role::calibration);
   report.combined_held_out = combined_budget(c.targets, budget, Role::held_out);

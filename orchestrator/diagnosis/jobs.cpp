@@ -57,8 +57,8 @@ json job_for(const json& job_template, const JobSpec& model, const RunConditions
 std::optional<double> observable_value(const json& result, Observable observable) {
   if (!result.is_object()) return std::nullopt;
   const char* key = to_string(observable);
-  if (observable != Observable::youngs_modulus && !result.value("peak_reached", true) &&
-      !censored_value(result, observable)) {
+  const bool peak = observable != Observable::youngs_modulus;
+  if (peak && !result.value("peak_reached", true) && !censored_value(result, observable)) {
     return std::nullopt;
   }
   auto it = result.find(key);

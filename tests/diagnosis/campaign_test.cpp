@@ -272,6 +272,12 @@ TEST(DiagnosisBudget, IsTheRmsChangeOverItsPointsAndTheLargestOverTheVariants) {
   EXPECT_EQ(offsets[0], (std::vector<double>{0, 0}));
   EXPECT_EQ(offsets[1], (std::vector<double>{kBudgetStep, 0}));
   EXPECT_EQ(budget_offsets(1).size(), 1u);
+  // On the edge of the box the step outwards clamps onto the fit itself: that point runs once.
+  const auto edge = budget_points({1.0, 0.5}, 5);
+  ASSERT_EQ(edge.size(), 4u);
+  EXPECT_EQ(edge[0], (std::vector<double>{1.0, 0.5}));
+  EXPECT_EQ(edge[1], (std::vector<double>{1.0 - kBudgetStep, 0.5}));
+  EXPECT_EQ(budget_points({0.5, 0.5}, 5).size(), 5u);
   EXPECT_EQ(budget_offsets(9).size(), 9u);
 }
 
