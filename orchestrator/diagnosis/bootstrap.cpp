@@ -28,11 +28,12 @@ struct Normal {
   }
 };
 
-// A candidate's held-out residuals in one replicate: re-fitted on its surfaces, anchored to its
-// real run when it has one.
-std::optional<double> replicate_rms(const CandidateResult& c, const std::vector<Target>& targets,
-                                    const std::vector<double>& budget,
-                                    const std::vector<double>& lab) {
+// A candidate's residuals in one replicate: re-fitted on its surfaces, anchored to its real run
+// when it has one.
+std::vector<double> replicate_residuals(const CandidateResult& c,
+                                        const std::vector<Target>& targets,
+                                        const std::vector<double>& budget,
+                                        const std::vector<double>& lab) {
   // A confirmed candidate re-fits on its surfaces as corrected through its real run, so that
   // without noise the replicate lands where the nominal fit did.
   const SurfaceCalibration fit =
@@ -41,7 +42,7 @@ std::optional<double> replicate_rms(const CandidateResult& c, const std::vector<
   const std::vector<double> moved = predict(c.surfaces, fit.z);
   std::vector<double> sim = c.ln_sim();
   for (std::size_t i = 0; i < sim.size(); ++i) sim[i] += moved[i] - c.predicted[i];
-  return rms(residuals(sim, lab), targets, Role::held_out);
+  return residuals(sim, lab);
 }
 
 }  // namespace
@@ -60,8 +61,8 @@ Objective calibration_objective(const std::vector<Target>& targets,
 
 BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
-                                   const std::vector<double>& budget, double combined_held_out,
-                                   int replicates, std::uint64_t seed) {
+                                   const std::vector<double>& budget, int replicates,
+                                   std::uint64_t seed) {
   BootstrapResult out;
   if (!candidates[0].fitted) return out;
   Normal normal{std::mt19937_64(seed)};
@@ -71,7 +72,8 @@ BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidate
     for (std::size_t i = 0; i < lab.size(); ++i) {
       lab[i] += noise_scale(targets[i], budget[i]) * normal();
     }
-    const auto base_rms = replicate_rms(candidates[0], targets, budget, lab);
+    const std::vector<double> base = replicate_residuals(candidates[0], targets, budget, lab);
+    const auto base_rms = rms(base, targets, Role::held_out);
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
@@ -79,11 +81,13 @@ BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidate
           !c.fits_calibration) {
         continue;
       }
-      if (const auto g = gap_closure(replicate_rms(c, targets, budget, lab), base_rms)) {
+      const auto r = rms(replicate_residuals(c, targets, budget, lab), targets, Role::held_out);
+      if (const auto g = gap_closure(r, base_rms)) {
         contenders.push_back({i, *g});
       }
     }
-    const int chosen = choose_effect(base_rms, combined_held_out, contenders);
+    const int chosen =
+        choose_effect(rms_in_budgets(base, targets, budget, Role::held_out), contenders);
     ++out.winners[chosen < 0 ? "" : candidates[chosen].candidate.effect];
     ++out.replicates;
   }

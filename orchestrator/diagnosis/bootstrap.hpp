@@ -25,8 +25,8 @@ struct BootstrapResult {
 // differs between standard libraries).
 BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
-                                   const std::vector<double>& budget, double combined_held_out,
-                                   int replicates, std::uint64_t seed);
+                                   const std::vector<double>& budget, int replicates,
+                                   std::uint64_t seed);
 
 // The objective weights: 1 / (sigma^2 + budget^2) on calibration targets with a surface, 0
 // elsewhere (a floor of 0.1% keeps an exact lab value from taking all the weight).

@@ -294,17 +294,20 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   phase(options, "analysis", 4, 0);
   mark_calibration_fits(report.candidates, report.combined_calibration);
   const std::vector<int> order = rank_effects(report.candidates);
-  report.verdict = decide(report.candidates, order, report.combined_held_out);
+  report.held_out_budgets = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
+                                           c.targets, budget, Role::held_out);
+  report.verdict =
+      decide(report.candidates, order, report.held_out_budgets, report.combined_held_out);
   Confidence& conf = report.confidence;
-  conf.seeds = seed_checks(report.candidates, c.targets, c.budget.seeds, report.combined_held_out);
+  conf.seeds = seed_checks(report.candidates, c.targets, c.budget.seeds, budget);
   const std::string verdict = report.verdict.candidate < 0
                                   ? ""
                                   : report.candidates[report.verdict.candidate].candidate.effect;
   conf.seeds_agreeing =
       int(std::count_if(conf.seeds.begin(), conf.seeds.end(),
                         [&](const SeedCheck& s) { return s.verdict == verdict; }));
-  const BootstrapResult boot = bootstrap_verdicts(
-      report.candidates, c.targets, budget, report.combined_held_out, c.bootstrap, c.random_seed);
+  const BootstrapResult boot =
+      bootstrap_verdicts(report.candidates, c.targets, budget, c.bootstrap, c.random_seed);
   conf.replicates = boot.replicates;
   conf.winners = boot.winners;
   if (boot.replicates > 0) {

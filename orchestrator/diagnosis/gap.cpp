@@ -1,5 +1,6 @@
 #include "orchestrator/diagnosis/gap.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -55,6 +56,22 @@ double combined_budget(const std::vector<Target>& targets, const std::vector<dou
     ++n;
   }
   return n ? std::sqrt(sum / n) : 0.0;
+}
+
+std::optional<double> rms_in_budgets(const std::vector<double>& r,
+                                     const std::vector<Target>& targets,
+                                     const std::vector<double>& budget, Role role) {
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (targets[i].role != role || !std::isfinite(r[i])) continue;
+    // Floored as the calibration weights are, so an exact lab value with no noise stays finite.
+    const double scale = std::max(noise_scale(targets[i], budget[i]), 1e-3);
+    sum += (r[i] / scale) * (r[i] / scale);
+    ++n;
+  }
+  if (n == 0) return std::nullopt;
+  return std::sqrt(sum / n);
 }
 
 std::optional<double> gap_closure(std::optional<double> rms_effect,

@@ -107,6 +107,9 @@ struct DiagnosisReport {
   ModelPoint budget_point;  // the base model's first fit, where the budget was measured
   double combined_calibration = 0.0;
   double combined_held_out = 0.0;
+  // The base model's held-out residuals (real runs) in budgets: rms_in_budgets, what the verdict
+  // calls a gap above kGapBudgets.
+  std::optional<double> held_out_budgets;
   std::vector<CandidateResult> candidates;  // [0] = the base, then the effects in request order
   std::optional<RatioRange> ratio;
   Verdict verdict;

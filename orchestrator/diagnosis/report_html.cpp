@@ -93,7 +93,10 @@ std::string gap_section(const json& s) {
       show(at(at(g, "rms"), "calibration"), "%.4f") + ", held out " +
       show(at(at(g, "rms"), "held_out"), "%.4f") + "; combined budget " +
       show(at(at(g, "combined_budget"), "held_out"), "%.4f") +
-      " (held out). A residual beyond budget + lab uncertainty is marked.</p>\n";
+      " (held out). Held-out residuals in budgets (rms of each over its own budget and lab "
+      "uncertainty; a gap above 1): " +
+      show(at(g, "held_out_budgets"), "%.2f") +
+      ". A residual beyond budget + lab uncertainty is marked.</p>\n";
   out +=
       "<table><tr><th>observation</th><th>test</th><th>observable</th><th>conditions</th>"
       "<th>role</th><th>lab</th><th>base sim</th><th>ln(sim/lab)</th><th>budget</th>"

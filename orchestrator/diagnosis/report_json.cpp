@@ -210,7 +210,8 @@ json gap_json(const DiagnosisReport& r, const std::vector<Target>& targets,
   return {{"rms", rms_json(base.confirmed_rms)},
           {"combined_budget",
            {{"calibration", r.combined_calibration}, {"held_out", r.combined_held_out}}},
-          {"exceeds_budget", base.confirmed_rms.held_out.value_or(0) > r.combined_held_out},
+          {"held_out_budgets", num(r.held_out_budgets)},
+          {"exceeds_budget", r.held_out_budgets.value_or(0) > kGapBudgets},
           {"significant", significant}};
 }
 

@@ -29,9 +29,9 @@ int group(const CandidateResult& c) {
 
 }  // namespace
 
-int choose_effect(std::optional<double> base_held_out_rms, double combined_held_out,
+int choose_effect(std::optional<double> base_held_out_budgets,
                   const std::vector<Contender>& contenders) {
-  if (!base_held_out_rms || !(*base_held_out_rms > combined_held_out)) return -1;
+  if (!base_held_out_budgets || !(*base_held_out_budgets > kGapBudgets)) return -1;
   const Contender* best = nullptr;
   for (const Contender& c : contenders) {
     if (!best || c.g > best->g) best = &c;
@@ -72,41 +72,42 @@ std::string verdict_label(const std::vector<CandidateResult>& candidates, int in
 }
 
 Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
-               double combined_held_out) {
+               std::optional<double> gap, double combined_held_out) {
   Verdict v;
   std::vector<Contender> contenders;
   for (int i : order) {
     if (eligible(candidates[i])) contenders.push_back({i, *candidates[i].g_confirmed});
   }
   const auto base_rms = candidates[0].confirmed_rms.held_out;
-  v.candidate = choose_effect(base_rms, combined_held_out, contenders);
+  v.candidate = choose_effect(gap, contenders);
   for (int i : order) {
     if (i != v.candidate) {
       v.runner_up = i;
       break;
     }
   }
-  const std::string budget = fixed(combined_held_out);
-  if (!base_rms) {
+  if (!base_rms || !gap) {
     v.reason = "the base model has no held-out residual (its runs failed): nothing to judge";
-  } else if (!(*base_rms > combined_held_out)) {
-    v.reason = "the base model's held-out rms " + fixed(*base_rms) +
-               " is within the combined budget " + budget +
-               " (numerical noise and lab uncertainty): no gap to explain";
+    return v;
+  }
+  const std::string size = "the base model's held-out residuals are " + fixed(*gap, 2) +
+                           " budgets (rms of each over its own numerical budget and lab "
+                           "uncertainty; held-out rms " +
+                           fixed(*base_rms) + ", combined budget " + fixed(combined_held_out) + ")";
+  if (!(*gap > kGapBudgets)) {
+    v.reason = size + ": within their budgets, no gap to explain";
   } else if (v.candidate >= 0) {
     const CandidateResult& c = candidates[v.candidate];
     v.reason = c.candidate.effect + " closes G = " + fixed(*c.g_confirmed, 2) +
-               " of the held-out gap (base held-out rms " + fixed(*base_rms) + " -> " +
-               fixed(c.confirmed_rms.held_out.value_or(0)) + ", combined budget " + budget + ")";
+               " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
+               fixed(c.confirmed_rms.held_out.value_or(0)) + "; " + size + ")";
   } else if (contenders.empty()) {
-    v.reason = "the base model's held-out rms " + fixed(*base_rms) + " exceeds the budget " +
-               budget +
-               ", but no candidate effect is both identifiable from these observations and able "
-               "to fit the calibration observations";
+    v.reason = size +
+               ": a gap, but no candidate effect is both identifiable from these observations and "
+               "able to fit the calibration observations";
   } else {
     const CandidateResult& c = candidates[contenders.front().index];
-    v.reason = "the base model's held-out rms " + fixed(*base_rms) + " exceeds the budget " +
-               budget + ", but the best effect, " + c.candidate.effect +
+    v.reason = size + ": a gap, but the best effect, " + c.candidate.effect +
                ", closes only G = " + fixed(*c.g_confirmed, 2) + " of it (< " +
                fixed(kMinGapClosure, 1) + "): none of the candidates explains the gap";
   }
@@ -116,14 +117,15 @@ Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector
 std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<std::uint64_t>& seeds,
-                                   double combined_held_out) {
+                                   const std::vector<double>& budget) {
   std::vector<SeedCheck> out;
   const std::vector<double> lab = ln_lab(targets);
   for (std::size_t j = 0; j < seeds.size(); ++j) {
     if (candidates[0].seed_ln.size() <= j) break;
     SeedCheck check;
     check.seed = seeds[j];
-    const auto base_rms = rms(residuals(candidates[0].seed_ln[j], lab), targets, Role::held_out);
+    const std::vector<double> base_residuals = residuals(candidates[0].seed_ln[j], lab);
+    const auto base_rms = rms(base_residuals, targets, Role::held_out);
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
@@ -134,7 +136,8 @@ std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidate
       check.gap_closure[c.candidate.effect] = *g;
       contenders.push_back({i, *g});
     }
-    const int chosen = choose_effect(base_rms, combined_held_out, contenders);
+    const int chosen =
+        choose_effect(rms_in_budgets(base_residuals, targets, budget, Role::held_out), contenders);
     check.verdict = chosen < 0 ? "" : candidates[chosen].candidate.effect;
     out.push_back(std::move(check));
   }

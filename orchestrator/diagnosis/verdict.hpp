@@ -14,9 +14,11 @@ struct Contender {
   double g;
 };
 
-// docs/diagnosis.md: the contender with the largest G if the base's held-out rms exceeds the
-// combined budget and that G >= 0.3; otherwise -1 ("no effect needed"). Ties keep the earlier.
-int choose_effect(std::optional<double> base_held_out_rms, double combined_held_out,
+// docs/diagnosis.md: the contender with the largest G if the base's held-out residuals exceed their
+// budgets (rms_in_budgets > kGapBudgets) and that G >= 0.3; otherwise -1 ("no effect needed").
+// Ties keep the earlier.
+inline constexpr double kGapBudgets = 1.0;
+int choose_effect(std::optional<double> base_held_out_budgets,
                   const std::vector<Contender>& contenders);
 
 // A candidate explains the data only if it fits the calibration observations: its calibration rms
@@ -35,15 +37,16 @@ void mark_calibration_fits(std::vector<CandidateResult>& candidates, double comb
 std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
 
 // The verdict over the confirmed identifiable effects (real runs only) and the runner-up (the
-// best-ranked effect that is not the verdict), with a sentence saying why.
+// best-ranked effect that is not the verdict), with a sentence saying why. `gap` is the base's
+// held-out residuals in budgets (rms_in_budgets of its real runs); the combined budget is quoted.
 Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
-               double combined_held_out);
+               std::optional<double> gap, double combined_held_out);
 
 // The verdict rule replayed on each replicate seed's runs of the base and confirmed effects.
 std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<std::uint64_t>& seeds,
-                                   double combined_held_out);
+                                   const std::vector<double>& budget);
 
 // high: >= 90% of bootstrap replicates and every seed agree; medium: >= 70% and most seeds;
 // low otherwise.

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "orchestrator/diagnosis/driver.hpp"
@@ -78,7 +79,8 @@ TEST(Diagnosis, NullCaseNeedsNoEffect) {
   EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
   EXPECT_EQ(v["label"], "no effect needed");
   EXPECT_FALSE(r.summary["gap"]["exceeds_budget"].get<bool>()) << r.summary["gap"].dump(2);
-  EXPECT_NE(v["reason"].get<std::string>().find("within the combined budget"), std::string::npos);
+  EXPECT_NE(v["reason"].get<std::string>().find("within their budgets"), std::string::npos);
+  EXPECT_LE(r.summary["gap"]["held_out_budgets"].get<double>(), 1.0);
   EXPECT_GE(v["confidence"]["bootstrap"]["agreement"].get<double>(), 0.7);
 }
 
@@ -217,14 +219,42 @@ TEST(Verdict, ACandidateThatCannotFitTheCalibrationDataIsNotTheVerdict) {
   EXPECT_FALSE(c[0].fits_calibration);  // the base misses too; it is the reference, not a contender
   const std::vector<int> order = rank_effects(c);
   EXPECT_EQ(order.front(), 1);
-  const Verdict v = decide(c, order, 0.17);
+  const Verdict v = decide(c, order, 1.20 / 0.17, 0.17);
   EXPECT_EQ(v.candidate, 1);
   EXPECT_EQ(v.runner_up, 2);
   // With a calibration budget for which 1.65 is less than four budgets, both fit and held-out G
   // decides.
   mark_calibration_fits(c, 0.45);
   EXPECT_TRUE(c[2].fits_calibration);
-  EXPECT_EQ(decide(c, rank_effects(c), 0.17).candidate, 2);
+  EXPECT_EQ(decide(c, rank_effects(c), 1.20 / 0.17, 0.17).candidate, 2);
+}
+
+// The gap is judged observation by observation, each residual against its own budget: a coarse
+// packing's 1.5x UCT moves 0.8 in ln under refinement while its 1.5x BTT moves 0.1, and pooling
+// the two would let the noisy one hide a gap that the precise one shows.
+TEST(Verdict, AGapInAPreciseObservationIsNotHiddenByANoisyOne) {
+  std::vector<Target> targets(3);
+  targets[0].role = Role::calibration;
+  targets[1].role = targets[2].role = Role::held_out;
+  for (Target& t : targets) t.sigma = 0.0;
+  const std::vector<double> budget{0.1, 0.8, 0.1};
+  const std::vector<double> r{0.05, 0.1, -0.4};  // the precise BTT misses by 4 budgets
+  // Pooled: held-out rms 0.29 is within the combined budget 0.57 ...
+  EXPECT_LT(*rms(r, targets, Role::held_out), combined_budget(targets, budget, Role::held_out));
+  // ... but in budgets it is sqrt((0.125^2 + 4^2) / 2) = 2.83.
+  EXPECT_NEAR(*rms_in_budgets(r, targets, budget, Role::held_out), 2.830, 1e-3);
+  EXPECT_NEAR(*rms_in_budgets(r, targets, budget, Role::calibration), 0.5, 1e-12);
+  EXPECT_EQ(choose_effect(rms_in_budgets(r, targets, budget, Role::held_out), {{1, 0.8}}), 1);
+  // Within budgets: no gap, whatever G an effect would have.
+  const std::vector<double> small{0.05, 0.7, -0.05};
+  EXPECT_LT(*rms_in_budgets(small, targets, budget, Role::held_out), 1.0);
+  EXPECT_EQ(choose_effect(rms_in_budgets(small, targets, budget, Role::held_out), {{1, 0.8}}), -1);
+  // A gap, but G below 0.3 names nothing; a missing residual is left out, none at all is no gap.
+  EXPECT_EQ(choose_effect(2.83, {{1, 0.2}}), -1);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NEAR(*rms_in_budgets({0.0, nan, -0.4}, targets, budget, Role::held_out), 4.0, 1e-12);
+  EXPECT_FALSE(rms_in_budgets({0.0, nan, nan}, targets, budget, Role::held_out));
+  EXPECT_EQ(choose_effect(std::nullopt, {{1, 0.8}}), -1);
 }
 
 // The synthetic model with a ripple along ln F_r0 that vanishes on every grid node: the surfaces
