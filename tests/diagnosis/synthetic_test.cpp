@@ -229,9 +229,9 @@ TEST(Verdict, ACandidateThatCannotFitTheCalibrationDataIsNotTheVerdict) {
   EXPECT_EQ(decide(c, rank_effects(c), 1.20 / 0.17, 0.17).candidate, 2);
 }
 
-// The gap is judged observation by observation, each residual against its own budget: a coarse
-// packing's 1.5x UCT moves 0.8 in ln under refinement while its 1.5x BTT moves 0.1, and pooling
-// the two would let the noisy one hide a gap that the precise one shows.
+// The gap is judged observation by observation, each residual against its own budget: with a
+// 1.5x UCT whose budget is 0.8 in ln and a 1.5x BTT whose budget is 0.1 (the demo twins' budgets
+// spread as widely), pooling the two would let the noisy one hide a gap the precise one shows.
 TEST(Verdict, AGapInAPreciseObservationIsNotHiddenByANoisyOne) {
   std::vector<Target> targets(3);
   targets[0].role = Role::calibration;
