@@ -100,7 +100,9 @@ Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector
     const CandidateResult& c = candidates[v.candidate];
     v.reason = c.candidate.effect + " closes G = " + fixed(*c.g_confirmed, 2) +
                " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
-               fixed(c.confirmed_rms.held_out.value_or(0)) + "; " + size + ")";
+               fixed(c.confirmed_rms.held_out.value_or(0)) + "); the base model's held-out " +
+               "residuals are " + fixed(*gap, 2) + " budgets (combined budget " +
+               fixed(combined_held_out) + ")";
   } else if (contenders.empty()) {
     v.reason = size +
                ": a gap, but no candidate effect is both identifiable from these observations and "

@@ -221,6 +221,8 @@ TEST(Verdict, ACandidateThatCannotFitTheCalibrationDataIsNotTheVerdict) {
   EXPECT_EQ(order.front(), 1);
   const Verdict v = decide(c, order, 1.20 / 0.17, 0.17);
   EXPECT_EQ(v.candidate, 1);
+  EXPECT_NE(v.reason.find("packing closes G = 0.41"), std::string::npos) << v.reason;
+  EXPECT_NE(v.reason.find("7.06 budgets"), std::string::npos) << v.reason;
   EXPECT_EQ(v.runner_up, 2);
   // With a calibration budget for which 1.65 is less than four budgets, both fit and held-out G
   // decides.
