@@ -19,8 +19,9 @@ struct PoolConfig {
   int workers = 1;
   int max_attempts = 3;  // first run + retries
   std::chrono::milliseconds job_timeout{std::chrono::hours(6)};
-  std::filesystem::path data_dir;  // absolute
-  std::chrono::milliseconds poll_interval{100};
+  std::filesystem::path data_dir;                // absolute
+  std::chrono::milliseconds poll_interval{100};  // the longest wait between looks at a running job
+  std::chrono::milliseconds first_poll_interval{1};  // the first wait; x1.5 after each look
   std::chrono::milliseconds cancel_check_interval{300};
   std::chrono::milliseconds progress_interval{1000};
 };
