@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
+#include <utility>
 
 namespace rockcal::diagnosis {
 
 std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed) {
   std::vector<BudgetVariant> out;
   for (std::uint64_t seed : spec.seeds) {
-    out.push_back({"seed " + std::to_string(seed), {seed, 1.0, 1.0}});
+    out.push_back({"seed " + std::to_string(seed), {seed, 1.0, 1.0}, "seed"});
   }
   auto factor = [](double x) {
     std::string s = std::to_string(x);
@@ -17,8 +20,11 @@ std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t
     if (s.back() == '.') s.pop_back();
     return s;
   };
-  out.push_back({"speed x" + factor(spec.speed_factor), {template_seed, spec.speed_factor, 1.0}});
-  out.push_back({"resolution x" + factor(spec.resolution), {template_seed, 1.0, spec.resolution}});
+  out.push_back(
+      {"speed x" + factor(spec.speed_factor), {template_seed, spec.speed_factor, 1.0}, "speed"});
+  for (double r : spec.resolutions) {
+    out.push_back({"resolution x" + factor(r), {template_seed, 1.0, r}, "resolution"});
+  }
   return out;
 }
 
@@ -49,7 +55,12 @@ Budget numerical_budget(std::vector<BudgetVariant> variants,
   b.points = int(references.size());
   b.per_target.assign(n, 0.0);
   b.measured.assign(n, false);
+  // Per kind and target: sum of squared variant changes and their count.
+  std::map<std::string, std::vector<std::pair<double, int>>> kinds;
   for (std::size_t v = 0; v < b.variants.size(); ++v) {
+    const std::string& kind = b.variants[v].kind;
+    auto& pooled = kinds[kind.empty() ? "#" + std::to_string(v) : kind];
+    pooled.resize(n, {0.0, 0});
     std::vector<double> change(n, nan);
     for (std::size_t i = 0; i < n; ++i) {
       double sum = 0.0;
@@ -64,10 +75,17 @@ Budget numerical_budget(std::vector<BudgetVariant> variants,
       }
       if (count == 0) continue;
       change[i] = std::sqrt(sum / count);
-      b.per_target[i] = std::max(b.per_target[i], change[i]);
+      pooled[i].first += change[i] * change[i];
+      ++pooled[i].second;
       b.measured[i] = true;
     }
     b.change.push_back(std::move(change));
+  }
+  for (const auto& [kind, pooled] : kinds) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (pooled[i].second == 0) continue;
+      b.per_target[i] = std::max(b.per_target[i], std::sqrt(pooled[i].first / pooled[i].second));
+    }
   }
   double largest = 0.0;
   for (std::size_t i = 0; i < n; ++i) {

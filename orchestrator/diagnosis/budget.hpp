@@ -14,7 +14,10 @@ namespace rockcal::diagnosis {
 struct BudgetSpec {
   std::vector<std::uint64_t> seeds;  // replicate packing seeds (default: template seed + 1, + 2)
   double speed_factor = 0.5;         // platen speed multiplier
-  double resolution = 1.25;          // particles per length multiplier
+  // Particles-per-length multipliers. On a coarse FCC packing each refinement is one draw of which
+  // lattice rows the specimen keeps (docs/diagnosis.md: 1.125-1.5x move the demo's peaks by 0.2 to
+  // 1.6 in ln), so several give a truer spread than one; the default is the single 1.25x.
+  std::vector<double> resolutions{1.25};
   // Model points the variants are run at: the base fit and its neighbours (budget_offsets). One
   // point gives one draw of a change that on a coarse packing jumps by x4 between neighbouring
   // strengths; the rms over several is the spread the budget stands for.
@@ -24,6 +27,9 @@ struct BudgetSpec {
 struct BudgetVariant {
   std::string name;  // "seed 2", "speed x0.5", "resolution x1.25"
   Numerics numerics;
+  // Variants of one kind ("seed", "speed", "resolution") are draws of one source of numerical
+  // error and pool by rms; kinds, and variants without a kind, count by the largest.
+  std::string kind;
 };
 
 // The seed replicates first, then the speed and the resolution variants.
@@ -45,10 +51,10 @@ struct Budget {
   int points = 0;                           // model points the changes were averaged over
 };
 
-// Per variant and target the rms over the points of |ln(variant / reference)|, then per target the
-// largest over the variants. outcomes[p][v] is variant v at point p, references[p] the point's
-// nominal run. A target no variant measured (every run failed) gets the largest budget of the
-// others: unknown noise is not counted as no noise.
+// Per variant and target the rms over the points of |ln(variant / reference)|; per kind the rms
+// over its variants; per target the largest over the kinds. outcomes[p][v] is variant v at point p,
+// references[p] the point's nominal run. A target no variant measured (every run failed) gets the
+// largest budget of the others: unknown noise is not counted as no noise.
 Budget numerical_budget(std::vector<BudgetVariant> variants,
                         const std::vector<RunOutcome>& references,
                         const std::vector<std::vector<RunOutcome>>& outcomes);

@@ -1,5 +1,6 @@
 #include "orchestrator/diagnosis/campaign.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -59,6 +60,30 @@ std::vector<std::uint64_t> parse_seeds(JsonFields& f, std::uint64_t template_see
   return seeds;
 }
 
+// A number or a list of up to 4 distinct numbers, each in (1, 3].
+std::vector<double> parse_resolutions(JsonFields& f, std::vector<double> fallback) {
+  const json* v = f.get("resolution");
+  if (!v) return fallback;
+  const std::string field = f.path_of("resolution");
+  const json list = v->is_array() ? *v : json::array({*v});
+  if (list.empty() || list.size() > 4) {
+    throw CampaignError(field, "must be a number or a list of 1 to 4 numbers");
+  }
+  std::vector<double> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string item = v->is_array() ? field + "[" + std::to_string(i) + "]" : field;
+    const json& r = list[i];
+    if (!r.is_number() || !(r.get<double>() > 1.0 && r.get<double>() <= 3.0)) {
+      throw CampaignError(item, "must be a number in (1, 3] (a finer packing)");
+    }
+    if (std::find(out.begin(), out.end(), r.get<double>()) != out.end()) {
+      throw CampaignError(item, "repeats a resolution");
+    }
+    out.push_back(r.get<double>());
+  }
+  return out;
+}
+
 BudgetSpec parse_budget(JsonFields& root, std::uint64_t template_seed) {
   BudgetSpec b;
   const json* v = root.get("budget");
@@ -72,10 +97,7 @@ BudgetSpec parse_budget(JsonFields& root, std::uint64_t template_seed) {
   if (!(b.speed_factor < 1.0)) {
     throw CampaignError("budget.speed_factor", "must be below 1 (a slower platen)");
   }
-  b.resolution = f.positive("resolution").value_or(b.resolution);
-  if (!(b.resolution > 1.0 && b.resolution <= 3.0)) {
-    throw CampaignError("budget.resolution", "must be in (1, 3] (a finer packing)");
-  }
+  b.resolutions = parse_resolutions(f, b.resolutions);
   b.points = int(f.integer("points", 1, 9).value_or(b.points));
   f.reject_unknown();
   return b;
@@ -179,8 +201,9 @@ void validate_runs(const DiagnosisCampaign& c, const JobSpec& model) {
     }
     check({model_point(c, base, centre), {c.sample_seed, c.budget.speed_factor, 1.0}},
           "budget.speed_factor", run);
-    check({model_point(c, base, centre), {c.sample_seed, 1.0, c.budget.resolution}},
-          "budget.resolution", run);
+    for (double r : c.budget.resolutions) {
+      check({model_point(c, base, centre), {c.sample_seed, 1.0, r}}, "budget.resolution", run);
+    }
   }
 }
 

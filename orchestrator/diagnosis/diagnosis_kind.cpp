@@ -23,7 +23,8 @@ DiagnosisCampaign parse_request(const nlohmann::json& request) {
 std::size_t planned_jobs(const DiagnosisCampaign& c) {
   const std::size_t grid = std::size_t(grid_points(c));
   const std::size_t seeds = c.budget.seeds.size();
-  const std::size_t budget = budget_offsets(c.budget.points).size() * (3 + seeds);
+  const std::size_t budget =
+      budget_offsets(c.budget.points).size() * (2 + seeds + c.budget.resolutions.size());
   const std::size_t confirm = (1 + std::size_t(c.confirm)) * (1 + std::size_t(c.refine) + seeds);
   return (grid + budget + confirm) * plan_runs(c.targets).runs.size();
 }

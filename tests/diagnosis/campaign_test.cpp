@@ -71,6 +71,13 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points, 3 confirmed candidates x (3
   // refinement runs + 2 seeds).
   EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 5 * 5 + 3 * 5) * 4u);
+  EXPECT_EQ(c.budget.resolutions, std::vector<double>{1.25});
+  // Two resolutions: one more run at each budget point.
+  json two = request();
+  two["budget"] = {{"resolution", {1.25, 1.5}}};
+  const DiagnosisCampaign c2 = parse_diagnosis_campaign(two);
+  EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
+  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 5 * 6 + 3 * 5) * 4u);
   // Without "effects", every registered effect is a candidate.
   json all = request();
   all.erase("effects");
@@ -123,6 +130,22 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
       {"budget.resolution",
        [](json& r) {
          r["budget"] = {{"resolution", 0.8}};
+       }},
+      {"budget.resolution[1]",
+       [](json& r) {
+         r["budget"] = {{"resolution", {1.25, 4}}};
+       }},
+      {"budget.resolution[1]",
+       [](json& r) {
+         r["budget"] = {{"resolution", {1.25, 1.25}}};
+       }},
+      {"budget.resolution",
+       [](json& r) {
+         r["budget"] = {{"resolution", json::array()}};
+       }},
+      {"budget.resolution",
+       [](json& r) {
+         r["budget"] = {{"resolution", "1.25"}};
        }},
       {"budget.speed_factor",
        [](json& r) {
@@ -279,6 +302,28 @@ TEST(DiagnosisBudget, IsTheRmsChangeOverItsPointsAndTheLargestOverTheVariants) {
   EXPECT_EQ(edge[1], (std::vector<double>{1.0 - kBudgetStep, 0.5}));
   EXPECT_EQ(budget_points({0.5, 0.5}, 5).size(), 5u);
   EXPECT_EQ(budget_offsets(9).size(), 9u);
+
+  // Variants of one kind are draws of one source and pool by rms; kinds count by the largest.
+  // Target 0 at one point: two resolutions move it by 0.3 and 0.1 (rms 0.2236), the speed by
+  // 0.25: the speed's 0.25 is the budget. Target 1: resolutions 0.4 and 0.2 (rms 0.3162) beat
+  // the speed's 0.1.
+  const std::vector<RunOutcome> ref1{run({100.0, 50.0})};
+  const std::vector<std::vector<RunOutcome>> by_kind{
+      {run({100.0 * std::exp(0.25), 50.0 * std::exp(0.1)}),
+       run({100.0 * std::exp(0.3), 50.0 * std::exp(-0.4)}),
+       run({100.0 * std::exp(-0.1), 50.0 * std::exp(0.2)})}};
+  BudgetSpec spec;
+  spec.seeds = {};
+  spec.resolutions = {1.25, 1.5};
+  const std::vector<BudgetVariant> variants = budget_variants(spec, 1);
+  ASSERT_EQ(variants.size(), 3u);
+  EXPECT_EQ(variants[1].name, "resolution x1.25");
+  EXPECT_EQ(variants[2].name, "resolution x1.5");
+  EXPECT_EQ(variants[2].kind, "resolution");
+  EXPECT_EQ(variants[2].numerics.resolution, 1.5);
+  const Budget pooled = numerical_budget(variants, ref1, by_kind);
+  EXPECT_NEAR(pooled.per_target[0], 0.25, 1e-12);
+  EXPECT_NEAR(pooled.per_target[1], std::sqrt((0.16 + 0.04) / 2), 1e-12);
 }
 
 TEST(DiagnosisRefinement, AWorseRunHalvesTheNextStepTowardsTheSameFit) {
