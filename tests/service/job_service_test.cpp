@@ -110,7 +110,7 @@ TEST_F(JobServiceTest, CancelStopsRunningJobsAndDropsQueuedOnes) {
 }
 
 // A diagnosis runs thousands of jobs of 10-100 ms: the pool must notice a short job's end soon,
-// not a whole poll interval (100 ms) later, which once doubled a demo diagnosis's wall time.
+// not a whole poll interval (100 ms) later (a demo diagnosis took 542 s with that, 431 s without).
 TEST_F(JobServiceTest, AShortJobIsRecordedSoonAfterItEnds) {
   start(1);
   auto id = service->create_campaign(
