@@ -53,7 +53,7 @@ Objective calibration_objective(const std::vector<Target>& targets,
   Objective o{std::move(lab), std::vector<double>(targets.size(), 0.0)};
   for (std::size_t i = 0; i < targets.size(); ++i) {
     if (targets[i].role != Role::calibration || !surfaces.per_target[i]) continue;
-    const double scale = std::max(noise_scale(targets[i], budget[i]), 1e-3);
+    const double scale = std::max(noise_scale(targets[i], budget[i]), kMinNoiseScale);
     o.weight[i] = 1.0 / (scale * scale);
   }
   return o;

@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
+#include <set>
 #include <string>
-#include <utility>
 
 namespace rockcal::diagnosis {
 
@@ -26,6 +25,10 @@ std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t
     out.push_back({"resolution x" + factor(r), {template_seed, 1.0, r}, "resolution"});
   }
   return out;
+}
+
+std::size_t budget_runs_per_point(const BudgetSpec& spec) {
+  return 1 + budget_variants(spec, 0).size();
 }
 
 std::vector<std::vector<double>> budget_offsets(int points) {
@@ -55,12 +58,7 @@ Budget numerical_budget(std::vector<BudgetVariant> variants,
   b.points = int(references.size());
   b.per_target.assign(n, 0.0);
   b.measured.assign(n, false);
-  // Per kind and target: sum of squared variant changes and their count.
-  std::map<std::string, std::vector<std::pair<double, int>>> kinds;
   for (std::size_t v = 0; v < b.variants.size(); ++v) {
-    const std::string& kind = b.variants[v].kind;
-    auto& pooled = kinds[kind.empty() ? "#" + std::to_string(v) : kind];
-    pooled.resize(n, {0.0, 0});
     std::vector<double> change(n, nan);
     for (std::size_t i = 0; i < n; ++i) {
       double sum = 0.0;
@@ -75,16 +73,22 @@ Budget numerical_budget(std::vector<BudgetVariant> variants,
       }
       if (count == 0) continue;
       change[i] = std::sqrt(sum / count);
-      pooled[i].first += change[i] * change[i];
-      ++pooled[i].second;
       b.measured[i] = true;
     }
     b.change.push_back(std::move(change));
   }
-  for (const auto& [kind, pooled] : kinds) {
+  std::set<std::string> kinds;
+  for (const BudgetVariant& v : b.variants) kinds.insert(v.kind);
+  for (const std::string& kind : kinds) {
     for (std::size_t i = 0; i < n; ++i) {
-      if (pooled[i].second == 0) continue;
-      b.per_target[i] = std::max(b.per_target[i], std::sqrt(pooled[i].first / pooled[i].second));
+      double sum = 0.0;
+      int count = 0;
+      for (std::size_t v = 0; v < b.variants.size(); ++v) {
+        if (b.variants[v].kind != kind || !std::isfinite(b.change[v][i])) continue;
+        sum += b.change[v][i] * b.change[v][i];
+        ++count;
+      }
+      if (count > 0) b.per_target[i] = std::max(b.per_target[i], std::sqrt(sum / count));
     }
   }
   double largest = 0.0;

@@ -15,8 +15,9 @@ struct BudgetSpec {
   std::vector<std::uint64_t> seeds;  // replicate packing seeds (default: template seed + 1, + 2)
   double speed_factor = 0.5;         // platen speed multiplier
   // Particles-per-length multipliers. On a coarse FCC packing each refinement is one draw of which
-  // lattice rows the specimen keeps (docs/diagnosis.md: 1.125-1.5x move the demo's peaks by 0.2 to
-  // 1.6 in ln), so several give a truer spread than one; the default is the single 1.25x.
+  // lattice rows the specimen keeps (docs/diagnosis.md: 1.125-1.5x move a demo observation by up
+  // to 1.6 in ln), so several give a truer spread than one; the default is the issue's
+  // single 1.25x.
   std::vector<double> resolutions{1.25};
   // Model points the variants are run at: the base fit and its neighbours (budget_offsets). One
   // point gives one draw of a change that on a coarse packing jumps by x4 between neighbouring
@@ -28,12 +29,14 @@ struct BudgetVariant {
   std::string name;  // "seed 2", "speed x0.5", "resolution x1.25"
   Numerics numerics;
   // Variants of one kind ("seed", "speed", "resolution") are draws of one source of numerical
-  // error and pool by rms; kinds, and variants without a kind, count by the largest.
+  // error and pool by rms; kinds count by the largest.
   std::string kind;
 };
 
 // The seed replicates first, then the speed and the resolution variants.
 std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed);
+// Runs at each budget point: the reference and every variant.
+std::size_t budget_runs_per_point(const BudgetSpec& spec);
 
 // Unit-cube offsets (fr0, fs0) of the budget's points from the base fit: the fit itself, then
 // +-kBudgetStep along each strength, then the diagonals; the first `points` of them.

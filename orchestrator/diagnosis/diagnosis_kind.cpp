@@ -24,7 +24,7 @@ std::size_t planned_jobs(const DiagnosisCampaign& c) {
   const std::size_t grid = std::size_t(grid_points(c));
   const std::size_t seeds = c.budget.seeds.size();
   const std::size_t budget =
-      budget_offsets(c.budget.points).size() * (2 + seeds + c.budget.resolutions.size());
+      budget_offsets(c.budget.points).size() * budget_runs_per_point(c.budget);
   const std::size_t confirm = (1 + std::size_t(c.confirm)) * (1 + std::size_t(c.refine) + seeds);
   return (grid + budget + confirm) * plan_runs(c.targets).runs.size();
 }

@@ -262,7 +262,7 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   const SurfaceCalibration base_first =
       calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
   report.budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
-  const int runs_per_point = 2 + int(c.budget.seeds.size() + c.budget.resolutions.size());
+  const int runs_per_point = int(budget_runs_per_point(c.budget));
   phase(options, "budget", 2, int(budget_offsets(c.budget.points).size()) * runs_per_point);
   report.budget = measure_budget(c, report.candidates[0], base_first.z, evaluator);
   report.model_points += report.budget.points * runs_per_point;

@@ -65,8 +65,7 @@ std::optional<double> rms_in_budgets(const std::vector<double>& r,
   int n = 0;
   for (std::size_t i = 0; i < r.size(); ++i) {
     if (targets[i].role != role || !std::isfinite(r[i])) continue;
-    // Floored as the calibration weights are, so an exact lab value with no noise stays finite.
-    const double scale = std::max(noise_scale(targets[i], budget[i]), 1e-3);
+    const double scale = std::max(noise_scale(targets[i], budget[i]), kMinNoiseScale);
     sum += (r[i] / scale) * (r[i] / scale);
     ++n;
   }

@@ -23,6 +23,9 @@ std::optional<double> rms(const std::vector<double>& residuals, const std::vecto
 
 // sqrt(budget^2 + sigma^2): the spread a residual of one target has without any physics gap.
 double noise_scale(const Target& target, double budget);
+// The least noise scale a residual is divided by (0.1%), so that an exact lab value with no
+// budget neither takes all of a calibration's weight nor makes a gap infinite.
+inline constexpr double kMinNoiseScale = 1e-3;
 
 // sqrt(mean over the role of noise_scale^2): what the rms of that role's residuals would be from
 // numerical noise and lab scatter alone (reported beside the rms; the verdict uses

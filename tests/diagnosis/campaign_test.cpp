@@ -78,6 +78,7 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   const DiagnosisCampaign c2 = parse_diagnosis_campaign(two);
   EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
   EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 5 * 6 + 3 * 5) * 4u);
+  EXPECT_EQ(budget_runs_per_point(c2.budget), 6u);  // reference, 2 seeds, speed, 2 resolutions
   // Without "effects", every registered effect is a candidate.
   json all = request();
   all.erase("effects");
@@ -281,7 +282,8 @@ TEST(DiagnosisBudget, IsTheRmsChangeOverItsPointsAndTheLargestOverTheVariants) {
       {run({200.0 * std::exp(-0.05), 80.0, std::nullopt}),
        run({200.0 * std::exp(-0.1), 90.0, std::nullopt})}};
   const Budget b = numerical_budget(
-      {{"speed x0.5", {1, 0.5, 1}}, {"resolution x1.25", {1, 1, 1.25}}}, refs, changed);
+      {{"speed x0.5", {1, 0.5, 1}, "speed"}, {"resolution x1.25", {1, 1, 1.25}, "resolution"}},
+      refs, changed);
   EXPECT_EQ(b.points, 2);
   EXPECT_NEAR(b.change[0][0], 0.05, 1e-12);
   EXPECT_NEAR(b.change[1][0], std::sqrt((0.09 + 0.01) / 2), 1e-12);
