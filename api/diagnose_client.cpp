@@ -76,8 +76,11 @@ std::string diagnosis_text(const json& s) {
   if (at(v, "gap_closure").is_number()) out << ", G = " << fmt(at(v, "gap_closure"), "%.2f");
   out << ", confidence " << fmt(at(c, "level")) << " (bootstrap "
       << fmt(at(at(c, "bootstrap"), "agreement"), "%.2f") << ", seeds "
-      << fmt(at(c, "seeds_agreeing")) << "/" << at(c, "seeds").size() << ")\n  "
-      << fmt(at(v, "reason")) << "\n  F_r0 = " << fmt(at(v, "fr0"))
+      << fmt(at(c, "seeds_agreeing")) << "/" << fmt(at(c, "seeds_informative"))
+      << (at(c, "seeds_identical").is_number() && at(c, "seeds_identical").get<int>() > 0
+              ? ", " + fmt(at(c, "seeds_identical")) + " identical to the nominal runs"
+              : "")
+      << ")\n  " << fmt(at(v, "reason")) << "\n  F_r0 = " << fmt(at(v, "fr0"))
       << ", F_s0 = " << fmt(at(v, "fs0")) << "\n\n";
   char line[256];
   std::snprintf(line, sizeof line, "  %-22s %10s %10s\n", "rms ln(sim/lab)", "before", "after");

@@ -303,9 +303,10 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   const std::string verdict = report.verdict.candidate < 0
                                   ? ""
                                   : report.candidates[report.verdict.candidate].candidate.effect;
-  conf.seeds_agreeing =
-      int(std::count_if(conf.seeds.begin(), conf.seeds.end(),
-                        [&](const SeedCheck& s) { return s.verdict == verdict; }));
+  for (const SeedCheck& s : conf.seeds) {
+    conf.seeds_informative += s.informative;
+    conf.seeds_agreeing += s.informative && s.verdict == verdict;
+  }
   const BootstrapResult boot =
       bootstrap_verdicts(report.candidates, c.targets, budget, c.bootstrap, c.random_seed);
   conf.replicates = boot.replicates;

@@ -75,6 +75,9 @@ struct SeedCheck {
   std::uint64_t seed = 0;
   std::string verdict;  // effect name, or "" for no effect needed
   std::map<std::string, double> gap_closure;
+  // False when every re-run equals its nominal run: a regular packing with no seeded effect does
+  // not depend on the seed, and the check then repeats the verdict instead of testing it.
+  bool informative = true;
 };
 
 struct Confidence {
@@ -82,8 +85,9 @@ struct Confidence {
   double agreement = 0.0;              // share of them with the nominal verdict
   std::map<std::string, int> winners;  // verdict ("" = none) -> replicates
   std::vector<SeedCheck> seeds;
-  int seeds_agreeing = 0;
-  std::string level;  // high | medium | low
+  int seeds_informative = 0;  // of `seeds`; only these count
+  int seeds_agreeing = 0;     // informative seeds that reach the nominal verdict
+  std::string level;          // high | medium | low
 };
 
 struct Verdict {

@@ -79,8 +79,13 @@ std::string verdict_section(const json& s) {
   out += "<tr><th>confidence</th><td>" + show(at(c, "level")) + ": bootstrap agreement " +
          percent(at(at(c, "bootstrap"), "agreement")) + " of " +
          show(at(at(c, "bootstrap"), "replicates")) + " replicates; " +
-         show(at(c, "seeds_agreeing")) + " of " + std::to_string(at(c, "seeds").size()) +
-         " replicate seeds agree</td></tr>";
+         show(at(c, "seeds_agreeing")) + " of " + show(at(c, "seeds_informative")) +
+         " replicate seeds agree" +
+         (at(c, "seeds_identical").is_number() && at(c, "seeds_identical").get<int>() > 0
+              ? " (" + show(at(c, "seeds_identical")) +
+                    " more re-ran identically to the nominal runs and are not counted)"
+              : "") +
+         "</td></tr>";
   out += "</table>\n<p class=\"note\">" + show(at(c, "method")) + "</p></section>\n";
   return out;
 }

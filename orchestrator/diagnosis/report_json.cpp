@@ -131,7 +131,8 @@ json confidence_json(const Confidence& c) {
   for (const SeedCheck& s : c.seeds) {
     seeds.push_back({{"seed", s.seed},
                      {"verdict", s.verdict.empty() ? "no effect needed" : s.verdict},
-                     {"gap_closure", s.gap_closure}});
+                     {"gap_closure", s.gap_closure},
+                     {"informative", s.informative}});
   }
   return {{"level", c.level},
           {"bootstrap",
@@ -139,13 +140,17 @@ json confidence_json(const Confidence& c) {
             {"agreement", c.replicates > 0 ? json(c.agreement) : json(nullptr)},
             {"winners", winners}}},
           {"seeds", seeds},
+          {"seeds_informative", c.seeds_informative},
+          {"seeds_identical", int(c.seeds.size()) - c.seeds_informative},
           {"seeds_agreeing", c.seeds_agreeing},
           {"method",
            "bootstrap: each replicate redraws every lab value with its lab uncertainty and "
            "numerical budget, re-fits every candidate on its surfaces (anchored to its real runs) "
            "and replays the verdict rule; seeds: the base and confirmed effects re-run at their "
-           "fitted points on each replicate packing seed, verdict rule replayed. high: >= 90% of "
-           "replicates and every seed agree; medium: >= 70% and most seeds; low otherwise"}};
+           "fitted points on each replicate packing seed, verdict rule replayed; a seed whose runs "
+           "all equal the nominal ones (a regular packing with no seeded effect) tests nothing "
+           "and is not counted. high: >= 90% of replicates and every counted seed agree; medium: "
+           ">= 70% and most counted seeds; low otherwise"}};
 }
 
 json verdict_json(const DiagnosisReport& r) {

@@ -1,6 +1,7 @@
 #include "orchestrator/diagnosis/verdict.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -116,6 +117,19 @@ Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector
   return v;
 }
 
+namespace {
+
+// Equal element by element, a missing value (NaN) equal only to another missing one.
+bool same_values(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] != b[i] && !(std::isnan(a[i]) && std::isnan(b[i]))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<std::uint64_t>& seeds,
@@ -126,6 +140,12 @@ std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidate
     if (candidates[0].seed_ln.size() <= j) break;
     SeedCheck check;
     check.seed = seeds[j];
+    check.informative = false;
+    for (const CandidateResult& c : candidates) {
+      if (c.seed_ln.size() > j && !same_values(c.seed_ln[j], c.confirmed_ln)) {
+        check.informative = true;
+      }
+    }
     const std::vector<double> base_residuals = residuals(candidates[0].seed_ln[j], lab);
     const auto base_rms = rms(base_residuals, targets, Role::held_out);
     std::vector<Contender> contenders;
@@ -147,7 +167,7 @@ std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidate
 }
 
 std::string confidence_level(const Confidence& c) {
-  const int seeds = int(c.seeds.size());
+  const int seeds = c.seeds_informative;
   if (c.agreement >= 0.9 && c.seeds_agreeing == seeds) return "high";
   if (c.agreement >= 0.7 && 2 * c.seeds_agreeing > seeds) return "medium";
   if (c.agreement >= 0.7 && seeds == 0) return "medium";

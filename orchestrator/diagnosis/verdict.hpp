@@ -42,14 +42,15 @@ std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
 Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
                std::optional<double> gap, double combined_held_out);
 
-// The verdict rule replayed on each replicate seed's runs of the base and confirmed effects.
+// The verdict rule replayed on each replicate seed's runs of the base and confirmed effects; a
+// seed is informative when some candidate's runs on it differ from its nominal runs.
 std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<std::uint64_t>& seeds,
                                    const std::vector<double>& budget);
 
-// high: >= 90% of bootstrap replicates and every seed agree; medium: >= 70% and most seeds;
-// low otherwise.
+// high: >= 90% of bootstrap replicates and every informative seed agree; medium: >= 70% and
+// most informative seeds; low otherwise.
 std::string confidence_level(const Confidence& c);
 
 // "heterogeneity", or "no effect needed".

@@ -259,6 +259,49 @@ TEST(Verdict, AGapInAPreciseObservationIsNotHiddenByANoisyOne) {
   EXPECT_EQ(choose_effect(std::nullopt, {{1, 0.8}}), -1);
 }
 
+// A regular packing does not depend on the packing seed: its replicate seeds re-run the nominal
+// runs exactly, so they repeat the verdict instead of testing it and must not count as agreement.
+struct SeedlessModel : SyntheticModel {
+  std::uint64_t seed;
+  explicit SeedlessModel(const DiagnosisCampaign& c)
+      : SyntheticModel(c.targets), seed(c.sample_seed) {}
+  std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override {
+    std::vector<RunRequest> nominal(requests.begin(), requests.end());
+    for (RunRequest& r : nominal) r.numerics.seed = seed;
+    return SyntheticModel::run_batch(nominal);
+  }
+};
+
+TEST(Confidence, SeedsThatReRunTheNominalRunsAreNotCounted) {
+  const Diagnosed seeded = diagnose("size", 0.8);
+  ASSERT_EQ(seeded.report.confidence.seeds.size(), 2u);
+  for (const SeedCheck& s : seeded.report.confidence.seeds) EXPECT_TRUE(s.informative);
+  EXPECT_EQ(seeded.report.confidence.seeds_informative, 2);
+
+  Diagnosed r{twin_campaign("size", 0.8), {}, {}};
+  SeedlessModel model(r.campaign);
+  r.report = run_diagnosis(r.campaign, model);
+  const Confidence& c = r.report.confidence;
+  ASSERT_EQ(c.seeds.size(), 2u);
+  for (const SeedCheck& s : c.seeds) {
+    EXPECT_FALSE(s.informative);
+    EXPECT_EQ(s.verdict, "size");  // the nominal verdict, repeated
+  }
+  EXPECT_EQ(c.seeds_informative, 0);
+  EXPECT_EQ(c.seeds_agreeing, 0);
+  const json j = to_json(r.report, r.campaign)["verdict"]["confidence"];
+  EXPECT_EQ(j["seeds_informative"], 0);
+  EXPECT_EQ(j["seeds"][0]["informative"], false);
+  EXPECT_NE(report_html(to_json(r.report, r.campaign)).find("2 more re-ran identically"),
+            std::string::npos);
+  // The level then rests on the bootstrap; one informative seed that disagrees lowers it.
+  Confidence level = c;
+  level.agreement = 0.95;
+  EXPECT_EQ(confidence_level(level), "high");
+  level.seeds_informative = 1;
+  EXPECT_EQ(confidence_level(level), "low");
+}
+
 // The synthetic model with a ripple along ln F_r0 that vanishes on every grid node: the surfaces
 // cannot see it, so a fit on them alone lands off the real optimum.
 struct RippledModel : SyntheticModel {
