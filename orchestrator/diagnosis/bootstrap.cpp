@@ -61,7 +61,8 @@ Objective calibration_objective(const std::vector<Target>& targets,
 
 BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
-                                   const std::vector<double>& budget, int replicates,
+                                   const std::vector<double>& budget,
+                                   const std::vector<double>& judged, int replicates,
                                    std::uint64_t seed) {
   BootstrapResult out;
   if (!candidates[0].fitted) return out;
@@ -70,7 +71,7 @@ BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidate
   for (int r = 0; r < replicates; ++r) {
     std::vector<double> lab = nominal;
     for (std::size_t i = 0; i < lab.size(); ++i) {
-      lab[i] += noise_scale(targets[i], budget[i]) * normal();
+      lab[i] += noise_scale(targets[i], judged[i]) * normal();
     }
     const std::vector<double> base = replicate_residuals(candidates[0], targets, budget, lab);
     const auto base_rms = rms(base, targets, Role::held_out);
@@ -87,7 +88,7 @@ BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidate
       }
     }
     const int chosen =
-        choose_effect(rms_in_budgets(base, targets, budget, Role::held_out), contenders);
+        choose_effect(rms_in_budgets(base, targets, judged, Role::held_out), contenders);
     ++out.winners[chosen < 0 ? "" : candidates[chosen].candidate.effect];
     ++out.replicates;
   }

@@ -3,7 +3,9 @@
 // every fitted effect on its surfaces, and replays the verdict rule; the confidence is the share of
 // replicates that reach the nominal verdict. A confirmed candidate's prediction in a replicate is
 // its real run shifted by the surface's change between the nominal and the replicate's fit, so
-// surface error at the fitted point does not enter.
+// surface error at the fitted point does not enter. `budget` weights the re-fits (as it weighted
+// the nominal ones); `judged`, the budget at the confirmed base fit, is the noise drawn and the
+// scale of the replayed gap test.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +27,8 @@ struct BootstrapResult {
 // differs between standard libraries).
 BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
-                                   const std::vector<double>& budget, int replicates,
+                                   const std::vector<double>& budget,
+                                   const std::vector<double>& judged, int replicates,
                                    std::uint64_t seed);
 
 // The objective weights: 1 / (sigma^2 + budget^2) on calibration targets with a surface, 0

@@ -261,14 +261,13 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   }
   const SurfaceCalibration base_first =
       calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
-  report.budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
+  report.weight_budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
   const int runs_per_point = int(budget_runs_per_point(c.budget));
   phase(options, "budget", 2, int(budget_offsets(c.budget.points).size()) * runs_per_point);
-  report.budget = measure_budget(c, report.candidates[0], base_first.z, evaluator);
-  report.model_points += report.budget.points * runs_per_point;
-  const std::vector<double>& budget = report.budget.per_target;
+  report.weight_budget = measure_budget(c, report.candidates[0], base_first.z, evaluator);
+  report.model_points += report.weight_budget.points * runs_per_point;
+  const std::vector<double>& budget = report.weight_budget.per_target;
   report.combined_calibration = combined_budget(c.targets, budget, Role::calibration);
-  report.combined_held_out = combined_budget(c.targets, budget, Role::held_out);
 
   // 3. Every candidate calibrated on its surfaces; held-out predicted; identifiability.
   for (CandidateResult& r : report.candidates)
@@ -284,22 +283,37 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   // 4. The base and the best candidates by real runs, with the replicate seeds.
   mark_calibration_fits(report.candidates, report.combined_calibration);
   const std::vector<int> chosen = to_confirm(report.candidates, c.confirm);
-  phase(options, "confirm", 3, int(chosen.size() * (1 + c.refine + c.budget.seeds.size())));
+  phase(options, "confirm", 3,
+        int(chosen.size() * (1 + c.refine + c.budget.seeds.size())) +
+            int(budget_offsets(c.budget.points).size()) * runs_per_point);
   confirm_candidates(report.candidates, c, chosen, evaluator, lab, budget);
   for (int i : chosen) {
     report.model_points += int(report.candidates[i].refinement.size() + c.budget.seeds.size());
   }
+  // The budget of the model the residuals come from: re-measured at the confirmed base fit unless
+  // that kept the first fit's points (on the demo twins the fit moved up to x7 along F_r0).
+  const std::vector<double>& base_z = report.candidates[0].calibration.z;
+  report.budget = report.weight_budget;
+  report.budget_point = report.weight_budget_point;
+  if (budget_points(base_z, c.budget.points) != budget_points(base_first.z, c.budget.points)) {
+    report.budget = measure_budget(c, report.candidates[0], base_z, evaluator);
+    report.budget_point = report.candidates[0].point;
+    report.model_points += report.budget.points * runs_per_point;
+  }
+  const std::vector<double>& judged = report.budget.per_target;
+  report.combined_calibration = combined_budget(c.targets, judged, Role::calibration);
+  report.combined_held_out = combined_budget(c.targets, judged, Role::held_out);
 
   // 5. G, ranking, verdict, confidence.
   phase(options, "analysis", 4, 0);
   mark_calibration_fits(report.candidates, report.combined_calibration);
   const std::vector<int> order = rank_effects(report.candidates);
   report.held_out_budgets = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
-                                           c.targets, budget, Role::held_out);
+                                           c.targets, judged, Role::held_out);
   report.verdict =
       decide(report.candidates, order, report.held_out_budgets, report.combined_held_out);
   Confidence& conf = report.confidence;
-  conf.seeds = seed_checks(report.candidates, c.targets, c.budget.seeds, budget);
+  conf.seeds = seed_checks(report.candidates, c.targets, c.budget.seeds, judged);
   const std::string verdict = report.verdict.candidate < 0
                                   ? ""
                                   : report.candidates[report.verdict.candidate].candidate.effect;
@@ -308,7 +322,7 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
     conf.seeds_agreeing += s.informative && s.verdict == verdict;
   }
   const BootstrapResult boot =
-      bootstrap_verdicts(report.candidates, c.targets, budget, c.bootstrap, c.random_seed);
+      bootstrap_verdicts(report.candidates, c.targets, budget, judged, c.bootstrap, c.random_seed);
   conf.replicates = boot.replicates;
   conf.winners = boot.winners;
   if (boot.replicates > 0) {

@@ -107,8 +107,14 @@ struct RatioRange {
 };
 
 struct DiagnosisReport {
+  // The budget the residuals are judged against, measured at the base model's confirmed fit (the
+  // model whose residuals they are; the budget changes x2 across the box).
   Budget budget;
-  ModelPoint budget_point;  // the base model's first fit, where the budget was measured
+  ModelPoint budget_point;
+  // The first budget, at the base model's fit on lab uncertainties alone: the calibrations'
+  // weights. The same as `budget` when the confirmed fit kept the first fit's budget points.
+  Budget weight_budget;
+  ModelPoint weight_budget_point;
   double combined_calibration = 0.0;
   double combined_held_out = 0.0;
   // The base model's held-out residuals (real runs) in budgets: rms_in_budgets, what the verdict

@@ -236,11 +236,14 @@ std::string refinement_table(const json& s) {
 std::string budget_table(const json& s) {
   const json& b = at(s, "budget");
   std::string out =
-      "<h2>Numerical budget</h2>\n<p>Base model at F_r0 = " + show(at(at(b, "point"), "fr0")) +
-      ", F_s0 = " + show(at(at(b, "point"), "fs0")) + " and its neighbours (" +
-      show(at(b, "points")) +
+      "<h2>Numerical budget</h2>\n<p>Base model at its confirmed fit, F_r0 = " +
+      show(at(at(b, "point"), "fr0")) + ", F_s0 = " + show(at(at(b, "point"), "fs0")) +
+      ", and its neighbours (" + show(at(b, "points")) +
       " points in all) re-run with nothing physical changed; per observation the rms over the "
-      "points of the |ln| change.</p>\n"
+      "points of the |ln| change. The calibrations are weighted by the budget at the first fit, "
+      "F_r0 = " +
+      show(at(at(at(b, "weights"), "point"), "fr0")) +
+      ", F_s0 = " + show(at(at(at(b, "weights"), "point"), "fs0")) + ".</p>\n" +
       "<table><tr><th>variant</th>";
   for (const json& o : at(s, "observations")) out += "<th>" + show(at(o, "id")) + "</th>";
   out += "</tr>\n";
@@ -255,6 +258,13 @@ std::string budget_table(const json& s) {
   out += "<tr><th>budget</th>";
   for (const json& o : at(s, "observations"))
     out += "<th>" + show(at(o, "budget"), "%.4f") + "</th>";
+  out += "</tr>\n<tr><td>at the first fit (weights)</td>";
+  for (const json& o : at(s, "observations")) {
+    out += "<td>" +
+           show(at(at(at(b, "weights"), "per_observation"), o["id"].get<std::string>().c_str()),
+                "%.4f") +
+           "</td>";
+  }
   return out + "</tr></table>\n";
 }
 

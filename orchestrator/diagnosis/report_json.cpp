@@ -198,6 +198,10 @@ json budget_json(const DiagnosisReport& r, const std::vector<Target>& targets) {
       {"point", {{"fr0", r.budget_point.fr0_n}, {"fs0", r.budget_point.fs0_n}}},
       {"points", r.budget.points},
       {"per_observation", by_target(targets, r.budget.per_target)},
+      // The calibrations' weights: the budget at the base model's first fit.
+      {"weights",
+       {{"point", {{"fr0", r.weight_budget_point.fr0_n}, {"fs0", r.weight_budget_point.fs0_n}}},
+        {"per_observation", by_target(targets, r.weight_budget.per_target)}}},
       {"combined", {{"calibration", r.combined_calibration}, {"held_out", r.combined_held_out}}},
       {"variants", variants}};
 }

@@ -68,16 +68,16 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   ASSERT_EQ(c.candidates.size(), 2u);
   EXPECT_EQ(c.candidates[0].effect, "heterogeneity");
   EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3}));
-  // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points, 3 confirmed candidates x (3
-  // refinement runs + 2 seeds).
-  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 5 * 5 + 3 * 5) * 4u);
+  // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points at most twice (the first and
+  // the confirmed fit), 3 confirmed candidates x (3 refinement runs + 2 seeds).
+  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + 3 * 5) * 4u);
   EXPECT_EQ(c.budget.resolutions, std::vector<double>{1.25});
   // Two resolutions: one more run at each budget point.
   json two = request();
   two["budget"] = {{"resolution", {1.25, 1.5}}};
   const DiagnosisCampaign c2 = parse_diagnosis_campaign(two);
   EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
-  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 5 * 6 + 3 * 5) * 4u);
+  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + 3 * 5) * 4u);
   EXPECT_EQ(budget_runs_per_point(c2.budget), 6u);  // reference, 2 seeds, speed, 2 resolutions
   // Without "effects", every registered effect is a candidate.
   json all = request();
@@ -238,12 +238,12 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   const ModelPoint lowest = model_point(c, c.candidates[1], std::vector<double>{0.5, 0.5, 0.0});
   EXPECT_TRUE(effect_on(lowest));  // u = 0 is a random packing, not the base model's FCC
   EXPECT_DOUBLE_EQ(lowest.s, kDiscontinuousFloor);
-  // A 5 x 5 (x 5) grid: 25 + 6 x 25 x 4 (+ packing's own 25 x 5), 5 points x 8 budget runs
+  // A 5 x 5 (x 5) grid: 25 + 6 x 25 x 4 (+ packing's own 25 x 5), twice 5 points x 8 budget runs
   // (reference, 2 seeds, half speed, 4 resolutions), every confirmed: 8 x (3 + 2).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
-  EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 5 * 8 + 8 * 5) * 7u);
+  EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 2 * 5 * 8 + 8 * 5) * 7u);
 }
 
 TEST(DiagnosisRuns, APeakCutOffByTheStrainLimitIsTheLargestLoadAndSaysSo) {

@@ -180,8 +180,9 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   const Diagnosed a = diagnose("rate", 0.7);
   const Diagnosed b = diagnose("rate", 0.7);
   EXPECT_EQ(a.summary.dump(), b.summary.dump());
-  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 x 5 budget points; per confirmed
-  // candidate (3) 1 to 3 refinement runs and 2 seed runs.
+  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 x 5 budget points at the first fit
+  // and again at the confirmed one if it moved; per confirmed candidate (3) 1 to 3 refinement runs
+  // and 2 seed runs.
   DiagnosisCampaign c = twin_campaign("rate", 0.7);
   SyntheticModel model(c.targets);
   const DiagnosisReport report = run_diagnosis(c, model);
@@ -193,7 +194,13 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   EXPECT_EQ(confirmed, 3);
   EXPECT_GE(refinement_runs, 3);
   EXPECT_LE(refinement_runs, 3 * (1 + c.refine));
-  EXPECT_EQ(model.runs, 16 + 5 * 32 + 5 * 5 + refinement_runs + 3 * 2);
+  const bool moved = report.budget_point.fr0_n != report.weight_budget_point.fr0_n ||
+                     report.budget_point.fs0_n != report.weight_budget_point.fs0_n;
+  EXPECT_EQ(model.runs, 16 + 5 * 32 + (moved ? 2 : 1) * 5 * 5 + refinement_runs + 3 * 2);
+  // Here the confirmed fit moved: the budget judged is the one measured around it.
+  EXPECT_TRUE(moved);
+  EXPECT_EQ(report.budget_point.fr0_n, report.candidates[0].point.fr0_n);
+  EXPECT_EQ(report.budget_point.fs0_n, report.candidates[0].point.fs0_n);
 }
 
 // Held-out data rank the candidates, but one that cannot fit the calibration observations is no
