@@ -117,6 +117,16 @@ std::string diagnosis_text(const json& s) {
     out << "  " << fmt(at(runs, "failed_values"))
         << " values missing from the grids (first: " << fmt(at(runs, "first_error")) << ")\n";
   }
+  const json& candidates = at(s, "candidates");
+  if (candidates.is_array() && !candidates.empty()) {
+    const json& bounds = at(at(candidates[0], "fit"), "on_bounds");
+    if (bounds.is_array() && !bounds.empty()) {
+      out << "  The base model's fit lies on the bounds (";
+      for (std::size_t k = 0; k < bounds.size(); ++k) out << (k ? ", " : "") << fmt(bounds[k]);
+      out << "): the data want strengths outside them (widen \"bounds\"; or the lab's UCT/BTT "
+             "ratio is out of the base model's reach), or do not depend on that strength there\n";
+    }
+  }
   out << "\nCandidates (ranked by held-out gap closure G):\n";
   std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %8s %-10s %s\n", "rank", "effect",
                 "identifiable", "fits cal", "G", "basis", "fitted parameter");

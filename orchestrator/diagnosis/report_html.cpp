@@ -102,6 +102,18 @@ std::string gap_section(const json& s) {
       "uncertainty; a gap above 1): " +
       show(at(g, "held_out_budgets"), "%.2f") +
       ". A residual beyond budget + lab uncertainty is marked.</p>\n";
+  const json& candidates = at(s, "candidates");
+  const json& bounds = candidates.is_array() && !candidates.empty()
+                           ? at(at(candidates[0], "fit"), "on_bounds")
+                           : candidates;
+  if (bounds.is_array() && !bounds.empty()) {
+    std::string which;
+    for (const json& b : bounds) which += (which.empty() ? "" : ", ") + show(b);
+    out += "<p class=\"note\">The base model's fit lies on the bounds (" + which +
+           "): the calibration observations want bond strengths outside them (widen "
+           "<code>bounds</code>; a lab UCT/BTT ratio the base model cannot reach, see below, is "
+           "itself a gap), or do not depend on that strength there.</p>\n";
+  }
   out +=
       "<table><tr><th>observation</th><th>test</th><th>observable</th><th>conditions</th>"
       "<th>role</th><th>lab</th><th>base sim</th><th>ln(sim/lab)</th><th>budget</th>"

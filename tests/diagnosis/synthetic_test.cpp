@@ -84,6 +84,23 @@ TEST(Diagnosis, NullCaseNeedsNoEffect) {
   EXPECT_GE(v["confidence"]["bootstrap"]["agreement"].get<double>(), 0.7);
 }
 
+// A fit pinned to the search box is the bound, not an optimum: the report says so, and where.
+TEST(Diagnosis, ABaseFitOnTheBoundsIsReported) {
+  const Diagnosed inside = diagnose("", 0.0);
+  EXPECT_TRUE(inside.summary["candidates"][0]["fit"]["on_bounds"].empty());
+  EXPECT_EQ(report_html(inside.summary).find("lies on the bounds"), std::string::npos);
+
+  Diagnosed r{twin_campaign("", 0.0), {}, {}};
+  r.campaign.fr0_n.lo = 120.0;  // the truth is F_r0 = 60
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  const json& base = r.summary["candidates"][0]["fit"];
+  EXPECT_EQ(base["on_bounds"], json::array({"fr0 lower"})) << base.dump();
+  EXPECT_DOUBLE_EQ(base["fr0"].get<double>(), 120.0);
+  EXPECT_NE(report_html(r.summary).find("lies on the bounds (fr0 lower)"), std::string::npos);
+}
+
 TEST(Diagnosis, AnEffectTheStrengthsAbsorbIsNotIdentifiable) {
   const Diagnosed r = diagnose("uniform", 1.0);
   const CandidateResult& uniform = candidate(r.report, "uniform");
