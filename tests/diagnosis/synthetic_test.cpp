@@ -8,6 +8,7 @@
 #include <limits>
 #include <set>
 
+#include "api/client.hpp"
 #include "orchestrator/diagnosis/driver.hpp"
 #include "orchestrator/diagnosis/gap.hpp"
 #include "orchestrator/diagnosis/report.hpp"
@@ -99,6 +100,10 @@ TEST(Diagnosis, ABaseFitOnTheBoundsIsReported) {
   EXPECT_EQ(base["on_bounds"], json::array({"fr0 lower"})) << base.dump();
   EXPECT_DOUBLE_EQ(base["fr0"].get<double>(), 120.0);
   EXPECT_NE(report_html(r.summary).find("lies on the bounds (fr0 lower)"), std::string::npos);
+  EXPECT_NE(
+      api::diagnosis_text(r.summary).find("The base model's fit lies on the bounds (fr0 lower)"),
+      std::string::npos);
+  EXPECT_EQ(api::diagnosis_text(inside.summary).find("lies on the bounds"), std::string::npos);
 }
 
 TEST(Diagnosis, AnEffectTheStrengthsAbsorbIsNotIdentifiable) {
@@ -317,6 +322,9 @@ TEST(Confidence, SeedsThatReRunTheNominalRunsAreNotCounted) {
   EXPECT_EQ(j["seeds_informative"], 0);
   EXPECT_EQ(j["seeds"][0]["informative"], false);
   EXPECT_NE(report_html(to_json(r.report, r.campaign)).find("2 more re-ran identically"),
+            std::string::npos);
+  EXPECT_NE(api::diagnosis_text(to_json(r.report, r.campaign))
+                .find("seeds 0/0, 2 identical to the nominal runs"),
             std::string::npos);
   // The level then rests on the bootstrap; one informative seed that disagrees lowers it.
   Confidence level = c;
