@@ -108,7 +108,7 @@ struct RatioRange {
 
 struct DiagnosisReport {
   // The budget the residuals are judged against, measured at the base model's confirmed fit (the
-  // model whose residuals they are; the budget changes x2 across the box).
+  // model whose residuals they are; on a demo twin the budget doubled between the two fits).
   Budget budget;
   ModelPoint budget_point;
   // The first budget, at the base model's fit on lab uncertainties alone: the calibrations'
