@@ -107,8 +107,9 @@ struct RatioRange {
 };
 
 struct DiagnosisReport {
-  // The budget the residuals are judged against, measured at the base model's confirmed fit (the
-  // model whose residuals they are; on a demo twin the budget doubled between the two fits).
+  // The budget the residuals are judged against (gap test, calibration-fit rule after the
+  // confirmations, seed checks, bootstrap), measured at the base model's confirmed fit (the model
+  // whose residuals they are; on a demo twin the budget doubled between the two fits).
   Budget budget;
   ModelPoint budget_point;
   // The first budget, at the base model's fit on lab uncertainties alone: the calibrations'
