@@ -3,6 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "engine/loadtests/brazilian.hpp"
 #include "engine/simulation.hpp"
 
 namespace rockcal {
@@ -24,28 +25,52 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
             {"rate_error", r.rate_study->rate_error},
             {"converged", r.rate_study->converged}};
   }
-  return json{{"test", to_string(r.test)},
-              {"peak_load", r.peak_load_n},
-              {"strength", r.strength_pa},
-              {"confining_pressure", r.confining_pressure_pa},
-              {"youngs_modulus", opt(r.youngs_modulus_pa)},
-              {"poisson_ratio", opt(r.poisson_ratio)},
-              {"peak_displacement", r.peak_displacement_m},
-              {"particles", r.particles},
-              {"bonds", r.bonds},
-              {"broken_bonds", r.broken_bonds},
-              {"broken_bonds_at_peak", r.broken_at_peak},
-              {"broken_by", by},
-              {"steps", r.steps},
-              {"dt", r.dt_s},
-              {"wall_seconds", r.wall_seconds},
-              {"particle_steps_per_second", double(r.particles) * double(r.steps) / wall},
-              {"stop_reason", r.stop_reason},
-              {"peak_reached", r.stop_reason == "post_peak"},
-              {"engine_version", engine_version()},
-              {"ranks", ranks},
-              {"rate_study", rate},
-              {"spec", to_json(spec)}};
+  json out{{"test", to_string(r.test)},
+           {"peak_load", r.peak_load_n},
+           {"strength", r.strength_pa},
+           {"confining_pressure", r.confining_pressure_pa},
+           {"youngs_modulus", opt(r.youngs_modulus_pa)},
+           {"poisson_ratio", opt(r.poisson_ratio)},
+           {"peak_displacement", r.peak_displacement_m},
+           {"particles", r.particles},
+           {"bonds", r.bonds},
+           {"broken_bonds", r.broken_bonds},
+           {"broken_bonds_at_peak", r.broken_at_peak},
+           {"broken_by", by},
+           {"steps", r.steps},
+           {"dt", r.dt_s},
+           {"wall_seconds", r.wall_seconds},
+           {"particle_steps_per_second", double(r.particles) * double(r.steps) / wall},
+           {"stop_reason", r.stop_reason},
+           {"floaters_removed", r.floaters_removed},
+           {"engine_version", engine_version()},
+           {"ranks", ranks},
+           {"rate_study", rate},
+           {"spec", to_json(spec)}};
+  if (r.test == TestKind::elastic) return out;
+  // Loading tests: whether the peak is a failure, from which state it was measured, and (BTT) the
+  // set-up's strength factor and where the disc broke first.
+  out["peak_reached"] = r.peak_reached;
+  if (!r.peak_reached) out["no_peak_reason"] = r.no_peak_reason;
+  out["seating"] = {{"load", r.seating.load_n},
+                    {"closure", r.seating.closure_m},
+                    {"step", r.seating.step},
+                    {"broken_bonds", r.seating.broken_bonds}};
+  if (r.test == TestKind::btt) {
+    json btt = {{"geometry", to_string(spec.loading.btt_geometry)},
+                {"strength_factor", btt_strength_factor(spec.loading)}};
+    if (r.btt_fracture) {
+      const BttFracture& f = *r.btt_fracture;
+      btt["rim_breaks_before_peak"] = f.rim_breaks_before_peak;
+      btt["first_interior_breaks"] = {{"count", f.first_count},
+                                      {"median_r_over_R", f.first_median_r_over_R},
+                                      {"max_r_over_R", f.first_max_r_over_R}};
+      btt["loaded_band_fraction"] = f.loaded_band_fraction;
+      btt["centre_split"] = f.centre_split;
+    }
+    out["btt"] = btt;
+  }
+  return out;
 }
 
 void write_atomically(const fs::path& path, const std::string& text) {

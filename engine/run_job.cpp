@@ -75,9 +75,8 @@ nlohmann::json run_job(const JobSpec& spec, const fs::path& dir, const std::atom
     world.rank = rank;
     world.ranks = ranks;
     r.breaks = gather_breaks(world, r.breaks);
-    // The drivers counted modes from this rank's breaks only; count them again from all.
-    r.broken_by = {};
-    for (const BreakEvent& e : r.breaks) ++r.broken_by[static_cast<int>(e.mode)];
+    // The drivers counted from this rank's breaks only; count them again from all.
+    tally_breaks(spec, r);
   }
   nlohmann::json result = result_to_json(spec, r, ranks);
   if (!root) return result;

@@ -33,6 +33,7 @@ struct Simulation {
   std::int64_t broken_total = 0;  // bonds broken so far, all ranks
   bool stop_local = false;        // set by a driver on any rank ...
   bool stop_global = false;       // ... and seen by all ranks after the next step
+  std::int64_t floaters_removed = 0;  // set-up record: particles dropped before bonding
 
   // Exchanges ghosts, builds the neighbour list and computes the loads of the initial
   // configuration.

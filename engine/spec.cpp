@@ -125,6 +125,13 @@ SampleSpec parse_sample(ObjectReader& root) {
     throw SpecError("sample.radius_ratio", "applies to random packings only (FCC is monodisperse)");
   s.radius_m = r.positive("radius", s.radius_m);
   if (auto seed = r.integer("seed", 0, std::numeric_limits<std::int64_t>::max())) s.seed = *seed;
+  if (auto lattice = r.string("lattice")) {
+    if (s.packing != "fcc") throw SpecError("sample.lattice", "applies to FCC packings only");
+    if (*lattice != "seeded" && *lattice != "aligned")
+      throw SpecError("sample.lattice",
+                      "unknown lattice placement '" + *lattice + "' (known: seeded, aligned)");
+    s.lattice = *lattice;
+  }
   r.reject_unknown();
 
   // Sizes relative to the particle: a specimen must hold a few particles across, and not billions.
@@ -198,6 +205,32 @@ ContactSpec parse_contact(ObjectReader& root) {
   return c;
 }
 
+// The Brazilian set-up: the geometry and the one parameter that belongs to it.
+void parse_btt_geometry(ObjectReader& r, TestKind test, LoadingSpec& l) {
+  const bool btt = test == TestKind::btt;
+  if (auto name = r.string("btt_geometry")) {
+    if (!btt) throw SpecError("loading.btt_geometry", "applies to the btt test only");
+    auto g = btt_geometry_from_string(*name);
+    if (!g)
+      throw SpecError(
+          "loading.btt_geometry",
+          "unknown geometry '" + *name + "' (known: curved_jaws, flattened, flat_platens)");
+    l.btt_geometry = *g;
+  }
+  if (r.number("jaw_radius_ratio")) {
+    if (!btt || l.btt_geometry != BttGeometry::curved_jaws)
+      throw SpecError("loading.jaw_radius_ratio", "applies to btt_geometry curved_jaws only");
+    // Below ~1.1 the jaw wraps the disc; above ~3 it is a flat platen with a bump.
+    l.jaw_radius_ratio = r.in_range("jaw_radius_ratio", l.jaw_radius_ratio, 1.1, 3.0, false);
+  }
+  if (r.number("flat_angle_deg")) {
+    if (!btt || l.btt_geometry != BttGeometry::flattened)
+      throw SpecError("loading.flat_angle_deg", "applies to btt_geometry flattened only");
+    // Wang et al. (2004) analyse 2 alpha up to 30 degrees; beyond 60 the disc is a block.
+    l.flat_angle_deg = r.in_range("flat_angle_deg", l.flat_angle_deg, 5.0, 60.0, false);
+  }
+}
+
 LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
   LoadingSpec l;
   const json* v = root.find("loading");
@@ -215,9 +248,23 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
   l.dt_safety = r.in_range("dt_safety", l.dt_safety, 0.01, 1.0, false);
   l.ramp_fraction = r.in_range("ramp_fraction", l.ramp_fraction, 0.0, 1.0, false);
   l.stop_load_fraction = r.in_range("stop_load_fraction", l.stop_load_fraction, 0.0, 1.0, true);
+  // A Brazilian disc closes by several percent of D before it splits (the contacts flatten): it
+  // gets twice the compression tests' strain by default.
+  if (test == TestKind::btt) l.max_strain = kBttMaxStrain;
   l.max_strain = r.in_range("max_strain", l.max_strain, 1e-9, 0.9, false);
   l.max_steps = r.integer("max_steps", 1, 10'000'000'000LL);
   l.platen_friction = r.in_range("platen_friction", l.platen_friction, 0.0, 10.0, false);
+  if (const json* seat = r.find("seating_load")) {
+    if (test == TestKind::elastic)
+      throw SpecError("loading.seating_load", "applies to the uct, btt and triaxial tests");
+    if (seat->is_string()) {
+      if (seat->get<std::string>() != "auto")
+        throw SpecError("loading.seating_load", "must be \"auto\" or a positive number");
+    } else {
+      l.seating_load_n = r.positive("seating_load", 1.0);
+    }
+  }
+  parse_btt_geometry(r, test, l);
   if (auto p = r.number("confining_pressure")) {
     if (test != TestKind::triaxial)
       throw SpecError("loading.confining_pressure", "applies to the triaxial test only");
@@ -320,6 +367,25 @@ const char* to_string(TestKind test) {
   return "?";
 }
 
+const char* to_string(BttGeometry geometry) {
+  switch (geometry) {
+    case BttGeometry::flat_platens:
+      return "flat_platens";
+    case BttGeometry::curved_jaws:
+      return "curved_jaws";
+    case BttGeometry::flattened:
+      return "flattened";
+  }
+  return "?";
+}
+
+std::optional<BttGeometry> btt_geometry_from_string(const std::string& name) {
+  for (BttGeometry g :
+       {BttGeometry::flat_platens, BttGeometry::curved_jaws, BttGeometry::flattened})
+    if (name == to_string(g)) return g;
+  return std::nullopt;
+}
+
 std::optional<TestKind> test_kind_from_string(const std::string& name) {
   if (name == "uct") return TestKind::uct;
   if (name == "btt") return TestKind::btt;
@@ -359,6 +425,7 @@ nlohmann::json to_json(const JobSpec& s) {
                  {"radius_ratio", s.sample.radius_ratio},
                  {"radius", s.sample.radius_m},
                  {"seed", s.sample.seed}};
+  if (s.sample.packing == "fcc") j["sample"]["lattice"] = s.sample.lattice;
   json mat = {{"density", s.material.density_kg_m3}, {"nu", s.material.nu}};
   if (s.material.kr_n_m) mat["kr"] = *s.material.kr_n_m;
   if (s.material.youngs_modulus_pa) mat["youngs_modulus"] = *s.material.youngs_modulus_pa;
@@ -383,6 +450,19 @@ nlohmann::json to_json(const JobSpec& s) {
   if (s.loading.max_steps) l["max_steps"] = *s.loading.max_steps;
   // Only where it may be given, so that the other tests' canonical forms (and job identities) stay.
   if (s.test == TestKind::triaxial) l["confining_pressure"] = s.loading.confining_pressure_pa;
+  if (s.test != TestKind::elastic) {
+    if (s.loading.seating_load_n)
+      l["seating_load"] = *s.loading.seating_load_n;
+    else
+      l["seating_load"] = "auto";
+  }
+  if (s.test == TestKind::btt) {
+    l["btt_geometry"] = to_string(s.loading.btt_geometry);
+    if (s.loading.btt_geometry == BttGeometry::curved_jaws)
+      l["jaw_radius_ratio"] = s.loading.jaw_radius_ratio;
+    if (s.loading.btt_geometry == BttGeometry::flattened)
+      l["flat_angle_deg"] = s.loading.flat_angle_deg;
+  }
   j["loading"] = l;
   j["damping"] = {{"local", s.damping.local}, {"viscous", s.damping.viscous}};
   j["output"] = {{"vtk", s.output.vtk},
@@ -395,7 +475,7 @@ nlohmann::json to_json(const JobSpec& s) {
 }
 
 const char* engine_version() {
-  return "rockcal-dem 0.1.0";
+  return "rockcal-dem 0.2.0";
 }
 
 }  // namespace rockcal

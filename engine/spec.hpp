@@ -16,6 +16,12 @@ namespace rockcal {
 // triaxial: the UCT cylinder with a confining pressure on its lateral surface.
 enum class TestKind { uct, btt, elastic, triaxial };
 
+// How the Brazilian disc is loaded (docs/specimens.md). flat_platens: the full disc between flat
+// platens (the seed paper's set-up; the contact width is whatever the particle cut leaves);
+// curved_jaws: ISRM's suggested method, concave jaws of jaw_radius_ratio x the disc radius;
+// flattened: two parallel flats cut at the loading angle 2 alpha (Wang et al. 2004), flat platens.
+enum class BttGeometry { flat_platens, curved_jaws, flattened };
+
 // An invalid spec. `field` is the dotted path of the offending key ("loading.dt").
 struct SpecError : std::runtime_error {
   std::string field;
@@ -31,13 +37,17 @@ struct SampleSpec {
   double radius_m = 1.0;              // particle radius (mean radius for random packings)
   double radius_ratio = 1.0;          // random packings: max / min radius (uniform in between)
   std::uint64_t seed = 1;
+  // FCC only: "seeded" places the lattice by the seed (a random offset within a cell and a turn
+  // about the loading axis), so replicates are different cuts; "aligned" is the seed paper's cut
+  // (a centre at the origin, cube axes along x, y, z), the same for every seed.
+  std::string lattice = "seeded";
   double btt_thickness() const { return thickness_m.value_or(0.5 * diameter_m); }
   // Equal specimens: a thickness left to its default equals the same thickness given (the
   // canonical form gives it).
   bool operator==(const SampleSpec& o) const {
     return diameter_m == o.diameter_m && height_m == o.height_m &&
            btt_thickness() == o.btt_thickness() && packing == o.packing && radius_m == o.radius_m &&
-           radius_ratio == o.radius_ratio && seed == o.seed;
+           radius_ratio == o.radius_ratio && seed == o.seed && lattice == o.lattice;
   }
 };
 
@@ -60,15 +70,26 @@ struct ContactSpec {
   bool operator==(const ContactSpec&) const = default;
 };
 
+constexpr double kBttMaxStrain = 0.1;
+
 struct LoadingSpec {
   double platen_velocity_m_s = 0.05;  // each platen moves at this speed towards the centre
   std::optional<double> dt_s;         // nullopt = "auto"
   double dt_safety = 0.5;             // fraction of the critical step used by "auto"
   double ramp_fraction = 0.01;  // speed ramps over this fraction of the run (>= 2 wave transits)
   double stop_load_fraction = 0.7;  // stop once the load falls to this fraction of the peak
-  double max_strain = 0.05;         // stop at this platen strain (total closure / length)
+  double max_strain = 0.05;         // stop at this platen strain (total closure / length);
+                                    // the BTT's default is kBttMaxStrain
   std::optional<std::int64_t> max_steps;
   double platen_friction = 0.0;  // Coulomb coefficient between platen and particles
+  // Seating: the platens close until the load reaches this, hold still while the specimen
+  // settles, and the measured loading (curve, modulus, peak) starts from there. nullopt = auto
+  // (seating_load_auto in loadtests/seating.hpp).
+  std::optional<double> seating_load_n;
+  // BTT only (test parameters of the Brazilian set-up).
+  BttGeometry btt_geometry = BttGeometry::curved_jaws;
+  double jaw_radius_ratio = 1.5;  // curved jaws: jaw radius / disc radius (ISRM: 1.5)
+  double flat_angle_deg = 20.0;   // flattened: loading angle 2 alpha of the flats, degrees
   // Triaxial test only: pressure on the lateral surface, ramped in before the platens advance.
   double confining_pressure_pa = 0.0;
   double elastic_strain = 2e-4;  // elastic test: the applied axial strain
@@ -126,6 +147,8 @@ nlohmann::json to_json(const JobSpec& spec);
 
 const char* to_string(TestKind test);
 std::optional<TestKind> test_kind_from_string(const std::string& name);
+const char* to_string(BttGeometry geometry);
+std::optional<BttGeometry> btt_geometry_from_string(const std::string& name);
 
 // Engine version; part of a job's identity (a changed engine invalidates cached results).
 const char* engine_version();

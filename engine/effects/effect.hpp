@@ -85,9 +85,9 @@ void complete_effects(std::map<std::string, EffectValues>& effects);
 // Idempotent: a spec that already is effective (spec_effects_applied) is returned unchanged.
 JobSpec effective_spec(const JobSpec& job);
 
-// Whether sample.seed changes anything in this job: a random packing, or an effect that draws from
-// it. An FCC job without such effects is the same run under every seed, so a service need not
-// run it twice.
+// Whether sample.seed changes anything in this job: a random packing, a seeded FCC lattice, or an
+// effect that draws from it. An aligned FCC job without such effects is the same run under every
+// seed, so a service need not run it twice.
 bool seed_matters(const JobSpec& job);
 
 // Runs every named effect's apply_specimen, in registration order: the one hook point at the end of

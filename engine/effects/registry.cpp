@@ -109,7 +109,7 @@ JobSpec effective_spec(const JobSpec& job) {
 
 bool seed_matters(const JobSpec& job) {
   const JobSpec spec = effective_spec(job);
-  if (spec.sample.packing != "fcc") return true;
+  if (spec.sample.packing != "fcc" || spec.sample.lattice == "seeded") return true;
   for (const EffectDef& e : effect_registry()) {
     if (e.draws_from_seed && spec.effects.count(e.name)) return true;
   }

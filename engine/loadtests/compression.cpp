@@ -8,7 +8,9 @@
 #include "engine/effects/effect.hpp"
 #include "engine/loadtests/driver.hpp"
 #include "engine/loadtests/modulus.hpp"
+#include "engine/loadtests/peak.hpp"
 #include "engine/loadtests/run_clock.hpp"
+#include "engine/loadtests/seating.hpp"
 #include "engine/loadtests/specimen.hpp"
 
 namespace rockcal {
@@ -71,7 +73,56 @@ bool confine(Simulation& sim, const JobSpec& spec, RunClock& clock, std::int64_t
   return true;
 }
 
+// Seating: the platens close (speed ramped in) until the load, counted from `base_load`, reaches
+// the seating load, then stand still for kSeatingHoldTransits transits. Returns "" once seated,
+// else the stop reason.
+std::string seat(Simulation& sim, const JobSpec& spec, RunClock& clock, std::int64_t max_steps,
+                 double base_load, double t_ramp, Seating& seating,
+                 const std::function<Progress(double)>& progress) {
+  Wall& bottom = sim.walls[kBottomPlaten];
+  Wall& top = sim.walls[kTopPlaten];
+  const double length = loaded_length(spec);
+  const double gap0 = top.point.z() - bottom.point.z();
+  const SpeedSchedule approach{spec.loading.platen_velocity_m_s, 1.0, t_ramp};
+  seating.load_n = seating_load(spec);
+  double t = 0.0;
+  for (;;) {
+    const double v = approach.speed_at(t + 0.5 * sim.dt);
+    bottom.velocity = Vec3(0, 0, v);
+    top.velocity = Vec3(0, 0, -v);
+    sim.advance();
+    t += sim.dt;
+    clock.maybe_report(progress);
+    const double load = 0.5 * (top.reaction.z() - bottom.reaction.z()) - base_load;
+    if (load >= seating.load_n) break;
+    if (gap0 - (top.point.z() - bottom.point.z()) >= spec.loading.max_strain * length)
+      return "not_seated";
+    if (sim.step >= max_steps) return "max_steps";
+    if (sim.stop_global) return "cancelled";
+    sim.stop_local = clock.stop_requested();
+  }
+  for (Wall& w : sim.walls) w.velocity.setZero();
+  const double t_hold = sim.time + kSeatingHoldTransits * wave_transit_time(spec);
+  while (sim.time < t_hold) {
+    sim.advance();
+    clock.maybe_report(progress);
+    if (sim.step >= max_steps) return "max_steps";
+    if (sim.stop_global) return "cancelled";
+    sim.stop_local = clock.stop_requested();
+  }
+  seating.step = sim.step;
+  seating.broken_bonds = sim.broken_total;
+  return "";
+}
+
 }  // namespace
+
+void tally_breaks(const JobSpec& spec, TestResult& r) {
+  r.broken_by = {};
+  for (const BreakEvent& e : r.breaks) ++r.broken_by[static_cast<int>(e.mode)];
+  if (spec.test == TestKind::btt)
+    r.btt_fracture = btt_fracture(spec, r.breaks, r.seating.step, r.peak_step);
+}
 
 TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   const JobSpec spec = effective_spec(job);
@@ -99,35 +150,47 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   r.test = spec.test;
   r.confining_pressure_pa = spec.loading.confining_pressure_pa;
   count_specimen(sim, r);
+  PeakTracker peak{ld.stop_load_fraction,
+                   min_failure_breaks(r.bonds, spec.sample.diameter_m / spec.sample.radius_m)};
   SpeedSchedule schedule{speed, ld.slow_factor, t_ramp};
   bool slow_peak = false;
   const auto slow_trigger = static_cast<std::int64_t>(
       std::max(1.0, std::ceil(ld.slow_trigger_broken_fraction * static_cast<double>(r.bonds))));
   r.dt_s = sim.dt;
-  double load = 0.0, closure = 0.0;
+  double load = 0.0, closure = 0.0;  // closure counts from the seated state
+  double seat_closure = 0.0;
   int frame = 0;
   if (hooks.on_frame) hooks.on_frame(sim, frame++);
 
   auto progress = [&](double elapsed) {
-    double f = std::max(closure / (ld.max_strain * length), double(sim.step) / double(max_steps));
-    if (r.peak_load_n > 0 && load < r.peak_load_n)  // past the peak: how far towards the stop load
-      f = std::max(f, (r.peak_load_n - load) / (r.peak_load_n * (1.0 - ld.stop_load_fraction)));
-    return Progress{sim.step, std::min(1.0, f), load, r.peak_load_n, sim.broken_total, elapsed};
+    double f =
+        std::max((seat_closure + closure) / max_closure, double(sim.step) / double(max_steps));
+    if (peak.peak_load > 0 && load < peak.peak_load)  // past the peak: how far to the stop load
+      f = std::max(f, (peak.peak_load - load) / (peak.peak_load * (1.0 - ld.stop_load_fraction)));
+    return Progress{sim.step, std::min(1.0, f), load, peak.peak_load, sim.broken_total, elapsed};
   };
 
-  // The platens start once a triaxial specimen is confined. Without pressure there is nothing to
-  // ramp in, and the triaxial test is the UCT to the last bit: even a hold of the unloaded specimen
-  // would let round-off-level forces (1e-11 N) seed a different post-damage history, moving the
-  // peak by up to about 1% on small samples. The schedule runs on the loading time.
-  double t = 0.0, base_load = 0.0;
+  // The triaxial specimen is confined first. Without pressure there is nothing to ramp in, and
+  // the triaxial test is the UCT to the last bit. Loads count from the confined state.
+  double base_load = 0.0;
   if (spec.test == TestKind::triaxial && spec.loading.confining_pressure_pa > 0) {
     if (!confine(sim, spec, clock, max_steps, progress))
       r.stop_reason = sim.step >= max_steps ? "max_steps" : "cancelled";
-    load = base_load = 0.5 * (top.reaction.z() - bottom.reaction.z());
+    base_load = 0.5 * (top.reaction.z() - bottom.reaction.z());
+  }
+  if (r.stop_reason.empty())
+    r.stop_reason = seat(sim, spec, clock, max_steps, base_load, t_ramp, r.seating, progress);
+  seat_closure = gap0 - (top.point.z() - bottom.point.z());
+  r.seating.closure_m = seat_closure;
+  peak.start(sim.broken_total);
+  load = 0.5 * (top.reaction.z() - bottom.reaction.z());
+  if (r.stop_reason.empty()) {
     r.curve.push_back({sim.step, sim.time, 0.0, load, sim.broken_total});
     next_curve = curve_spacing;
   }
 
+  // The measured loading, from the seated state at rest: the speed ramps in again.
+  double t = 0.0;
   while (r.stop_reason.empty()) {
     if (sim.broken_total >= slow_trigger) schedule.slow_down_from(t);
     const double v = schedule.speed_at(t + 0.5 * sim.dt);
@@ -136,17 +199,15 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     sim.advance();
     t += sim.dt;
 
-    closure = gap0 - (top.point.z() - bottom.point.z());
+    closure = gap0 - (top.point.z() - bottom.point.z()) - seat_closure;
     load = 0.5 * (top.reaction.z() - bottom.reaction.z());
     if (schedule.slow_phase(t) && !slow_peak) {  // track the peak afresh at the slow speed
       slow_peak = true;
-      r.peak_load_n = 0.0;
+      peak.forget(sim.broken_total);
     }
-    if (load > r.peak_load_n) {
-      r.peak_load_n = load;
-      r.peak_displacement_m = closure;
-      r.broken_at_peak = sim.broken_total;
-    }
+    // A peak only counts once the ramp is over (the tracker keeps it until then).
+    const bool failed =
+        peak.update(load, closure, sim.step, sim.broken_total) && !schedule.changing(t);
     if (closure >= next_curve) {
       r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
       next_curve = closure + curve_spacing;
@@ -157,12 +218,9 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     }
     clock.maybe_report(progress);
 
-    // A peak only counts once the ramp is over and bonds have started to break.
-    const bool past_peak = !schedule.changing(t) && sim.broken_total > 0 &&
-                           load <= ld.stop_load_fraction * r.peak_load_n;
-    if (past_peak)
+    if (failed)
       r.stop_reason = "post_peak";
-    else if (closure >= ld.max_strain * length)
+    else if (seat_closure + closure >= max_closure)
       r.stop_reason = "max_strain";
     else if (sim.step >= max_steps)
       r.stop_reason = "max_steps";
@@ -176,18 +234,25 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   if (hooks.on_frame) hooks.on_frame(sim, frame++);
   clock.maybe_report(progress, true);
 
+  r.peak_reached = r.stop_reason == "post_peak";
+  r.peak_load_n = r.peak_reached ? peak.peak_load : peak.max_load;
+  r.peak_displacement_m = peak.peak_closure;
+  r.peak_step = peak.peak_step;
+  r.broken_at_peak = peak.broken_at_peak;
+  if (!r.peak_reached) r.no_peak_reason = peak.no_peak_reason(r.stop_reason);
   const double d = spec.sample.diameter_m;
   if (spec.test == TestKind::btt) {
-    r.strength_pa = 2.0 * r.peak_load_n / (M_PI * d * spec.sample.btt_thickness());
+    r.strength_pa = btt_strength(spec, r.peak_load_n);
   } else {
     const double area = 0.25 * M_PI * d * d;
     r.strength_pa = r.peak_load_n / area;
-    r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
+    if (r.peak_reached)
+      r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
   }
   r.steps = sim.step;
   r.broken_bonds = sim.broken_total;
-  for (const BreakEvent& e : sim.breaks) ++r.broken_by[static_cast<int>(e.mode)];
   r.breaks = std::move(sim.breaks);
+  tally_breaks(spec, r);
   r.wall_seconds = clock.elapsed_s();
   return r;
 }

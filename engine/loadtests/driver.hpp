@@ -5,12 +5,17 @@
 
 namespace rockcal {
 
-// UCT (cylinder along its axis) and BTT (disc across a diameter): platens close at the job's speed
-// until the load has fallen past the peak, or the strain or step limit. Triaxial: the UCT cylinder,
-// first confined by loading.confining_pressure on its lateral surface (ramped in with the platens
-// still), then loaded like the UCT; the peak load is the axial platen load.
-// Every driver runs the job's effective spec (effective_spec(): the effects' spec hooks applied).
+// UCT (cylinder along its axis) and BTT (disc across a diameter, loaded by its btt_geometry): the
+// platens seat the specimen (loadtests/seating.hpp), then close at the job's speed until the load
+// has fallen past a peak with failure (loadtests/peak.hpp), or the strain or step limit. Triaxial:
+// the UCT cylinder, first confined by loading.confining_pressure on its lateral surface (ramped in
+// with the platens still), then loaded like the UCT; the peak load is the axial platen load. Every
+// driver runs the job's effective spec (effective_spec(): the effects' spec hooks applied).
 TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks);
+
+// Counts the breaks by mode and (BTT) where the disc broke first, from r.breaks: after a run, and
+// again once a decomposed run has gathered every rank's breaks.
+void tally_breaks(const JobSpec& spec, TestResult& r);
 
 // Elastic test: the UCT specimen compressed by a small strain and relaxed; E and nu from the
 // stress and strain measured in the interior, away from the free surface and the platens.

@@ -44,6 +44,13 @@ TestResult run_rate_study(const JobSpec& job, const RunHooks& hooks) {
   run.loading.rate_study = false;
   // A probe at the job's own speed tells the strain at peak, which sets the starting speed.
   TestResult probe = run_compression_test(run, hooks);
+  // A run without a peak has nothing to extrapolate: the study ends with that run's reason.
+  auto no_peak = [](TestResult r, double v) {
+    r.no_peak_reason =
+        "rate study run at platen speed " + nlohmann::json(v).dump() + " m/s: " + r.no_peak_reason;
+    return r;
+  };
+  if (!probe.peak_reached) return no_peak(probe, spec.loading.platen_velocity_m_s);
   const double length = loaded_length(spec);
   const double strain_at_peak = std::max(probe.peak_displacement_m / length, 1e-4);
   const double v_quasi_static =
@@ -60,6 +67,7 @@ TestResult run_rate_study(const JobSpec& job, const RunHooks& hooks) {
        ++k, v *= 0.5) {
     run.loading.platen_velocity_m_s = v;
     slowest = run_compression_test(run, hooks);
+    if (!slowest.peak_reached) return no_peak(slowest, v);
     study.speeds_m_s.push_back(v);
     study.peaks_n.push_back(slowest.peak_load_n);
     study.wall_seconds.push_back(slowest.wall_seconds);

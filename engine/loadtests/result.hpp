@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/bonds.hpp"
+#include "engine/loadtests/brazilian.hpp"
 #include "engine/spec.hpp"
 
 namespace rockcal {
@@ -34,16 +35,32 @@ struct RateStudy {
   bool converged = false;   // peaks converged geometrically; otherwise the error is a bound guess
 };
 
+// The state the measurement starts from (loadtests/seating.hpp).
+struct Seating {
+  double load_n = 0.0;            // seating load the platens closed to
+  double closure_m = 0.0;         // platen closure when it was reached (the curve's zero)
+  std::int64_t step = 0;          // first step of the measured loading
+  std::int64_t broken_bonds = 0;  // broken while seating (a rough end's grains)
+};
+
 struct TestResult {
   TestKind test = TestKind::uct;
+  // A peak with failure (loadtests/peak.hpp). When false, peak_load_n is only the largest load
+  // seen and no_peak_reason says why: not a strength.
+  bool peak_reached = false;
+  std::string no_peak_reason;
   double peak_load_n = 0.0;
   double strength_pa = 0.0;                 // UCS = F/A or BTS = 2P/(pi D t); elastic: 0
   double confining_pressure_pa = 0.0;       // triaxial: the lateral pressure; others 0
   std::optional<double> youngs_modulus_pa;  // UCT pre-peak slope, or elastic test
   std::optional<double> poisson_ratio;      // elastic test
-  double peak_displacement_m = 0.0;
+  double peak_displacement_m = 0.0;         // platen closure from the seated state
+  std::int64_t peak_step = 0;
   std::int64_t broken_at_peak = 0;  // damage when the peak was reached
   std::int64_t particles = 0, bonds = 0, broken_bonds = 0;
+  std::int64_t floaters_removed = 0;  // particles with too few bonds, dropped before bonding
+  Seating seating;
+  std::optional<BttFracture> btt_fracture;  // BTT: where the disc broke first
   std::array<std::int64_t, 4> broken_by{};  // by BreakMode
   std::int64_t steps = 0;
   double dt_s = 0.0;

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "engine/effects/effect.hpp"
+#include "engine/loadtests/brazilian.hpp"
 #include "engine/packing/cache.hpp"
 #include "engine/packing/fcc.hpp"
+#include "engine/packing/floaters.hpp"
 #include "engine/units.hpp"
 
 namespace rockcal {
@@ -18,23 +21,70 @@ constexpr double kRandomBondTolerance = 0.025;
 
 namespace {
 
-std::vector<Sphere> specimen_spheres(const JobSpec& spec) {
+double bond_tolerance(const JobSpec& spec) {
+  return spec.sample.packing == "random" ? kRandomBondTolerance : kLatticeBondTolerance;
+}
+
+// The particles of the specimen before bonding, floaters removed.
+std::vector<Sphere> specimen_spheres(const JobSpec& spec, std::int64_t* floaters) {
   const double r = spec.sample.radius_m;
+  const bool btt = spec.test == TestKind::btt;
+  const Disc disc = btt_disc(spec);
+  const Cylinder cylinder{spec.sample.diameter_m, spec.sample.height_m};
+  std::vector<Sphere> out;
   if (spec.sample.packing == "random") {
     const RandomPackingParams params{r, spec.sample.radius_ratio, spec.sample.seed};
     const auto dir = default_packing_cache_dir();
-    if (spec.test == TestKind::btt)
-      return cached_random_dense(Disc{spec.sample.diameter_m, spec.sample.btt_thickness()}, params,
-                                 dir);
-    return cached_random_dense(Cylinder{spec.sample.diameter_m, spec.sample.height_m}, params, dir);
+    // The cache holds full discs; a flattened disc is the same packing with its flats cut off,
+    // with the lattice's rule for the surface (a particle pokes out by at most half its radius).
+    out = btt ? cached_random_dense(Disc{disc.diameter_m, disc.thickness_m}, params, dir)
+              : cached_random_dense(cylinder, params, dir);
+    if (btt && std::isfinite(disc.flat_z_m))
+      std::erase_if(out, [&](const Sphere& s) {
+        return std::abs(s.centre.z()) + 0.5 * s.radius > disc.flat_z_m;
+      });
+  } else {
+    const LatticePlacement place =
+        spec.sample.lattice == "aligned" ? aligned_lattice() : seeded_lattice(spec.sample.seed, r);
+    const std::vector<Vec3> centres =
+        btt ? fcc_centres(disc, r, place) : fcc_centres(cylinder, r, place);
+    for (const Vec3& c : centres) out.push_back({c, r});
   }
-  const std::vector<Vec3> centres =
-      spec.test == TestKind::btt
-          ? fcc_centres(Disc{spec.sample.diameter_m, spec.sample.btt_thickness()}, r)
-          : fcc_centres(Cylinder{spec.sample.diameter_m, spec.sample.height_m}, r);
-  std::vector<Sphere> out;
-  for (const Vec3& c : centres) out.push_back({c, r});
+  *floaters = static_cast<std::int64_t>(remove_floaters(out, bond_tolerance(spec)));
   return out;
+}
+
+// The loading surfaces, touching the outermost particles along z: flat platens, or (BTT, curved
+// jaws) concave jaws placed so that no particle overlaps them at the start.
+void add_loading_walls(Simulation& sim, const JobSpec& spec, const std::vector<Sphere>& spheres,
+                       const BondStiffness& k) {
+  const double mu = spec.loading.platen_friction;
+  if (spec.test == TestKind::btt && spec.loading.btt_geometry == BttGeometry::curved_jaws) {
+    const double rj = spec.loading.jaw_radius_ratio * 0.5 * spec.sample.diameter_m;
+    double axis_lo = std::numeric_limits<double>::infinity(), axis_hi = -axis_lo;
+    for (const Sphere& s : spheres) {
+      const double reach = rj - s.radius, x = s.centre.x();
+      if (std::abs(x) >= reach) continue;
+      const double h = std::sqrt(reach * reach - x * x);
+      axis_lo = std::min(axis_lo, s.centre.z() + h);  // bottom jaw: axis above the particles
+      axis_hi = std::max(axis_hi, s.centre.z() - h);
+    }
+    sim.walls.push_back(make_jaw(Vec3(0, 0, 1), Vec3(0, 0, axis_lo - rj), Vec3::UnitY(), rj,
+                                 kJawHalfAngleRad, k.kr_n_m, k.ks_n_m, mu, kBottomPlaten));
+    sim.walls.push_back(make_jaw(Vec3(0, 0, -1), Vec3(0, 0, axis_hi + rj), Vec3::UnitY(), rj,
+                                 kJawHalfAngleRad, k.kr_n_m, k.ks_n_m, mu, kTopPlaten));
+    return;
+  }
+  double z_lo = spheres[0].centre.z() - spheres[0].radius,
+         z_hi = spheres[0].centre.z() + spheres[0].radius;
+  for (const Sphere& s : spheres) {
+    z_lo = std::min(z_lo, s.centre.z() - s.radius);
+    z_hi = std::max(z_hi, s.centre.z() + s.radius);
+  }
+  sim.walls.push_back(
+      make_wall(Vec3(0, 0, 1), Vec3(0, 0, z_lo), k.kr_n_m, k.ks_n_m, mu, kBottomPlaten));
+  sim.walls.push_back(
+      make_wall(Vec3(0, 0, -1), Vec3(0, 0, z_hi), k.kr_n_m, k.ks_n_m, mu, kTopPlaten));
 }
 
 }  // namespace
@@ -66,6 +116,7 @@ void count_specimen(const Simulation& sim, TestResult& r) {
   reduce_sum(sim.domain, counts, 2);
   r.particles = static_cast<std::int64_t>(counts[0]);
   r.bonds = static_cast<std::int64_t>(counts[1]);
+  r.floaters_removed = sim.floaters_removed;
 }
 
 namespace {
@@ -98,8 +149,12 @@ void widen_halo_for_bonds(Simulation& sim, double r_max) {
 
 Simulation make_specimen(const JobSpec& job, MPI_Comm comm) {
   const JobSpec spec = effective_spec(job);  // a no-op when the driver already made it effective
-  const std::vector<Sphere> spheres = specimen_spheres(spec);
-  if (spheres.empty()) throw std::runtime_error("the specimen holds no particle");
+  std::int64_t floaters = 0;
+  const std::vector<Sphere> spheres = specimen_spheres(spec, &floaters);
+  if (spheres.empty())
+    throw std::runtime_error("the specimen holds no particle (" + std::to_string(floaters) +
+                             " removed with fewer than " + std::to_string(kMinBondsToHold) +
+                             " bonds): it is too small for its particles");
   const double r = spec.sample.radius_m;
   double r_max = 0.0;
   for (const Sphere& s : spheres) r_max = std::max(r_max, s.radius);
@@ -129,45 +184,21 @@ Simulation make_specimen(const JobSpec& job, MPI_Comm comm) {
     if (z >= d.z_lo - d.halo && z < d.z_hi + d.halo)
       add(near, spheres[c].centre, spheres[c].radius, std::int64_t(c));
   }
-  const double tolerance =
-      spec.sample.packing == "random" ? kRandomBondTolerance : kLatticeBondTolerance;
   sim.bonds = bond_neighbours(
-      near, tolerance, [&](double radius) { return bond_stiffness(spec, radius); }, spec.bond.fr0_n,
-      spec.bond.fs0_n);
-  // A random packing's cut can leave particles without a single bond: loose grains that would fly
-  // around undamped (local damping needs a force). They are not part of the specimen.
-  std::vector<int> degree(near.size(), 0);
-  for (const Bond& b : sim.bonds) ++degree[b.i], ++degree[b.j];
-  std::vector<std::int32_t> new_index(near.size(), -1);
+      near, bond_tolerance(spec), [&](double radius) { return bond_stiffness(spec, radius); },
+      spec.bond.fr0_n, spec.bond.fs0_n);
   for (std::size_t c = 0; c < near.size(); ++c) {
     const double z = near.pos[c].z();
-    if (z < d.z_lo || z >= d.z_hi || (degree[c] == 0 && spec.sample.packing != "fcc")) continue;
-    new_index[c] = static_cast<std::int32_t>(sim.particles.size());
-    add(sim.particles, near.pos[c], near.radius[c], near.id[c]);
+    if (z >= d.z_lo && z < d.z_hi) add(sim.particles, near.pos[c], near.radius[c], near.id[c]);
   }
-  if (!d.parallel()) {  // in serial every bond joins two kept particles: renumber (in parallel by
-                        // id)
-    for (Bond& b : sim.bonds) {
-      b.i = new_index[b.i];
-      b.j = new_index[b.j];
-    }
-  }
+  // In serial every particle is owned, in the order of `near`: the bond indices hold as they are.
+  // In parallel redistribute() re-indexes the bonds by id.
+  sim.floaters_removed = floaters;
 
   sim.contact = ContactLaw{k.kr_n_m, k.ks_n_m, spec.contact.friction, spec.contact.friction};
   sim.damping = Damping{spec.damping.local, spec.damping.viscous};
 
-  // Platens touch the lowest and highest sphere surfaces.
-  double z_lo = spheres[0].centre.z() - spheres[0].radius,
-         z_hi = spheres[0].centre.z() + spheres[0].radius;
-  for (const Sphere& s : spheres) {
-    z_lo = std::min(z_lo, s.centre.z() - s.radius);
-    z_hi = std::max(z_hi, s.centre.z() + s.radius);
-  }
-  const double mu = spec.loading.platen_friction;
-  sim.walls.push_back(
-      make_wall(Vec3(0, 0, 1), Vec3(0, 0, z_lo), k.kr_n_m, k.ks_n_m, mu, kBottomPlaten));
-  sim.walls.push_back(
-      make_wall(Vec3(0, 0, -1), Vec3(0, 0, z_hi), k.kr_n_m, k.ks_n_m, mu, kTopPlaten));
+  add_loading_walls(sim, spec, spheres, k);
 
   sim.redistribute();  // ghosts and local bond indices, which the time step estimate needs
   apply_specimen_effects(sim, spec);

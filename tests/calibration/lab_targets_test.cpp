@@ -1,4 +1,4 @@
-// Lab-unit targets: the seed paper's lab case (shared/data) maps to its model targets by eq. 4.
+// Lab-unit targets: the seed paper's lab case (examples/datasets/seed_paper) maps to its model targets by eq. 4.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,9 +15,9 @@ namespace {
 
 using nlohmann::json;
 
-// Rows of a shared/data CSV ('#' comments, a header), keyed by the first column.
+// Rows of a seed-paper CSV ('#' comments, a header), keyed by the first column.
 std::map<std::string, std::map<std::string, std::string>> read_csv(const std::string& name) {
-  std::ifstream in(std::string(ROCKCAL_SHARED_DATA) + "/" + name);
+  std::ifstream in(std::string(ROCKCAL_SEED_DATA) + "/" + name);
   EXPECT_TRUE(in.good()) << name;
   std::vector<std::string> header;
   std::map<std::string, std::map<std::string, std::string>> rows;

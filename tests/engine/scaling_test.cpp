@@ -13,7 +13,7 @@ using namespace rockcal;
 namespace {
 
 std::map<std::string, std::string> read_oracle() {
-  const std::string path = std::string(ROCKCAL_SHARED_DATA) + "/seed_model_scaling.csv";
+  const std::string path = std::string(ROCKCAL_SEED_DATA) + "/seed_model_scaling.csv";
   std::ifstream in(path);
   EXPECT_TRUE(in) << "missing " << path;
   std::map<std::string, std::string> out;
