@@ -34,6 +34,27 @@ int main(int argc, char** argv) {
   s->add_option("--max-body", serve.max_body, "cap on request body bytes")->capture_default_str();
   s->add_option("--http-threads", serve.http_threads, "HTTP worker threads")->capture_default_str();
   s->add_option("--port-file", serve.port_file, "write the bound port here once listening");
+  s->add_option("--executor", serve.executor, "where jobs run: local processes or Slurm jobs")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"local", "slurm"}));
+  s->add_option("--jobs-dir", serve.jobs_dir,
+                "job directories (default: <data-dir>/jobs; slurm: shared with compute nodes)");
+  s->add_option("--mpi-hostfile", serve.mpi_hostfile, "local: mpirun --hostfile for several hosts")
+      ->check(CLI::ExistingFile);
+  s->add_option("--partition", serve.partition, "slurm: sbatch --partition");
+  s->add_option("--account", serve.account, "slurm: sbatch --account");
+  s->add_option("--time-limit", serve.time_limit, "slurm: sbatch --time per job (e.g. 2:00:00)");
+  s->add_option("--srun-mpi", serve.srun_mpi, "slurm: srun --mpi plugin (empty: MpiDefault)")
+      ->capture_default_str();
+  s->add_option("--max-queued", serve.max_queued, "slurm: jobs submitted to Slurm at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  s->add_option("--slurm-poll", serve.slurm_poll_s, "slurm: seconds between squeue queries")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  // Every option above can be given in this file instead, as `name = value` (the flag without
+  // its dashes): the file and the flags are one list of options (deploy/rockcal.conf).
+  s->set_config("--config", "", "read options from this TOML file (keys: the flags above)");
 
   ClientOptions client;
   std::string file;
