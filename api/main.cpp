@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "api/backup_cli.hpp"
 #include "api/client.hpp"
 #include "api/serve.hpp"
 #include "api/twin_cli.hpp"
@@ -103,6 +104,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   twin->add_flag("--keep-runs", twin_options.keep_runs, "keep OUT.runs/ (job dirs and logs)");
 
+  std::string backup_db = "rockcal.db", backup_out, restore_from, restore_data_dir;
+  auto* backup = app.add_subcommand(
+      "backup", "copy the live database (SQLite online backup; the server may be running)");
+  backup->add_option("--db", backup_db, "SQLite database file")->capture_default_str();
+  backup->add_option("--out", backup_out, "backup file to write")->required();
+  auto* restore =
+      app.add_subcommand("restore", "replace the database by a backup (server stopped)");
+  restore->add_option("--from", restore_from, "backup file")->required()->check(CLI::ExistingFile);
+  restore->add_option("--db", backup_db, "SQLite database file")->capture_default_str();
+  restore->add_option("--data-dir", restore_data_dir, "the server's data dir (default: <db>.d)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*s) return run_serve(serve, argv[0]);
@@ -111,6 +123,8 @@ int main(int argc, char** argv) {
     if (*results) return client_results(client, id, csv);
     if (*cancel) return client_cancel(client, id);
     if (*list) return client_list(client);
+    if (*backup) return run_backup(backup_db, backup_out);
+    if (*restore) return run_restore(restore_from, backup_db, restore_data_dir);
     if (*diagnose) return client_diagnose(client, file, html_out);
     if (*twin) {
       twin_options.value_given = value->count() > 0;
