@@ -53,9 +53,12 @@ int main(int argc, char** argv) {
   s->add_option("--slurm-poll", serve.slurm_poll_s, "slurm: seconds between squeue queries")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  // Every option above can be given in this file instead, as `name = value` (the flag without
-  // its dashes): the file and the flags are one list of options (deploy/rockcal.conf).
-  s->set_config("--config", "", "read options from this TOML file (keys: the flags above)");
+  // Every option above can be given in a file instead, as `name = value` (the flag without its
+  // dashes) under [serve]: the file and the flags are one list of options (deploy/rockcal.conf).
+  // A flag on the command line wins over the file; an unknown key is an error.
+  app.set_config("--config", "", "read `rockcal serve` options from this TOML file ([serve])");
+  app.allow_config_extras(CLI::config_extras_mode::error);
+  s->fallthrough();  // so `rockcal serve --config FILE` works too
 
   ClientOptions client;
   std::string file;
