@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
   s->add_option("--data-dir", serve.data_dir, "job files (default: <db>.d)");
   s->add_option("--listen", serve.listen, "HOST:PORT (port 0: any free port)")
       ->capture_default_str();
-  s->add_option("--workers", serve.workers, "jobs run at once (default: cores / ranks)");
+  s->add_option("--workers", serve.workers,
+                "local: jobs run at once (default: cores / ranks); slurm: see --max-queued");
   s->add_option("--ranks-per-job", serve.ranks_per_job, "MPI ranks per job; 0 runs without mpirun")
       ->capture_default_str()
       ->check(CLI::Range(0, 4096));

@@ -94,7 +94,10 @@ TEST(Slurm, UctBttSweepRunsToCompletionWithTheRealEngine) {
                        slurm_options({"--engine", engine_binary(), "--max-queued", "4"}));
   server.start();
   auto c = server.client();
-  auto id = post_campaign(c, sweep_request({"uct", "btt"}, {40, 80}, {50, 70}));
+  json request = sweep_request({"uct", "btt"}, {40, 80}, {50, 70});
+  // A disc of diameter 6 keeps too few particles for the engine's BTT; 10 holds 41.
+  request["job"]["sample"]["diameter"] = 10;
+  auto id = post_campaign(c, request);
   json done = wait_campaign(c, id, 300s);
   ASSERT_EQ(done["state"], "succeeded") << done.dump(2) << server.stderr_text();
   EXPECT_EQ(done["progress"]["succeeded"], 8);
