@@ -2,7 +2,8 @@
 # The Slurm executor on a real Slurm: installs Debian's slurm and munge packages if missing, writes
 # a one-node cluster on loopback into a temporary directory, starts munged, slurmctld and slurmd
 # as processes this script owns (no systemd), runs the Slurm system tests against it, and stops
-# everything it started, whatever happens. Usage: tests/slurm/run.sh [BUILD_DIR]   (root only)
+# everything it started, whatever happens. Usage: tests/slurm/run.sh [BUILD_DIR [GTEST ARGS]]
+# (root only)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=$(cd "${1:-build}" && pwd)
@@ -133,7 +134,7 @@ echo "slurm test: one-node cluster up ($(sinfo -V), ports $ctld_port/$slurmd_por
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 start=$(date +%s)
 status=0
-"$tests" || status=$?
+"$tests" "${@:2}" || status=$?
 echo "slurm test: $(($(date +%s) - start)) s, exit $status"
 if [ "$status" -ne 0 ]; then
   tail -n 30 "$dir/slurmctld.log" "$dir/slurmd.log" >&2 || true
