@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "api/backup_cli.hpp"
 #include "api/client.hpp"
 #include "api/serve.hpp"
 #include "api/twin_cli.hpp"
@@ -18,7 +19,8 @@ int main(int argc, char** argv) {
   s->add_option("--data-dir", serve.data_dir, "job files (default: <db>.d)");
   s->add_option("--listen", serve.listen, "HOST:PORT (port 0: any free port)")
       ->capture_default_str();
-  s->add_option("--workers", serve.workers, "jobs run at once (default: cores / ranks)");
+  s->add_option("--workers", serve.workers,
+                "local: jobs run at once (default: cores / ranks); slurm: see --max-queued");
   s->add_option("--ranks-per-job", serve.ranks_per_job, "MPI ranks per job; 0 runs without mpirun")
       ->capture_default_str()
       ->check(CLI::Range(0, 4096));
@@ -34,6 +36,30 @@ int main(int argc, char** argv) {
   s->add_option("--max-body", serve.max_body, "cap on request body bytes")->capture_default_str();
   s->add_option("--http-threads", serve.http_threads, "HTTP worker threads")->capture_default_str();
   s->add_option("--port-file", serve.port_file, "write the bound port here once listening");
+  s->add_option("--executor", serve.executor, "where jobs run: local processes or Slurm jobs")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"local", "slurm"}));
+  s->add_option("--jobs-dir", serve.jobs_dir,
+                "job directories (default: <data-dir>/jobs; slurm: shared with compute nodes)");
+  s->add_option("--mpi-hostfile", serve.mpi_hostfile, "local: mpirun --hostfile for several hosts")
+      ->check(CLI::ExistingFile);
+  s->add_option("--partition", serve.partition, "slurm: sbatch --partition");
+  s->add_option("--account", serve.account, "slurm: sbatch --account");
+  s->add_option("--time-limit", serve.time_limit, "slurm: sbatch --time per job (e.g. 2:00:00)");
+  s->add_option("--srun-mpi", serve.srun_mpi, "slurm: srun --mpi plugin (empty: MpiDefault)")
+      ->capture_default_str();
+  s->add_option("--max-queued", serve.max_queued, "slurm: jobs submitted to Slurm at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  s->add_option("--slurm-poll", serve.slurm_poll_s, "slurm: seconds between squeue queries")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  // Every option above can be given in a file instead, as `name = value` (the flag without its
+  // dashes) under [serve]: the file and the flags are one list of options (deploy/rockcal.conf).
+  // A flag on the command line wins over the file; an unknown key is an error.
+  app.set_config("--config", "", "read `rockcal serve` options from this TOML file ([serve])");
+  app.allow_config_extras(CLI::config_extras_mode::error);
+  s->fallthrough();  // so `rockcal serve --config FILE` works too
 
   ClientOptions client;
   std::string file;
@@ -82,6 +108,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   twin->add_flag("--keep-runs", twin_options.keep_runs, "keep OUT.runs/ (job dirs and logs)");
 
+  std::string backup_db = "rockcal.db", backup_out, restore_from, restore_data_dir;
+  auto* backup = app.add_subcommand(
+      "backup", "copy the live database (SQLite online backup; the server may be running)");
+  backup->add_option("--db", backup_db, "SQLite database file")->capture_default_str();
+  backup->add_option("--out", backup_out, "backup file to write")->required();
+  auto* restore =
+      app.add_subcommand("restore", "replace the database by a backup (server stopped)");
+  restore->add_option("--from", restore_from, "backup file")->required()->check(CLI::ExistingFile);
+  restore->add_option("--db", backup_db, "SQLite database file")->capture_default_str();
+  restore->add_option("--data-dir", restore_data_dir, "the server's data dir (default: <db>.d)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*s) return run_serve(serve, argv[0]);
@@ -90,6 +127,8 @@ int main(int argc, char** argv) {
     if (*results) return client_results(client, id, csv);
     if (*cancel) return client_cancel(client, id);
     if (*list) return client_list(client);
+    if (*backup) return run_backup(backup_db, backup_out);
+    if (*restore) return run_restore(restore_from, backup_db, restore_data_dir);
     if (*diagnose) return client_diagnose(client, file, html_out);
     if (*twin) {
       twin_options.value_given = value->count() > 0;

@@ -1,10 +1,54 @@
 #include "api/metrics.hpp"
 
+#include <map>
+
 #include "api/http_util.hpp"
 
 namespace rockcal::api {
 
-std::string metrics_text(db::Store& store, int workers) {
+namespace {
+
+std::string executor_metrics(orch::JobService& service) {
+  const std::string current = service.executor().name();
+  // Jobs waiting for a worker will be run by this server's executor.
+  std::map<std::string, db::ExecutorCounts> by_executor{{current, {current}}};
+  for (const auto& c : service.store().executor_counts()) {
+    auto& e = by_executor[c.executor.empty() ? current : c.executor];
+    e.executor = c.executor.empty() ? current : c.executor;
+    e.waiting += c.waiting;
+    e.pending += c.pending;
+    e.running += c.running;
+  }
+  std::string out;
+  auto gauge = [&](const char* name, const char* help, auto value) {
+    out += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " gauge\n";
+    for (const auto& [executor, c] : by_executor) {
+      out +=
+          std::string(name) + "{executor=\"" + executor + "\"} " + std::to_string(value(c)) + "\n";
+    }
+  };
+  gauge("rockcal_executor_queue_depth", "Jobs waiting for a worker of the executor.",
+        [](const db::ExecutorCounts& c) { return c.waiting; });
+  gauge("rockcal_executor_running", "Jobs running under the executor.",
+        [](const db::ExecutorCounts& c) { return c.running; });
+  gauge("rockcal_executor_pending",
+        "Jobs submitted and waiting in the executor's scheduler "
+        "(PENDING in Slurm).",
+        [](const db::ExecutorCounts& c) { return c.pending; });
+  out +=
+      "# HELP rockcal_executor_failures_total Failed attempts since the server started, by "
+      "reason.\n# TYPE rockcal_executor_failures_total counter\n";
+  for (const auto& [reason, n] : service.failures().snapshot()) {
+    out += "rockcal_executor_failures_total{executor=\"" + current + "\",reason=\"" + reason +
+           "\"} " + std::to_string(n) + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string metrics_text(orch::JobService& service, int workers) {
+  db::Store& store = service.store();
   auto c = store.counts();
   std::string out;
   out += "# HELP rockcal_jobs Jobs by state.\n# TYPE rockcal_jobs gauge\n";
@@ -38,6 +82,7 @@ std::string metrics_text(db::Store& store, int workers) {
   out += "rockcal_job_duration_seconds_bucket{le=\"+Inf\"} " + std::to_string(d.count) + "\n";
   out += "rockcal_job_duration_seconds_sum " + number_text(d.sum_seconds) + "\n";
   out += "rockcal_job_duration_seconds_count " + std::to_string(d.count) + "\n";
+  out += executor_metrics(service);
   return out;
 }
 

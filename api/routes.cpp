@@ -140,7 +140,7 @@ void get_job(ApiContext& ctx, const Req& req, Res& res) {
 void job_log(ApiContext& ctx, const Req& req, Res& res) {
   auto j = job_or_404(ctx.service, req);
   // The path is built from the numeric id the store returned, never from the request text.
-  auto file = orch::job_dir(ctx.service.data_dir(), j.id) / "log";
+  auto file = orch::job_dir(ctx.service.jobs_dir(), j.id) / "log";
   if (!std::filesystem::exists(file)) {
     throw HttpError(
         404, j.cached ? "job was answered from the store and never ran" : "job has no log yet");
@@ -191,8 +191,7 @@ std::vector<Route> api_routes(ApiContext& ctx) {
        }},
       {"GET", "/metrics",
        [&ctx](const Req&, Res& res) {
-         res.set_content(metrics_text(ctx.service.store(), ctx.workers),
-                         "text/plain; version=0.0.4");
+         res.set_content(metrics_text(ctx.service, ctx.workers), "text/plain; version=0.0.4");
        }},
       {"POST", "/api/v1/campaigns", bind(create_campaign)},
       {"GET", "/api/v1/campaigns", bind(list_campaigns)},

@@ -12,6 +12,7 @@
 #include "api/server.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
+#include "orchestrator/slurm/slurm_executor.hpp"
 
 namespace rockcal::api {
 namespace fs = std::filesystem;
@@ -57,15 +58,37 @@ int run_serve(const ServeOptions& o, const std::string& argv0) {
   int ranks = std::max(0, o.ranks_per_job);
   int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   int workers = o.workers > 0 ? o.workers : std::max(1, cores / std::max(1, ranks));
-
-  orch::LocalExecutorConfig exec;
-  exec.engine = o.engine.empty() ? default_engine(argv0) : o.engine;
-  exec.ranks = ranks;
-  exec.mpirun = o.mpirun;
+  const std::string engine = o.engine.empty() ? default_engine(argv0) : o.engine;
 
   orch::ServiceConfig cfg;
+  std::unique_ptr<orch::Executor> executor;
+  if (o.executor == "slurm") {
+    orch::slurm::SlurmConfig exec;
+    exec.engine = fs::absolute(engine).string();  // srun runs it on a compute node
+    exec.ranks = std::max(1, ranks);
+    exec.partition = o.partition;
+    exec.account = o.account;
+    exec.time_limit = o.time_limit;
+    exec.srun_mpi = o.srun_mpi;
+    exec.query_interval =
+        std::chrono::milliseconds(static_cast<std::int64_t>(o.slurm_poll_s * 1000));
+    // One worker thread watches each job submitted to Slurm; the marker file is read at most
+    // once a second per job (it may be on NFS), squeue at most once per query interval.
+    workers = o.max_queued;
+    cfg.poll_interval = std::min(exec.query_interval, std::chrono::milliseconds(1000));
+    executor = std::make_unique<orch::slurm::SlurmExecutor>(exec);
+  } else {
+    orch::LocalExecutorConfig exec;
+    exec.engine = engine;
+    exec.ranks = ranks;
+    exec.mpirun = o.mpirun;
+    exec.hostfile = o.mpi_hostfile;
+    executor = std::make_unique<orch::LocalExecutor>(exec);
+  }
+
   cfg.db_path = o.db;
   cfg.data_dir = o.data_dir;
+  cfg.jobs_dir = o.jobs_dir;
   cfg.workers = workers;
   cfg.max_attempts = 1 + std::max(0, o.retries);
   cfg.job_timeout = std::chrono::milliseconds(static_cast<std::int64_t>(o.job_timeout_s * 1000));
@@ -81,10 +104,15 @@ int run_serve(const ServeOptions& o, const std::string& argv0) {
     std::cerr << "rockcal: warning: listening on " << host << " without --token-file\n";
   }
 
-  orch::JobService service(cfg, std::make_unique<orch::LocalExecutor>(exec));
+  const std::string executor_name = executor->name();
+  orch::JobService service(cfg, std::move(executor));
   if (service.recovered_jobs() > 0) {
     std::cerr << "rockcal: re-queued " << service.recovered_jobs() << " jobs left running; stopped "
               << service.stopped_orphans() << " orphaned process groups\n";
+  }
+  if (service.reattached_jobs() > 0) {
+    std::cerr << "rockcal: re-attached to " << service.reattached_jobs() << " jobs still in "
+              << executor_name << "\n";
   }
   register_optional_kinds(service);
   ApiServer server(service, workers, server_cfg);
@@ -97,9 +125,9 @@ int run_serve(const ServeOptions& o, const std::string& argv0) {
     std::cerr << "rockcal: signal " << sig << ", stopping\n";
     server.stop();
   });
-  std::cout << "rockcal: serving on http://" << host << ":" << bound << " (" << workers
-            << " workers, " << ranks << " ranks per job, engine " << exec.engine << ", data "
-            << service.data_dir().string() << ")" << std::endl;
+  std::cout << "rockcal: serving on http://" << host << ":" << bound << " (" << executor_name
+            << " executor, " << workers << " workers, " << ranks << " ranks per job, engine "
+            << engine << ", data " << service.data_dir().string() << ")" << std::endl;
   if (!o.port_file.empty()) {
     // Written atomically so a watcher never reads a half-written number.
     std::ofstream(o.port_file + ".tmp") << bound << "\n";

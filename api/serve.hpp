@@ -19,7 +19,16 @@ struct ServeOptions {
   std::size_t max_jobs = 10000;
   std::size_t max_body = 1 << 20;
   int http_threads = 32;
-  std::string port_file;  // written with the bound port once listening
+  std::string port_file;           // written with the bound port once listening
+  std::string executor = "local";  // local | slurm
+  std::string jobs_dir;            // default "<data-dir>/jobs"; slurm: shared with compute nodes
+  std::string mpi_hostfile;        // local: mpirun --hostfile, for ranks on several hosts
+  std::string partition;           // slurm: sbatch --partition
+  std::string account;             // slurm: sbatch --account
+  std::string time_limit;          // slurm: sbatch --time
+  std::string srun_mpi = "pmix";   // slurm: srun --mpi ("" = the cluster's MpiDefault)
+  int max_queued = 64;             // slurm: jobs submitted to Slurm at once
+  double slurm_poll_s = 10;        // slurm: seconds between squeue queries
 };
 
 int run_serve(const ServeOptions& options, const std::string& argv0);

@@ -83,6 +83,14 @@ struct StateCounts {
   std::int64_t total() const { return queued + running + succeeded + failed + cancelled; }
 };
 
+// Unfinished jobs of one executor ("" for jobs no executor has taken yet).
+struct ExecutorCounts {
+  std::string executor;
+  std::int64_t waiting = 0;  // queued, waiting for a worker
+  std::int64_t pending = 0;  // queued in the executor's own scheduler (e.g. PENDING in Slurm)
+  std::int64_t running = 0;
+};
+
 struct ResultFilter {
   std::optional<std::string> test;
   std::optional<double> fr0_min, fr0_max, fs0_min, fs0_max;

@@ -13,6 +13,10 @@ namespace rockcal::db {
 using detail::kJobColumns;
 using detail::read_job;
 
+// A job an executor owns: running, or queued in the executor's own scheduler (it has a handle).
+#define OWNED(t) \
+  "(" t ".state = 'running' OR (" t ".state = 'queued' AND " t ".handle IS NOT NULL))"
+
 double now_seconds() {
   using namespace std::chrono;
   return duration<double>(system_clock::now().time_since_epoch()).count();
@@ -112,8 +116,8 @@ std::optional<JobRow> Store::claim_job(const std::string& executor) {
   std::int64_t id = 0;
   {
     auto pick = conn->prepare(
-        "SELECT id FROM jobs q WHERE q.state = 'queued' AND NOT EXISTS (SELECT 1 FROM jobs r "
-        "WHERE r.hash = q.hash AND r.state = 'running') ORDER BY q.id LIMIT 1");
+        "SELECT id FROM jobs q WHERE q.state = 'queued' AND q.handle IS NULL AND NOT EXISTS ("
+        "SELECT 1 FROM jobs r WHERE r.hash = q.hash AND " OWNED("r") ") ORDER BY q.id LIMIT 1");
     if (!pick.step()) return std::nullopt;
     id = pick.int64(0);
   }
@@ -151,7 +155,7 @@ bool Store::finish_success(std::int64_t job_id, const ResultRow& r) {
   double now = now_seconds();
   conn->prepare(
           "UPDATE jobs SET state = 'succeeded', finished_at = ?, progress = 1, error = NULL "
-          "WHERE id = ? AND state = 'running'")
+          "WHERE id = ? AND " OWNED("jobs"))
       .bind_all(now, job_id)
       .run();
   if (conn->changes() == 0) return false;
@@ -166,7 +170,7 @@ bool Store::finish_success(std::int64_t job_id, const ResultRow& r) {
   st.run();
   conn->prepare(
           "UPDATE jobs SET state = 'succeeded', cached = 1, finished_at = ? "
-          "WHERE hash = ? AND state = 'queued'")
+          "WHERE hash = ? AND state = 'queued' AND handle IS NULL")
       .bind_all(now, r.hash)
       .run();
   tx.commit();
@@ -177,7 +181,7 @@ FailOutcome Store::finish_failure(std::int64_t job_id, const std::string& error,
                                   int max_attempts) {
   auto conn = lease();
   Transaction tx(*conn);
-  auto st = conn->prepare("SELECT attempts FROM jobs WHERE id = ? AND state = 'running'");
+  auto st = conn->prepare("SELECT attempts FROM jobs WHERE id = ? AND " OWNED("jobs"));
   st.bind_all(job_id);
   if (!st.step()) return FailOutcome::not_running;
   bool retry = retryable && st.int64(0) < max_attempts;
@@ -202,9 +206,27 @@ void Store::requeue(std::int64_t job_id, const std::string& note) {
   auto conn = lease();
   conn->prepare(
           "UPDATE jobs SET state = 'queued', attempts = MAX(attempts - 1, 0), error = ?, "
-          "handle = NULL, progress = NULL, started_at = NULL WHERE id = ? AND state = 'running'")
+          "handle = NULL, progress = NULL, started_at = NULL WHERE id = ? AND " OWNED("jobs"))
       .bind_all(note, job_id)
       .run();
+}
+
+bool Store::set_pending(std::int64_t job_id, bool pending) {
+  auto conn = lease();
+  conn->prepare("UPDATE jobs SET state = ? WHERE id = ? AND handle IS NOT NULL AND " OWNED("jobs"))
+      .bind_all(pending ? kQueued : kRunning, job_id)
+      .run();
+  return conn->changes() > 0;
+}
+
+bool Store::finish_cancelled(std::int64_t job_id, const std::string& note) {
+  auto conn = lease();
+  conn->prepare(
+          "UPDATE jobs SET state = 'cancelled', error = ?, finished_at = ?, handle = NULL "
+          "WHERE id = ? AND " OWNED("jobs"))
+      .bind_all(note, now_seconds(), job_id)
+      .run();
+  return conn->changes() > 0;
 }
 
 CancelOutcome Store::cancel_campaign(std::int64_t campaign_id) {

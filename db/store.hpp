@@ -58,6 +58,14 @@ class Store {
   // Puts a running job back in the queue without counting the attempt (server shutdown or crash).
   void requeue(std::int64_t job_id, const std::string& note);
 
+  // A job an executor owns (it has a handle) waits in that executor's scheduler (pending: shown
+  // queued, not claimable) or runs there. False if the job is no longer the executor's.
+  bool set_pending(std::int64_t job_id, bool pending);
+
+  // An owned job was cancelled outside rockcal (e.g. scancel by an operator): cancelled, `note`
+  // as its error. False if the job is no longer the executor's.
+  bool finish_cancelled(std::int64_t job_id, const std::string& note);
+
   CancelOutcome cancel_campaign(std::int64_t campaign_id);
 
   void set_driver_status(std::int64_t campaign_id, const std::string& status,
@@ -70,6 +78,10 @@ class Store {
   std::int64_t campaign_count();
   StateCounts counts(std::optional<std::int64_t> campaign_id = std::nullopt);
   std::vector<JobRow> running_jobs(std::optional<std::int64_t> campaign_id = std::nullopt);
+  // Jobs an executor owns: running, or queued in its scheduler (with a handle). By id.
+  std::vector<JobRow> owned_jobs();
+  // Unfinished jobs by executor, for /metrics.
+  std::vector<ExecutorCounts> executor_counts();
   std::optional<JobRow> job(std::int64_t id);
   std::string job_state(std::int64_t id);  // "" if no such job
   std::vector<JobResultRow> campaign_results(std::int64_t campaign_id);

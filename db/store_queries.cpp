@@ -64,6 +64,30 @@ std::vector<JobRow> Store::running_jobs(std::optional<std::int64_t> campaign_id)
   return out;
 }
 
+std::vector<JobRow> Store::owned_jobs() {
+  auto conn = lease();
+  auto st = conn->prepare(std::string("SELECT ") + kJobColumns +
+                          " FROM jobs WHERE state = 'running' OR (state = 'queued' AND handle IS "
+                          "NOT NULL) ORDER BY id");
+  std::vector<JobRow> out;
+  while (st.step()) out.push_back(read_job(st));
+  return out;
+}
+
+std::vector<ExecutorCounts> Store::executor_counts() {
+  auto conn = lease();
+  // A job waiting for a worker keeps the executor of its last attempt; it is nobody's until
+  // claimed, so it is counted under "".
+  auto st = conn->prepare(
+      "SELECT CASE WHEN state = 'queued' AND handle IS NULL THEN '' ELSE COALESCE(executor, '') "
+      "END AS e, SUM(state = 'queued' AND handle IS NULL), SUM(state = 'queued' AND handle IS NOT "
+      "NULL), SUM(state = 'running') FROM jobs WHERE state IN ('queued', 'running') GROUP BY e "
+      "ORDER BY e");
+  std::vector<ExecutorCounts> out;
+  while (st.step()) out.push_back({st.text(0), st.int64(1), st.int64(2), st.int64(3)});
+  return out;
+}
+
 std::optional<JobRow> Store::job(std::int64_t id) {
   auto conn = lease();
   auto st = conn->prepare(std::string("SELECT ") + kJobColumns + " FROM jobs WHERE id = ?");

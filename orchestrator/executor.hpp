@@ -15,10 +15,22 @@ struct LaunchRequest {
   std::vector<std::string> engine_args;  // after the engine executable: run job.json --out DIR
 };
 
+// Who decided how a finished job ended.
+enum class Ending {
+  run,        // the run's own exit status (exit_code, signal) decides
+  failed,     // the scheduler ended it (e.g. Slurm TIMEOUT, NODE_FAIL): a failed attempt
+  cancelled,  // someone cancelled it outside rockcal (e.g. scancel by an operator)
+  requeue,    // the scheduler dropped it without running it to the end (e.g. preempted): run again
+};
+
 struct ExitStatus {
   bool finished = false;
-  int exit_code = -1;  // when exited normally
-  int signal = 0;      // when killed by a signal
+  bool pending = false;  // not finished: still waiting in the scheduler's queue, not started
+  int exit_code = -1;    // when exited normally
+  int signal = 0;        // when killed by a signal
+  Ending ending = Ending::run;
+  std::string scheduler_state;  // when the scheduler decided (e.g. "TIMEOUT"), its state name
+  std::string reason;           // ... and a sentence saying so, for the job's error
   std::string describe() const;
 };
 
@@ -38,6 +50,19 @@ class Executor {
   // Returns true if something was found and stopped.
   virtual bool stop_orphan(const std::optional<std::string>& handle,
                            const std::filesystem::path& job_dir) = 0;
+
+  // True when jobs outlive the server (a batch scheduler's jobs): a stopping server leaves them
+  // running, and the next one takes them over with reattach() instead of running them again.
+  virtual bool jobs_outlive_server() const { return false; }
+  // After a restart, for a job a previous server launched: the handle to go on watching it by
+  // (found from the stored handle or, when that was never stored, from the job directory), or
+  // nullopt when the executor has no such job (it is then run again). Throws when it cannot tell.
+  virtual std::optional<std::string> reattach(const std::optional<std::string>& handle,
+                                              const std::filesystem::path& job_dir) {
+    (void)handle;
+    (void)job_dir;
+    return std::nullopt;
+  }
 };
 
 }  // namespace rockcal::orch

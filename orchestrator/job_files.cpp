@@ -10,13 +10,13 @@ namespace rockcal::orch {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-fs::path job_dir(const fs::path& data_dir, std::int64_t job_id) {
+fs::path job_dir(const fs::path& jobs_dir, std::int64_t job_id) {
   if (job_id <= 0) throw std::invalid_argument("job id must be positive");
-  return data_dir / "jobs" / std::to_string(job_id);
+  return jobs_dir / std::to_string(job_id);
 }
 
-fs::path prepare_job_dir(const fs::path& data_dir, const db::JobRow& job) {
-  fs::path dir = job_dir(data_dir, job.id);
+fs::path prepare_job_dir(const fs::path& jobs_dir, const db::JobRow& job) {
+  fs::path dir = job_dir(jobs_dir, job.id);
   fs::create_directories(dir);
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.path().filename() != "log") fs::remove_all(entry.path());

@@ -1,5 +1,5 @@
-// The files of one job in the data directory: <data>/jobs/<job id>/{job.json, result.json,
-// curve.csv, progress.json, log}. Paths come from the numeric job id only, never from a request.
+// The files of one job: <jobs dir>/<job id>/{job.json, result.json, curve.csv, progress.json,
+// log}. Paths come from the numeric job id only, never from a request.
 #pragma once
 
 #include <cstdint>
@@ -11,11 +11,12 @@
 
 namespace rockcal::orch {
 
-std::filesystem::path job_dir(const std::filesystem::path& data_dir, std::int64_t job_id);
+// `jobs_dir` holds a directory per job (by default <data>/jobs).
+std::filesystem::path job_dir(const std::filesystem::path& jobs_dir, std::int64_t job_id);
 
 // Clears what an earlier attempt left (except the log, which keeps every attempt) and writes
 // job.json. Returns the directory.
-std::filesystem::path prepare_job_dir(const std::filesystem::path& data_dir, const db::JobRow& job);
+std::filesystem::path prepare_job_dir(const std::filesystem::path& jobs_dir, const db::JobRow& job);
 
 // Reads result.json and curve.csv of a finished run into a result row for `job`.
 // Throws std::runtime_error when result.json is missing or malformed.

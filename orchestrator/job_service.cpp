@@ -20,7 +20,10 @@ JobService::JobService(ServiceConfig config, std::unique_ptr<Executor> executor)
     : config_(std::move(config)), executor_(std::move(executor)) {
   if (config_.data_dir.empty()) config_.data_dir = config_.db_path.string() + ".d";
   config_.data_dir = fs::absolute(config_.data_dir);
-  fs::create_directories(config_.data_dir / "jobs");
+  if (config_.jobs_dir.empty()) config_.jobs_dir = config_.data_dir / "jobs";
+  config_.jobs_dir = fs::absolute(config_.jobs_dir);
+  fs::create_directories(config_.data_dir);
+  fs::create_directories(config_.jobs_dir);
   // One server per database: a second one would re-queue and kill the first one's jobs.
   auto lock_path = config_.data_dir / "server.lock";
   lock_fd_ = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
@@ -30,14 +33,16 @@ JobService::JobService(ServiceConfig config, std::unique_ptr<Executor> executor)
   }
   store_ = std::make_unique<db::Store>(config_.db_path.string());
   kinds_.add(sweep_kind());
-  recover();
+  auto reattached = recover();
   PoolConfig pool;
   pool.workers = config_.workers;
   pool.max_attempts = config_.max_attempts;
   pool.job_timeout = config_.job_timeout;
-  pool.data_dir = config_.data_dir;
+  pool.jobs_dir = config_.jobs_dir;
+  pool.poll_interval = config_.poll_interval;
   pool_ = std::make_unique<WorkerPool>(*store_, *executor_, pool,
                                        [this](std::int64_t id) { job_done(id); });
+  for (const auto& [job, handle] : reattached) pool_->resume(job, handle);
 }
 
 JobService::~JobService() {
@@ -45,22 +50,37 @@ JobService::~JobService() {
   if (lock_fd_ >= 0) close(lock_fd_);
 }
 
-void JobService::recover() {
-  // Every job still marked running belongs to a server that died: nothing else runs jobs of
-  // this database (the lock above). Stop what it left behind, then run the job again.
-  for (const auto& job : store_->running_jobs()) {
+std::vector<std::pair<db::JobRow, std::string>> JobService::recover() {
+  // Every job an executor owns belongs to a server that died or stopped: nothing else runs jobs
+  // of this database (the lock above). A scheduler's job goes on and is watched again (never
+  // submitted twice); anything else is stopped and run again.
+  std::vector<std::pair<db::JobRow, std::string>> reattached;
+  for (const auto& job : store_->owned_jobs()) {
+    fs::path dir = job_dir(config_.jobs_dir, job.id);
     if (job.executor == executor_->name()) {
-      try {
-        if (executor_->stop_orphan(job.handle, job_dir(config_.data_dir, job.id))) {
-          ++stopped_orphans_;
+      if (executor_->jobs_outlive_server()) {
+        // Throws when the scheduler cannot be asked: better no server than a job run twice.
+        if (auto handle = executor_->reattach(job.handle, dir)) {
+          if (job.handle != handle) store_->set_handle(job.id, *handle);
+          reattached.emplace_back(job, *handle);
+          ++reattached_jobs_;
+          continue;
         }
+      }
+      try {
+        if (executor_->stop_orphan(job.handle, dir)) ++stopped_orphans_;
       } catch (const std::exception& e) {
         std::cerr << "rockcal: stopping orphan of job " << job.id << ": " << e.what() << "\n";
       }
+    } else if (job.handle) {
+      std::cerr << "rockcal: job " << job.id << " was left to executor "
+                << job.executor.value_or("?") << " (handle " << *job.handle
+                << "), which this server does not use; it is run again here\n";
     }
     store_->requeue(job.id, "re-queued after a server restart");
     ++recovered_jobs_;
   }
+  return reattached;
 }
 
 void JobService::start() {

@@ -22,9 +22,11 @@ namespace rockcal::orch {
 struct ServiceConfig {
   std::filesystem::path db_path = "rockcal.db";
   std::filesystem::path data_dir;  // empty: "<db_path>.d"
+  std::filesystem::path jobs_dir;  // a directory per job; empty: "<data_dir>/jobs"
   int workers = 1;
   int max_attempts = 3;
   std::chrono::milliseconds job_timeout{std::chrono::hours(6)};
+  std::chrono::milliseconds poll_interval{100};  // the longest wait between looks at a job
   Limits limits;
 };
 
@@ -72,12 +74,18 @@ class JobService {
   db::Store& store() { return *store_; }
   const ServiceConfig& config() const { return config_; }
   const std::filesystem::path& data_dir() const { return config_.data_dir; }
+  const std::filesystem::path& jobs_dir() const { return config_.jobs_dir; }
+  const Executor& executor() const { return *executor_; }
+  const FailureCounts& failures() const { return pool_->failures(); }
   // Jobs re-queued at start-up after a crash, and how many orphaned process groups were stopped.
   std::int64_t recovered_jobs() const { return recovered_jobs_; }
   std::int64_t stopped_orphans() const { return stopped_orphans_; }
+  // Jobs a previous server left in the executor's scheduler that this one watches again.
+  std::int64_t reattached_jobs() const { return reattached_jobs_; }
 
  private:
-  void recover();
+  // Returns the jobs re-attached (with their handles), for the pool to watch.
+  std::vector<std::pair<db::JobRow, std::string>> recover();
   void start_driver(std::int64_t campaign_id, const CampaignKind& kind, nlohmann::json request);
   void job_done(std::int64_t job_id);
 
@@ -89,6 +97,7 @@ class JobService {
   int lock_fd_ = -1;
   std::int64_t recovered_jobs_ = 0;
   std::int64_t stopped_orphans_ = 0;
+  std::int64_t reattached_jobs_ = 0;
 
   std::mutex done_mutex_;
   std::condition_variable_any done_cv_;

@@ -42,7 +42,8 @@ struct Fd {
 }  // namespace
 
 std::string ExitStatus::describe() const {
-  if (!finished) return "still running";
+  if (!finished) return pending ? "waiting in the scheduler's queue" : "still running";
+  if (!reason.empty()) return reason;
   if (signal)
     return std::string("killed by signal ") + std::to_string(signal) + " (" + strsignal(signal) +
            ")";
@@ -55,6 +56,7 @@ std::vector<std::string> LocalExecutor::command(const LaunchRequest& request) co
     argv = {config_.mpirun};
     // Open MPI refuses to start as root without this; only pass it when it is needed.
     if (geteuid() == 0) argv.push_back("--allow-run-as-root");
+    if (!config_.hostfile.empty()) argv.insert(argv.end(), {"--hostfile", config_.hostfile});
     argv.insert(argv.end(), {"--oversubscribe", "-np", std::to_string(config_.ranks)});
   }
   argv.push_back(config_.engine);

@@ -15,6 +15,9 @@ struct LocalExecutorConfig {
   int ranks = 1;                       // MPI ranks per job; 0 runs the engine without mpirun
   std::string mpirun = "mpirun";
   std::chrono::milliseconds grace{5000};  // between SIGTERM and SIGKILL
+  // mpirun --hostfile: ranks on several hosts. Each host needs the engine at the same path and the
+  // job directory on a shared filesystem (docs/operations.md).
+  std::string hostfile;
 };
 
 class LocalExecutor : public Executor {

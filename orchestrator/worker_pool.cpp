@@ -1,6 +1,7 @@
 #include "orchestrator/worker_pool.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <iostream>
 
 #include "orchestrator/job_files.hpp"
@@ -8,6 +9,16 @@
 namespace rockcal::orch {
 
 using Clock = std::chrono::steady_clock;
+
+void FailureCounts::add(const std::string& reason) {
+  std::lock_guard lock(mutex_);
+  ++counts_[reason];
+}
+
+std::map<std::string, std::int64_t> FailureCounts::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return counts_;
+}
 
 WorkerPool::WorkerPool(db::Store& store, Executor& executor, PoolConfig config,
                        std::function<void(std::int64_t)> on_job_done)
@@ -36,29 +47,52 @@ void WorkerPool::wake() {
   wake_cv_.notify_all();
 }
 
+void WorkerPool::resume(const db::JobRow& job, const std::string& handle) {
+  std::lock_guard lock(mutex_);
+  resumed_.emplace_back(job, handle);
+}
+
+db::FailOutcome WorkerPool::fail(const db::JobRow& job, const std::string& reason,
+                                 const std::string& error, bool retryable) {
+  failures_.add(reason);
+  return store_.finish_failure(job.id, error, retryable, config_.max_attempts);
+}
+
 void WorkerPool::work(std::stop_token stop) {
   while (!stop.stop_requested()) {
     std::uint64_t seen;
+    std::optional<std::pair<db::JobRow, std::string>> resumed;
     {
       std::lock_guard lock(mutex_);
       seen = wake_count_;
+      if (!resumed_.empty()) {
+        resumed = std::move(resumed_.front());
+        resumed_.pop_front();
+      }
     }
     std::optional<db::JobRow> job;
-    try {
-      job = store_.claim_job(executor_.name());
-    } catch (const std::exception& e) {
-      std::cerr << "rockcal: claiming a job failed: " << e.what() << "\n";
+    if (resumed) {
+      job = resumed->first;
+    } else {
+      try {
+        job = store_.claim_job(executor_.name());
+      } catch (const std::exception& e) {
+        std::cerr << "rockcal: claiming a job failed: " << e.what() << "\n";
+      }
     }
     if (job) {
       try {
-        execute(*job, stop);
+        if (resumed) {
+          monitor(*job, job_dir(config_.jobs_dir, job->id), resumed->second, stop);
+        } else {
+          execute(*job, stop);
+        }
       } catch (const std::exception& e) {
         // A store error mid-job (e.g. a full disk) must not take the server down; execute() has
         // stopped the job, which counts as a failed attempt (so a persistent error cannot loop).
         std::cerr << "rockcal: job " << job->id << ": " << e.what() << "\n";
         try {
-          store_.finish_failure(job->id, std::string("worker error: ") + e.what(), true,
-                                config_.max_attempts);
+          fail(*job, "worker_error", std::string("worker error: ") + e.what(), true);
         } catch (const std::exception&) {
           // Still running in the store; the next start-up re-queues it.
         }
@@ -85,15 +119,14 @@ void WorkerPool::execute(const db::JobRow& job, std::stop_token stop) {
   std::filesystem::path dir;
   std::string handle;
   try {
-    dir = prepare_job_dir(config_.data_dir, job);
+    dir = prepare_job_dir(config_.jobs_dir, job);
     LaunchRequest request{
         dir, dir / "log", {"run", (dir / "job.json").string(), "--out", dir.string()}};
     handle = executor_.launch(request);
     store_.set_handle(job.id, handle);
   } catch (const std::exception& e) {
     if (!handle.empty()) executor_.cancel(handle);
-    store_.finish_failure(job.id, std::string("could not start: ") + e.what(), true,
-                          config_.max_attempts);
+    fail(job, "start", std::string("could not start: ") + e.what(), true);
     on_job_done_(job.id);
     wake();  // it may have been re-queued
     return;
@@ -109,11 +142,13 @@ void WorkerPool::execute(const db::JobRow& job, std::stop_token stop) {
 
 void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir,
                          const std::string& handle, std::stop_token stop) {
-  const auto started = Clock::now();
+  auto started = Clock::now();
   auto next_cancel_check = started + config_.cancel_check_interval;
   auto next_progress = started + config_.progress_interval;
   std::optional<double> last_progress;
   bool timed_out = false;
+  // What the store shows: a job that waits in the executor's scheduler is queued there.
+  bool shown_pending = job.state == db::kQueued;
   ExitStatus status;
   // Polls soon after the launch and then less often, up to poll_interval: a diagnosis runs
   // thousands of jobs of 10-100 ms, which a fixed 100 ms poll held for 100 ms each (a demo
@@ -123,14 +158,23 @@ void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir
     status = executor_.poll(handle);
     if (status.finished) break;
     auto now = Clock::now();
+    if (status.pending != shown_pending) {
+      store_.set_pending(job.id, status.pending);
+      shown_pending = status.pending;
+      // The job timeout counts run time, not time spent waiting in the scheduler's queue.
+      if (!status.pending) started = now;
+    }
     if (stop.stop_requested()) {
+      // A scheduler's job goes on without us; the next server re-attaches to it.
+      if (executor_.jobs_outlive_server()) return;
       executor_.cancel(handle);
       store_.requeue(job.id, "server stopped while the job ran");
       return;
     }
     if (now >= next_cancel_check) {
       next_cancel_check = now + config_.cancel_check_interval;
-      if (store_.job_state(job.id) != db::kRunning) {  // cancelled with its campaign
+      auto state = store_.job_state(job.id);
+      if (state != db::kRunning && state != db::kQueued) {  // cancelled with its campaign
         executor_.cancel(handle);
         on_job_done_(job.id);
         return;
@@ -142,7 +186,7 @@ void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir
       if (p && p != last_progress) store_.set_progress(job.id, *p);
       last_progress = p;
     }
-    if (now - started > config_.job_timeout) {
+    if (!status.pending && now - started > config_.job_timeout) {
       status = executor_.cancel(handle);
       timed_out = true;
       break;
@@ -155,21 +199,29 @@ void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir
 
   if (timed_out) {
     auto seconds = std::chrono::duration_cast<std::chrono::seconds>(config_.job_timeout).count();
-    store_.finish_failure(job.id,
-                          failure_text("timed out after " + std::to_string(seconds) + " s", dir),
-                          true, config_.max_attempts);
+    fail(job, "job_timeout", failure_text("timed out after " + std::to_string(seconds) + " s", dir),
+         true);
+  } else if (status.ending == Ending::failed) {
+    // The scheduler's verdict (Slurm TIMEOUT, NODE_FAIL, ...): retried like any failed run.
+    std::string reason = status.scheduler_state;
+    for (char& c : reason) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    fail(job, reason, failure_text(status.reason, dir), true);
+  } else if (status.ending == Ending::cancelled) {
+    store_.finish_cancelled(job.id, status.reason);
+  } else if (status.ending == Ending::requeue) {
+    store_.requeue(job.id, status.reason);
+    wake();
   } else if (status.exit_code == 0 && status.signal == 0) {
     try {
       store_.finish_success(job.id, read_result(dir, job));
     } catch (const std::exception& e) {
-      store_.finish_failure(job.id, failure_text(std::string("exit 0 but ") + e.what(), dir), true,
-                            config_.max_attempts);
+      fail(job, "no_result", failure_text(std::string("exit 0 but ") + e.what(), dir), true);
     }
   } else {
     // Exit 2 is an invalid spec: running it again cannot help.
     bool retryable = !(status.signal == 0 && status.exit_code == 2);
-    store_.finish_failure(job.id, failure_text("engine " + status.describe(), dir), retryable,
-                          config_.max_attempts);
+    fail(job, status.signal ? "signal" : "exit_code",
+         failure_text("engine " + status.describe(), dir), retryable);
   }
   on_job_done_(job.id);
 }

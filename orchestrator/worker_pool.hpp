@@ -4,8 +4,10 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <deque>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -15,11 +17,23 @@
 
 namespace rockcal::orch {
 
+// Failed attempts by reason since the server started ("exit_code", "signal", "job_timeout",
+// "no_result", "start", "worker_error", or a scheduler's state such as "timeout", "node_fail").
+class FailureCounts {
+ public:
+  void add(const std::string& reason);
+  std::map<std::string, std::int64_t> snapshot() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, std::int64_t> counts_;
+};
+
 struct PoolConfig {
   int workers = 1;
   int max_attempts = 3;  // first run + retries
   std::chrono::milliseconds job_timeout{std::chrono::hours(6)};
-  std::filesystem::path data_dir;                // absolute
+  std::filesystem::path jobs_dir;                // absolute; a directory per job
   std::chrono::milliseconds poll_interval{100};  // the longest wait between looks at a running job
   std::chrono::milliseconds first_poll_interval{1};  // the first wait; x1.5 after each look
   std::chrono::milliseconds cancel_check_interval{300};
@@ -38,10 +52,18 @@ class WorkerPool {
   void stop();
   // Tells idle workers there may be new work.
   void wake();
+  // Hands a job a previous server launched (re-attached by the executor) to the next free
+  // worker, which watches it to its end as if it had launched it. Before start().
+  void resume(const db::JobRow& job, const std::string& handle);
+
+  const FailureCounts& failures() const { return failures_; }
 
  private:
   void work(std::stop_token stop);
   void execute(const db::JobRow& job, std::stop_token stop);
+  // Records a failed attempt (counted by `reason`); returns what became of the job.
+  db::FailOutcome fail(const db::JobRow& job, const std::string& reason, const std::string& error,
+                       bool retryable);
   // Watches a launched job until it ends, is cancelled or times out, and records the outcome.
   void monitor(const db::JobRow& job, const std::filesystem::path& dir, const std::string& handle,
                std::stop_token stop);
@@ -53,6 +75,8 @@ class WorkerPool {
   std::mutex mutex_;
   std::condition_variable_any wake_cv_;
   std::uint64_t wake_count_ = 0;
+  std::deque<std::pair<db::JobRow, std::string>> resumed_;  // guarded by mutex_
+  FailureCounts failures_;
   std::vector<std::jthread> threads_;
 };
 

@@ -31,7 +31,11 @@ json read_result(const fs::path& dir, const orch::ExitStatus& status) {
 }  // namespace
 
 std::vector<json> EngineRunner::run(const std::vector<json>& jobs) {
-  orch::LocalExecutor executor({config_.engine, 0, "mpirun", std::chrono::milliseconds(2000)});
+  orch::LocalExecutorConfig local;
+  local.engine = config_.engine;
+  local.ranks = 0;
+  local.grace = std::chrono::milliseconds(2000);
+  orch::LocalExecutor executor(local);
   std::vector<json> results(jobs.size());
   std::vector<fs::path> dirs;
   for (const json& job : jobs) {

@@ -155,5 +155,54 @@ TEST_F(StoreTest, ResultQueriesFilterByTestAndRanges) {
   EXPECT_EQ(store.durations().count, 2);
 }
 
+// A job pending in an executor's scheduler (Slurm) shows queued but stays the executor's: no
+// worker claims it, nor its twin; it can finish, fail, be cancelled there, and is counted apart.
+TEST_F(StoreTest, JobsPendingInAnExecutorsSchedulerShowQueuedButStayOwned) {
+  store.create_campaign("sweep", "c", "{}", false, {job("a"), job("a"), job("b")});
+  auto first = store.claim_job("slurm");
+  ASSERT_TRUE(first);
+  store.set_handle(first->id, "101");
+  EXPECT_TRUE(store.set_pending(first->id, true));
+  EXPECT_EQ(store.job_state(first->id), "queued");
+  auto next = store.claim_job("slurm");  // not the pending job, nor its twin "a"
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->hash, "b");
+  EXPECT_FALSE(store.claim_job("slurm"));
+  auto counts = store.executor_counts();
+  ASSERT_EQ(counts.size(), 2u);
+  EXPECT_EQ(counts[0].executor, "");
+  EXPECT_EQ(counts[0].waiting, 1);  // the twin
+  EXPECT_EQ(counts[1].executor, "slurm");
+  EXPECT_EQ(counts[1].pending, 1);
+  EXPECT_EQ(counts[1].running, 1);
+  EXPECT_EQ(store.owned_jobs().size(), 2u);
+  EXPECT_EQ(store.counts().queued, 2);
+
+  EXPECT_TRUE(store.set_pending(first->id, false));
+  EXPECT_EQ(store.job_state(first->id), "running");
+  EXPECT_TRUE(store.set_pending(first->id, true));
+  EXPECT_TRUE(store.finish_success(first->id, result_for(*first, 5)));  // straight from PENDING
+  EXPECT_EQ(store.job_state(first->id), "succeeded");
+  EXPECT_FALSE(store.set_pending(first->id, true)) << "a finished job is nobody's";
+  EXPECT_EQ(store.counts().succeeded, 2) << "the twin is answered by the result";
+
+  // Without a handle a queued job would be claimable, i.e. submitted a second time.
+  EXPECT_FALSE(store.set_pending(next->id, true));
+  EXPECT_EQ(store.job_state(next->id), "running");
+}
+
+TEST_F(StoreTest, AJobCancelledInTheSchedulerIsCancelledWithTheReason) {
+  store.create_campaign("sweep", "c", "{}", false, {job("a")});
+  auto j = store.claim_job("slurm");
+  ASSERT_TRUE(j);
+  store.set_handle(j->id, "7");
+  store.set_pending(j->id, true);
+  EXPECT_TRUE(store.finish_cancelled(j->id, "Slurm job 7 was cancelled in Slurm (CANCELLED)"));
+  auto row = store.job(j->id);
+  EXPECT_EQ(row->state, "cancelled");
+  EXPECT_EQ(row->error, "Slurm job 7 was cancelled in Slurm (CANCELLED)");
+  EXPECT_FALSE(store.finish_cancelled(j->id, "again"));
+}
+
 }  // namespace
 }  // namespace rockcal::db
