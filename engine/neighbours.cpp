@@ -83,11 +83,30 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
     r_max = std::max(r_max, p.radius[k]);
   }
   const double cell = 2.0 * r_max + skin;
+  // A grain thrown off the specimen would stretch a box over all particles to millions of empty
+  // cells, rebuilt every step while it flies. The grid covers the bulk (around the median, three
+  // times the 10th-90th percentile spread) and clamps the few outside into its border cells:
+  // clamping never separates two particles closer than a cell, so every pair within reach is
+  // still found.
+  std::vector<double> coord(n);
+  for (int a = 0; a < 3; ++a) {
+    for (std::size_t k = 0; k < n; ++k) coord[k] = p.pos[k][a];
+    const auto quantile = [&](double f) {
+      auto it = coord.begin() + static_cast<std::ptrdiff_t>(f * static_cast<double>(n - 1));
+      std::nth_element(coord.begin(), it, coord.end());
+      return *it;
+    };
+    const double q10 = quantile(0.1), q90 = quantile(0.9), mid = quantile(0.5);
+    const double half = 1.5 * (q90 - q10) + 2.0 * cell;
+    lo[a] = std::max(lo[a], mid - half);
+    hi[a] = std::min(hi[a], mid + half);
+  }
   std::array<std::int64_t, 3> dims;
   for (int a = 0; a < 3; ++a)
     dims[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>((hi[a] - lo[a]) / cell) + 1);
   auto cell_of = [&](const Vec3& x, int a) {
-    return std::min<std::int64_t>(dims[a] - 1, static_cast<std::int64_t>((x[a] - lo[a]) / cell));
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[a] - lo[a]) / cell)),
+                                    0, dims[a] - 1);
   };
   const std::size_t ncell = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
   std::vector<std::int32_t> start(ncell + 1, 0), members(n);

@@ -198,11 +198,14 @@ TEST(DiagnosisRequest, JobsAreCanonicalAndCarryTheEffectAndNumerics) {
   EXPECT_DOUBLE_EQ(fine["bond"]["fr0"].get<double>(), 10);
   const json slow = job_for(c.job_template, model, plan.runs[0], {{40, 80, "", 0}, {5, 0.5, 1}});
   EXPECT_DOUBLE_EQ(slow["loading"]["platen_velocity"].get<double>(), 0.025);
-  // The template is FCC: the seed changes nothing, so every seed gives the template's job (run
+  // The template's FCC lattice is seeded: each seed is another cut, kept in the job.
+  EXPECT_EQ(slow["sample"]["seed"], 5);
+  // An aligned lattice is the same under every seed: every seed gives the template's job (run
   // once); an effect that draws from the seed keeps it.
-  EXPECT_EQ(slow["sample"]["seed"], model.sample.seed);
-  EXPECT_EQ(job_for(c.job_template, model, plan.runs[0], {{40, 80, "", 0}, {5, 1, 1}}),
-            job_for(c.job_template, model, plan.runs[0], base));
+  json aligned = c.job_template;
+  aligned["sample"]["lattice"] = "aligned";
+  EXPECT_EQ(job_for(aligned, model, plan.runs[0], {{40, 80, "", 0}, {5, 1, 1}}),
+            job_for(aligned, model, plan.runs[0], base));
   const json het5 =
       job_for(c.job_template, model, plan.runs[0], {{40, 80, "heterogeneity", 1.0}, {5, 1, 1}});
   EXPECT_EQ(het5["sample"]["seed"], 5);

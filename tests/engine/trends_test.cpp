@@ -13,6 +13,9 @@ namespace {
 double peak(TestKind test, double fr0, double fs0) {
   JobSpec s;
   s.test = test;
+  // The seed paper's set-up: the aligned lattice, the full disc between flat platens.
+  s.sample.lattice = "aligned";
+  s.loading.btt_geometry = BttGeometry::flat_platens;
   s.sample.diameter_m = test == TestKind::btt ? 24 : 10;
   s.sample.height_m = 20;
   s.material.kr_n_m = 8000;

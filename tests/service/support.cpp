@@ -51,7 +51,8 @@ bool poll_until(const std::function<bool()>& condition, std::chrono::millisecond
 }
 
 json tiny_job_template() {
-  return json::parse(R"({"sample": {"diameter": 6, "height": 12, "radius": 1},
+  // D = 8: a thinner disc (t = 3) loses its grains as floaters.
+  return json::parse(R"({"sample": {"diameter": 8, "height": 12, "radius": 1},
     "material": {"density": 1, "kr": 8000, "nu": 0.2}, "bond": {"fr0": 64, "fs0": 64},
     "loading": {"platen_velocity": 0.05}})");
 }
