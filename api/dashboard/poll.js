@@ -1,0 +1,40 @@
+// Live updates by polling: `tick` runs now, and again `period` ms after each answer while it
+// returns true. One request at a time per page, none while the tab is hidden, none after the page
+// is left. The period is longer than the server's keep-alive timeout (2 s), so the browser's idle
+// connection closes between polls and no server thread stays held by an open page.
+export const POLL_MS = 3000;
+
+export function startPolling(tick, {signal, period = POLL_MS} = {}) {
+  let timer = null;
+  let parked = false;
+  const run = async () => {
+    timer = null;
+    if (signal && signal.aborted) return;
+    if (document.hidden) {
+      parked = true;
+      return;
+    }
+    let again = true;
+    try {
+      again = await tick();
+    } catch (e) {
+      if (e && e.name === 'AbortError') return;
+      again = true;  // a failed poll (server restarting) is tried again
+    }
+    if (again && !(signal && signal.aborted)) timer = setTimeout(run, period);
+  };
+  const onVisible = () => {
+    if (!document.hidden && parked) {
+      parked = false;
+      run();
+    }
+  };
+  document.addEventListener('visibilitychange', onVisible);
+  if (signal) {
+    signal.addEventListener('abort', () => {
+      if (timer) clearTimeout(timer);
+      document.removeEventListener('visibilitychange', onVisible);
+    });
+  }
+  return run();
+}

@@ -1,0 +1,355 @@
+// The dashboard in a real browser: Debian's chromium, driven by playwright-core, against a real
+// `rockcal serve` running real rockcal-dem jobs on tiny specimens. It loads the pages of a
+// finished sweep, a finished and a running calibration, a job and a diagnosis, checks what they
+// render against what the API says (numbers, elements, the plots' point counts), submits a
+// campaign from the page (a refused one first, then without and with the bearer token) and
+// cancels it there, and saves screenshots under the build directory.
+import assert from 'node:assert/strict';
+import {spawn} from 'node:child_process';
+import fs from 'node:fs';
+import {createRequire} from 'node:module';
+import path from 'node:path';
+import {after, before, test} from 'node:test';
+import {fileURLToPath} from 'node:url';
+
+const work = process.env.DASHBOARD_WORK;
+const rockcal = process.env.ROCKCAL_BIN;
+assert.ok(work && rockcal, 'run through tests/dashboard/run.sh (ROCKCAL_BIN, DASHBOARD_WORK)');
+const {chromium} = createRequire(path.join(work, 'package.json'))('playwright-core');
+const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const run = path.join(work, 'run');
+const shots = path.join(work, 'screenshots');
+const TOKEN = 'dashboard-test-token';
+const started = Date.now();
+
+// The tiny specimen (117 particles in the UCT, 33 in the BTT; well under a second a job), with
+// heterogeneity so that the packing seeds of the calibration's scatter differ.
+const JOB = {
+  sample: {diameter: 8, height: 16, radius: 1, packing: 'fcc', seed: 1},
+  material: {kr: 8000, nu: 0.2, density: 1},
+  contact: {friction: 0.6},
+  loading: {platen_velocity: 0.05, dt: 'auto', max_strain: 0.2, slow_factor: 0.25},
+};
+const SWEEP = {kind: 'sweep', name: 'browser test sweep', tests: ['uct', 'btt'], job: JOB,
+  grid: {fr0: [32, 64, 128, 256], fs0: [32, 64, 128, 256]}};
+const calibration = (name, maxEvaluations, tolerance) => ({kind: 'calibration', name,
+  job: {...JOB, effects: {heterogeneity: {weibull_m: 4}}},
+  targets: {uct: {peak_load: 2000}, btt: {peak_load: 1000}},
+  bounds: {fr0: [16, 1024], fs0: [16, 1024]}, max_evaluations: maxEvaluations, tolerance, seeds: [2, 3]});
+// A synthetic twin (examples/datasets): its hidden effect is heterogeneity; the base model and
+// that one candidate on a 3 x 3 (x 3) grid.
+const twin = JSON.parse(fs.readFileSync(path.join(repo, 'examples/datasets/twin_heterogeneity.json'), 'utf8'));
+const DIAGNOSIS = {kind: 'diagnosis', name: 'browser test diagnosis', job: JOB, dataset: twin,
+  effects: ['heterogeneity'], bounds: {fr0: [16, 256], fs0: [16, 256]},
+  grid: {fr0: 3, fs0: 3, s: 3}, budget: {seeds: [2]}, bootstrap: 50};
+
+let server;
+let base;
+let browser;
+const ids = {};
+
+function log(...args) {
+  console.log(`[${((Date.now() - started) / 1000).toFixed(1)} s]`, ...args);
+}
+
+async function api(method, url, body) {
+  const r = await fetch(base + url, {method, headers: {Authorization: `Bearer ${TOKEN}`, 'Content-Type': 'application/json'},
+    body: body === undefined ? undefined : JSON.stringify(body)});
+  const text = await r.text();
+  if (!r.ok) throw new Error(`${method} ${url}: ${r.status} ${text}`);
+  return url.endsWith('/curve') ? text : JSON.parse(text);
+}
+
+async function until(what, check, seconds) {
+  const end = Date.now() + seconds * 1000;
+  for (;;) {
+    const v = await check();
+    if (v) return v;
+    if (Date.now() > end) throw new Error(`timed out after ${seconds} s waiting for ${what}`);
+    await new Promise((r) => setTimeout(r, 250));
+  }
+}
+
+const finished = (c) => !['queued', 'running'].includes(c.state) && c.driver_status !== 'running';
+
+// The dashboard's number format (format.js num): 4 significant digits, exponent outside 1e-3..1e6,
+// a typographic minus.
+function num(x, digits = 4) {
+  const a = Math.abs(x);
+  const t = a >= 1e6 || a < 1e-3 ? x.toExponential(digits - 1).replace(/\.?0+e/, 'e').replace('e+', 'e') : String(Number(x.toPrecision(digits)));
+  return t.replaceAll('-', '−');
+}
+
+async function shot(page, name) {
+  const file = path.join(shots, `${name}.png`);
+  await page.screenshot({path: file, fullPage: true});
+  log('screenshot', file);
+}
+
+// Fails on any error the page logs or throws (a broken module, a failed fetch it did not expect).
+function watch(page) {
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error' && !/status of 40[19]/.test(m.text())) problems.push(`console: ${m.text()}`);
+  });
+  return problems;
+}
+
+async function newPage(viewport = {width: 1280, height: 900}) {
+  const context = await browser.newContext({viewport, deviceScaleFactor: 1});
+  const page = await context.newPage();
+  page.problems = watch(page);
+  return page;
+}
+
+before(async () => {
+  fs.rmSync(run, {recursive: true, force: true});
+  fs.rmSync(shots, {recursive: true, force: true});
+  fs.mkdirSync(run, {recursive: true});
+  fs.mkdirSync(shots, {recursive: true});
+  fs.writeFileSync(path.join(run, 'token'), `${TOKEN}\n`);
+  const portFile = path.join(run, 'port');
+  server = spawn(rockcal, ['serve', '--db', path.join(run, 'rockcal.db'), '--listen', '127.0.0.1:0',
+    '--port-file', portFile, '--workers', '2', '--ranks-per-job', '0', '--token-file', path.join(run, 'token')],
+  {stdio: ['ignore', 'inherit', 'inherit']});
+  await until('the server to listen', () => fs.existsSync(portFile), 30);
+  base = `http://127.0.0.1:${fs.readFileSync(portFile, 'utf8').trim()}`;
+  log('server at', base);
+  ids.sweep = (await api('POST', '/api/v1/campaigns', SWEEP)).id;
+  ids.calibration = (await api('POST', '/api/v1/campaigns', calibration('browser test calibration', 10, 0.02))).id;
+  ids.diagnosis = (await api('POST', '/api/v1/campaigns', DIAGNOSIS)).id;
+  browser = await chromium.launch({executablePath: '/usr/bin/chromium', headless: true,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+      '--disable-background-networking', '--disable-component-update', '--disable-sync',
+      `--user-data-dir=${path.join(run, 'chromium-profile')}`]});
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  if (server && server.exitCode === null) {
+    server.kill('SIGTERM');
+    await new Promise((r) => server.once('exit', r));
+  }
+  log(`browser test wall time ${((Date.now() - started) / 1000).toFixed(1)} s`);
+});
+
+test('the campaigns list shows every campaign with its live state and progress', async () => {
+  const page = await newPage();
+  await page.goto(`${base}/`);
+  for (const id of [ids.sweep, ids.calibration, ids.diagnosis]) {
+    await page.locator(`tr[data-campaign="${id}"]`).waitFor();
+  }
+  const row = page.locator(`tr[data-campaign="${ids.sweep}"]`);
+  assert.match(await row.innerText(), /browser test sweep/);
+  assert.match(await row.locator('.progress-text').innerText(), /of 32 jobs done/);
+  // Live: the sweep's row reaches "succeeded" without a reload.
+  await until('the sweep to finish', async () => finished(await api('GET', `/api/v1/campaigns/${ids.sweep}`)), 240);
+  await row.and(page.locator('[data-state="succeeded"]')).waitFor({timeout: 15000});
+  assert.match(await row.locator('.progress-text').innerText(), /32 of 32 jobs done/);
+  await shot(page, '01-campaigns');
+  assert.deepEqual(page.problems, []);
+});
+
+test('a sweep: heat maps of both peak loads and their ratio, with the targets\' iso-lines', async () => {
+  const results = (await api('GET', `/api/v1/campaigns/${ids.sweep}/results`)).results;
+  const load = (test, fr0, fs0) => results.find((r) => r.test === test && r.fr0 === fr0 && r.fs0 === fs0).peak_load;
+  const median = (v) => v.slice().sort((a, b) => a - b)[Math.floor(v.length / 2)];
+  const uct = results.filter((r) => r.test === 'uct').map((r) => r.peak_load);
+  const btt = results.filter((r) => r.test === 'btt').map((r) => r.peak_load);
+  assert.equal(uct.length, 16);
+  const targets = {uct: Number(median(uct).toPrecision(3)), btt: Number(median(btt).toPrecision(3))};
+  const page = await newPage();
+  await page.goto(`${base}/campaigns/${ids.sweep}?uct=${targets.uct}&btt=${targets.btt}`);
+  const maps = page.locator('figure.heat');
+  await maps.nth(2).waitFor();
+  assert.equal(await maps.count(), 3);
+  const titles = await maps.locator('figcaption strong').allInnerTexts();
+  assert.deepEqual(titles, ['UCT peak load', 'BTT peak load', 'UCT / BTT peak-load ratio']);
+  for (let k = 0; k < 3; ++k) {
+    assert.equal(await maps.nth(k).locator('svg.chart').getAttribute('data-points'), '16');
+    assert.equal(await maps.nth(k).locator('.cell:not(.missing)').count(), 16);
+  }
+  // Every cell's number is the API's value, at its own (F_r0, F_s0): key "ix,iy".
+  const xs = [32, 64, 128, 256];
+  for (const [k, test] of [[0, 'uct'], [1, 'btt']]) {
+    for (let ix = 0; ix < 4; ++ix) {
+      for (let iy = 0; iy < 4; ++iy) {
+        const cell = maps.nth(k).locator(`.cell[data-key="${ix},${iy}"]`);
+        assert.equal(await cell.locator('text').textContent(), num(load(test, xs[ix], xs[iy]), 3), `${test} ${ix},${iy}`);
+      }
+    }
+  }
+  const ratioCell = maps.nth(2).locator('.cell[data-key="2,1"] text');
+  assert.equal(await ratioCell.textContent(), num(load('uct', 128, 64) / load('btt', 128, 64), 3));
+  // The targets' iso-lines: on each map, the UCT and BTT lines; on the ratio map also the ratio's.
+  for (let k = 0; k < 3; ++k) {
+    const levels = await maps.nth(k).locator('path.iso').evaluateAll((ps) => ps.map((p) => Number(p.dataset.level)));
+    assert.ok(levels.includes(targets.uct) && levels.includes(targets.btt), `map ${k} iso-lines ${levels}`);
+  }
+  assert.equal(await maps.nth(2).locator('path.iso').count(), 3);
+  // Axes carry the quantity and its unit.
+  assert.match(await maps.nth(0).locator('.axis.x .label').textContent(), /F_r0.*\(N\)/);
+  assert.match(await maps.nth(0).locator('.colourbar .label').textContent(), /UCT peak load \(N\)/);
+  // Keyboard: Tab stop on the top-left cell, arrows move by column and row, Enter opens the job.
+  const first = maps.nth(0).locator('.cell[tabindex="0"]');
+  assert.equal(await first.getAttribute('data-key'), '0,3');
+  await first.focus();
+  await page.keyboard.press('ArrowRight');
+  await page.keyboard.press('ArrowDown');
+  const key = await page.evaluate(() => document.activeElement.dataset.key);
+  assert.equal(key, '1,2');
+  const readout = await maps.nth(0).locator('.readout').innerText();
+  assert.match(readout, new RegExp(`F_r0 64 N, F_s0 128 N: UCT peak load ${num(load('uct', 64, 128))} N, job #\\d+`));
+  await shot(page, '02-sweep-heat-maps');
+  const jobId = results.find((r) => r.test === 'uct' && r.fr0 === 64 && r.fs0 === 128).job_id;
+  await page.keyboard.press('Enter');
+  await page.waitForURL(`${base}/jobs/${jobId}`);
+  // The job page: its curve (every point of curve.csv), broken bonds, result and log.
+  const curveRows = (await api('GET', `/api/v1/jobs/${jobId}/curve`)).trim().split('\n').length - 1;
+  const plots = page.locator('figure.plot');
+  await plots.nth(1).waitFor();
+  assert.equal(await plots.nth(0).locator('svg.chart').getAttribute('data-points'), String(curveRows));
+  assert.equal(await plots.nth(1).locator('svg.chart').getAttribute('data-points'), String(curveRows));
+  assert.match(await page.locator('h1').innerText(), /UCT at F_r0 64 N, F_s0 128 N/);
+  const job = await api('GET', `/api/v1/jobs/${jobId}`);
+  assert.match(await page.locator('dl.facts').nth(1).innerText(), new RegExp(`peak load\\s+${num(job.result.peak_load / 1e3)} kN`));
+  assert.match(await page.locator('dl.facts').nth(1).innerText(), new RegExp(`particles, bonds\\s+${job.result.particles}, ${job.result.bonds}`));
+  assert.ok((await page.locator('pre.log').innerText()).length > 0);
+  // The curve's crosshair follows the arrow keys.
+  await plots.nth(0).locator('[role="slider"]').focus();
+  await page.keyboard.press('End');
+  assert.match(await plots.nth(0).locator('.readout').innerText(), /displacement .* m, load .* N, \d+ broken bonds/);
+  await shot(page, '03-job');
+  // A phone: one column, nothing wider than the screen.
+  const phone = await newPage({width: 390, height: 844});
+  await phone.goto(`${base}/campaigns/${ids.sweep}?uct=${targets.uct}&btt=${targets.btt}`);
+  await phone.locator('figure.heat').nth(2).waitFor();
+  const overflow = await phone.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+  assert.ok(overflow <= 0, `the sweep page is ${overflow} px wider than a phone`);
+  await shot(phone, '04-sweep-phone');
+  assert.deepEqual(page.problems.concat(phone.problems), []);
+});
+
+test('a finished calibration: verdict, search, best point\'s curves and the seed scatter', async () => {
+  const c = await until('the calibration to finish', async () => {
+    const x = await api('GET', `/api/v1/campaigns/${ids.calibration}`);
+    return finished(x) && x;
+  }, 300);
+  const s = c.summary;
+  assert.ok(s.verdict, JSON.stringify(s).slice(0, 300));
+  const page = await newPage();
+  await page.goto(`${base}/campaigns/${ids.calibration}`);
+  await page.locator('.verdict').first().waitFor();
+  assert.match(await page.locator('.verdict').first().innerText(), new RegExp(`Verdict: ${s.verdict}`));
+  assert.match(await page.locator('.best-point').innerText(), new RegExp(`F_r0 = ${num(s.best.fr0)} N, F_s0 = ${num(s.best.fs0)} N`));
+  const fig = (title) => page.locator('figure.plot').filter({has: page.locator('figcaption strong', {hasText: title})});
+  const ok = s.history.filter((r) => r.ok);
+  await fig('Packing-seed scatter').waitFor();
+  assert.equal(await fig('Objective per evaluation').locator('svg').getAttribute('data-points'), String(ok.length));
+  assert.equal(await fig('UCT peak load per evaluation').locator('svg').getAttribute('data-points'), String(ok.length));
+  assert.equal(await fig('BTT peak load per evaluation').locator('svg').getAttribute('data-points'), String(ok.length));
+  assert.equal(await fig('Evaluated strengths').locator('svg').getAttribute('data-points'), String(s.history.length + 1));
+  // The target lines sit at the targets.
+  assert.match(await fig('UCT peak load per evaluation').locator('.reflabel').textContent(), /target 2000 N/);
+  // The best point's curves: both tests, every point of each curve.
+  for (const test of ['UCT', 'BTT']) {
+    const curve = fig(`${test} load curve at the best point`);
+    const jobId = (await curve.locator('figcaption a').textContent()).replace('#', '');
+    const rows = (await api('GET', `/api/v1/jobs/${jobId}/curve`)).trim().split('\n').length - 1;
+    assert.equal(await curve.locator('svg').getAttribute('data-points'), String(rows));
+    const job = await api('GET', `/api/v1/jobs/${jobId}`);
+    assert.equal(job.fr0, s.best.fr0);
+    assert.equal(job.spec.sample.seed, 1);
+  }
+  // The seed scatter: one point per seed, the mean and the target.
+  const runs = s.scatter.runs.filter((r) => r.uct && r.btt);
+  assert.equal(runs.length, 3);
+  assert.equal(await fig('Packing-seed scatter').locator('svg').getAttribute('data-points'), String(runs.length + 2));
+  // Keyboard: the convergence plot's points, one by one.
+  const conv = fig('Objective per evaluation');
+  await conv.locator('.mark[tabindex="0"]').focus();
+  await page.keyboard.press('ArrowRight');
+  assert.match(await conv.locator('.readout').innerText(), /evaluation 1 \(\w+\): misfit/);
+  await shot(page, '05-calibration-finished');
+  assert.deepEqual(page.problems, []);
+});
+
+test('a diagnosis: verdict and confidence, residuals before and after, candidate scores', async () => {
+  const c = await until('the diagnosis to finish', async () => {
+    const x = await api('GET', `/api/v1/campaigns/${ids.diagnosis}`);
+    return finished(x) && x;
+  }, 600);
+  const s = c.summary;
+  assert.ok(s.verdict, JSON.stringify(s).slice(0, 300));
+  const page = await newPage();
+  await page.goto(`${base}/campaigns/${ids.diagnosis}`);
+  await page.locator('.verdict').waitFor();
+  assert.match(await page.locator('.verdict').innerText(), new RegExp(s.verdict.label.replace(/[()]/g, '.')));
+  assert.match(await page.locator('.confidence').innerText(), new RegExp(`Confidence: ${s.verdict.confidence.level}`));
+  const fig = (title) => page.locator('figure.plot').filter({has: page.locator('figcaption strong', {hasText: title})});
+  assert.equal(await fig('Residuals by observation').locator('svg').getAttribute('data-points'), String(s.observations.length));
+  const effects = s.candidates.filter((k) => typeof k.effect === 'string');
+  assert.equal(await fig('Candidate effects').locator('svg').getAttribute('data-points'), String(effects.length));
+  // The base model's residual of the first held-out observation, as the API gives it.
+  const o = s.observations.find((x) => x.role === 'held_out');
+  const row = page.locator('tr', {has: page.locator('td', {hasText: new RegExp(`^${o.id}$`)})});
+  assert.match(await row.innerText(), new RegExp((o.base.residual > 0 ? '\\+' : '') + num(o.base.residual, 3)));
+  assert.equal(await page.locator('a', {hasText: 'HTML report'}).getAttribute('href'), `/api/v1/campaigns/${ids.diagnosis}/report.html`);
+  await shot(page, '06-diagnosis');
+  assert.deepEqual(page.problems, []);
+});
+
+test('submitting from the page: the server\'s field error, the token, a live calibration, cancel', async () => {
+  const page = await newPage();
+  page.on('dialog', (d) => d.accept());
+  await page.goto(`${base}/submit`);
+  const editor = page.locator('#request');
+  await editor.waitFor();
+  // A template loads as valid JSON; the repository's examples are offered too.
+  await page.selectOption('#template', 'sweep');
+  await page.locator('#request-status', {hasText: 'Valid JSON, kind "sweep"'}).waitFor();
+  assert.ok(await page.locator('#template option[value="examples/calibrate_seed_lab.json"]').count() === 1);
+  // A request the server refuses: the error names the field and the editor selects it.
+  const bad = calibration('refused', 40, 1e-6);
+  bad.bounds.fr0 = [1024, 16];
+  await editor.fill(JSON.stringify(bad, null, 2));
+  await page.click('#submit');
+  const error = page.locator('#submit-error');
+  await error.waitFor();
+  assert.match(await error.innerText(), /bounds\.fr0/);
+  const selected = await editor.evaluate((t) => t.value.slice(t.selectionStart, t.selectionEnd));
+  assert.match(selected, /^"fr0"/);
+  // Without the token: 401, said on the page.
+  await editor.fill(JSON.stringify(calibration('live calibration from the page', 40, 1e-6), null, 2));
+  await page.click('#submit');
+  await page.locator('#submit-error', {hasText: '401'}).waitFor();
+  await shot(page, '07-submit-refused');
+  // With the token (the header's form): created, and the page moves to the campaign.
+  await page.click('#token summary');
+  await page.fill('#token-input', TOKEN);
+  await page.click('#token-form button[type="submit"]');
+  await page.click('#submit');
+  await page.waitForURL(/\/campaigns\/\d+$/);
+  const id = Number(page.url().split('/').pop());
+  assert.ok(id > ids.diagnosis);
+  // Live updates: the evaluations plotted grow while it runs, with no reload.
+  const conv = page.locator('figure.plot').filter({has: page.locator('figcaption strong', {hasText: 'Objective per evaluation'})});
+  const points = async () => Number((await conv.locator('svg').getAttribute('data-points', {timeout: 60000})) || 0);
+  await until('two evaluations on the page', async () => (await conv.count()) > 0 && (await points()) >= 2, 120);
+  const seen = await points();
+  await until('a later evaluation on the page', async () => (await points()) > seen, 60);
+  assert.match(await page.locator('.verdict').first().innerText(), /Running: \d+ of 40 evaluations/);
+  const state = await api('GET', `/api/v1/campaigns/${id}`);
+  assert.equal(state.state, 'running');
+  await shot(page, '08-calibration-running');
+  // Cancel from the page (the confirm dialog is accepted).
+  await page.click('#cancel');
+  await page.locator('#campaign-head .badge', {hasText: 'cancelled'}).waitFor({timeout: 30000});
+  const cancelled = await api('GET', `/api/v1/campaigns/${id}`);
+  assert.equal(cancelled.cancel_requested, true);
+  assert.equal(cancelled.state, 'cancelled');
+  assert.equal(await page.locator('#cancel').count(), 0);
+  await shot(page, '09-calibration-cancelled');
+  assert.deepEqual(page.problems, []);
+});

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The dashboard's browser test (ctest runs it): installs what it needs, then drives Debian's
+# chromium through the dashboard of a real `rockcal serve` (tests/dashboard/dashboard_test.mjs).
+#   bash tests/dashboard/run.sh ROCKCAL_BINARY WORK_DIR
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+rockcal="${1:?usage: run.sh ROCKCAL_BINARY WORK_DIR}"
+work="${2:?usage: run.sh ROCKCAL_BINARY WORK_DIR}"
+bash "$here/setup.sh" "$work"
+export ROCKCAL_BIN="$rockcal" DASHBOARD_WORK="$work"
+cd "$work"
+exec node --test --test-reporter=spec --test-timeout=840000 "$here/dashboard_test.mjs"
