@@ -2,6 +2,8 @@
 // returns true. One request at a time per page, none while the tab is hidden, none after the page
 // is left. The period is longer than the server's keep-alive timeout (2 s), so the browser's idle
 // connection closes between polls and no server thread stays held by an open page.
+import {ApiError, getJson} from './api.js';
+
 export const POLL_MS = 3000;
 
 export function startPolling(tick, {signal, period = POLL_MS} = {}) {
@@ -37,4 +39,28 @@ export function startPolling(tick, {signal, period = POLL_MS} = {}) {
     });
   }
   return run();
+}
+
+// Polls a JSON resource while live(value) holds; show(value) runs when it changed, missing(error)
+// when it does not exist (404, which ends the polling).
+export function watchJson(url, {signal, show, live, missing}) {
+  let last = '';
+  return startPolling(async () => {
+    let value;
+    try {
+      value = await getJson(url, {signal});
+    } catch (e) {
+      if (e instanceof ApiError && e.status === 404 && missing) {
+        missing(e);
+        return false;
+      }
+      throw e;
+    }
+    const text = JSON.stringify(value);
+    if (text !== last) {
+      last = text;
+      await show(value);
+    }
+    return live(value);
+  }, {signal});
 }

@@ -4,8 +4,9 @@
 #   bash tests/dashboard/run.sh ROCKCAL_BINARY WORK_DIR
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-rockcal="${1:?usage: run.sh ROCKCAL_BINARY WORK_DIR}"
-work="${2:?usage: run.sh ROCKCAL_BINARY WORK_DIR}"
+rockcal="$(realpath "${1:?usage: run.sh ROCKCAL_BINARY WORK_DIR}")"
+mkdir -p "${2:?usage: run.sh ROCKCAL_BINARY WORK_DIR}"
+work="$(realpath "$2")"
 bash "$here/setup.sh" "$work"
 export ROCKCAL_BIN="$rockcal" DASHBOARD_WORK="$work"
 cd "$work"

@@ -75,9 +75,13 @@ function verdictSection(c, s, best, lab) {
       `${s.evaluations} of ${s.max_evaluations} evaluations (${s.failed_evaluations || 0} failed); `,
       `tolerance ${pct(s.tolerance, 1)} on each load; strategy ${s.strategy ? s.strategy.used || s.strategy.requested : '–'}` +
       (s.strategy && s.strategy.algorithm ? ` (${s.strategy.algorithm})` : '') + '.'));
-  } else {
+  } else if (isLive(c)) {
     parts.push(h('p', {class: 'verdict verdict-running'}, h('strong', {}, 'Running: '),
       `${s.evaluations ?? 0} of ${s.max_evaluations} evaluations; the report comes when the search ends.`));
+  } else {
+    // Cancelled (or stopped) before its report: what it evaluated is all there is.
+    parts.push(h('p', {class: 'verdict verdict-incomplete'}, h('strong', {}, `No report (${c.driver_status || c.state}): `),
+      `the search stopped after ${s.evaluations ?? 0} of ${s.max_evaluations} evaluations; below is what it evaluated.`));
   }
   if (best) {
     const labBest = s.best && s.best.lab;

@@ -1,10 +1,10 @@
 // One campaign: its header (state, progress, cancel) and the page of its kind, refreshed while it
 // runs. The kind's page gets the campaign and a cache for what does not change (finished jobs'
 // curves).
-import {ApiError, deleteJson, getJson} from '../api.js';
+import {deleteJson} from '../api.js';
 import {badge, clear, facts, h, rememberFocus} from '../dom.js';
 import {dateTime} from '../format.js';
-import {startPolling} from '../poll.js';
+import {watchJson} from '../poll.js';
 import {renderCalibration} from './calibration.js';
 import {renderDiagnosis} from './diagnosis.js';
 import {isLive, progressCell} from './progress.js';
@@ -21,31 +21,21 @@ export async function render([idText], ctx) {
   const body = h('div', {id: 'campaign-body'});
   ctx.main.append(head, body);
   const cache = new Map();
-  let last = '';
-  await startPolling(async () => {
-    let c;
-    try {
-      c = await getJson(`/api/v1/campaigns/${id}`, {signal: ctx.signal});
-    } catch (e) {
-      if (e instanceof ApiError && e.status === 404) {
-        clear(head).append(h('h1', {}, `Campaign #${id}`), h('p', {class: 'error', role: 'alert'}, e.message));
-        return false;
-      }
-      throw e;
-    }
-    const text = JSON.stringify(c);
-    if (text === last) return isLive(c);
-    last = text;
-    ctx.setTitle(`#${c.id} ${c.name}`);
-    const renderKind = KINDS[c.kind] || renderResultsTable;
-    // The new view is built off screen and swapped in at once; keyboard focus stays where it was.
-    const next = await renderKind(c, {...ctx, cache});
-    const focus = rememberFocus(ctx.main);
-    clear(head).append(header(c, ctx));
-    clear(body).append(next);
-    focus.restore();
-    return isLive(c);
-  }, {signal: ctx.signal});
+  await watchJson(`/api/v1/campaigns/${id}`, {
+    signal: ctx.signal,
+    live: isLive,
+    missing: (e) => clear(head).append(h('h1', {}, `Campaign #${id}`), h('p', {class: 'error', role: 'alert'}, e.message)),
+    show: async (c) => {
+      ctx.setTitle(`#${c.id} ${c.name}`);
+      const renderKind = KINDS[c.kind] || renderResultsTable;
+      // The new view is built off screen and swapped in at once; keyboard focus stays where it was.
+      const next = await renderKind(c, {...ctx, cache});
+      const focus = rememberFocus(ctx.main);
+      clear(head).append(header(c, ctx));
+      clear(body).append(next);
+      focus.restore();
+    },
+  });
 }
 
 function header(c, ctx) {

@@ -1,8 +1,7 @@
 // The campaigns list, newest first, with live state and progress (polled while any is live).
-import {getJson} from '../api.js';
 import {append, badge, clear, h, table} from '../dom.js';
 import {dateTime} from '../format.js';
-import {startPolling} from '../poll.js';
+import {watchJson} from '../poll.js';
 import {isLive, progressCell} from './progress.js';
 
 const PAGE = 50;
@@ -13,16 +12,11 @@ export async function render(_params, ctx) {
   const body = h('div', {id: 'campaigns'});
   ctx.main.append(h('div', {class: 'page-head'}, h('h1', {}, 'Campaigns'),
     h('a', {class: 'button', href: '/submit'}, 'Submit a campaign')), body);
-  let last = '';
-  await startPolling(async () => {
-    const list = await getJson(`/api/v1/campaigns?limit=${PAGE}&offset=${offset}`, {signal: ctx.signal});
-    const text = JSON.stringify(list);
-    if (text !== last) {
-      last = text;
-      append(clear(body), [view(list, offset)]);
-    }
-    return list.campaigns.some(isLive);
-  }, {signal: ctx.signal});
+  await watchJson(`/api/v1/campaigns?limit=${PAGE}&offset=${offset}`, {
+    signal: ctx.signal,
+    live: (list) => list.campaigns.some(isLive),
+    show: (list) => append(clear(body), [view(list, offset)]),
+  });
 }
 
 function view(list, offset) {

@@ -15,8 +15,10 @@ export async function renderDiagnosis(c, ctx) {
   const out = h('div', {class: 'diagnosis'});
   if (s.error) out.append(h('p', {class: 'error', role: 'alert'}, `The diagnosis failed: ${s.error}`));
   if (!s.verdict) {
-    out.append(note(isLive(c) ? (s.phase ? `Running: phase ${s.step} of ${s.steps} (${s.phase}), ${s.runs ?? 0} runs so far. ` +
-      'The verdict, residuals and scores appear when it finishes.' : 'The diagnosis is starting.') : 'No report.'));
+    const where = s.phase ? `phase ${s.step} of ${s.steps} (${s.phase}), ${s.runs ?? 0} runs` : 'the start';
+    out.append(h('p', {class: `verdict ${isLive(c) ? 'verdict-running' : 'verdict-incomplete'}`},
+      isLive(c) ? [h('strong', {}, 'Running: '), `${where} so far. The verdict, residuals and scores appear when it finishes.`]
+        : [h('strong', {}, `No report (${c.driver_status || c.state}): `), `it stopped at ${where}.`]));
     const rows = await fetchResults(c, ctx);
     out.append(h('details', {class: 'jobs'}, h('summary', {}, `All ${rows.length} jobs`), resultsTable(rows)));
     return out;

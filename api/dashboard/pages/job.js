@@ -1,9 +1,9 @@
 // One engine job: its state, the result's numbers, the load-displacement curve and broken bonds,
 // the log and the raw spec and result. Polled while it is queued or running.
-import {ApiError, getJson, getText} from '../api.js';
+import {getJson, getText} from '../api.js';
 import {badge, clear, facts, h, note, progressBar, rememberFocus, section} from '../dom.js';
 import {dateTime, duration, newtons, num, pascals} from '../format.js';
-import {startPolling} from '../poll.js';
+import {watchJson} from '../poll.js';
 import {labFactors} from './calibration.js';
 import {brokenBondsPlot, fetchCurve, loadCurvePlot} from './curves.js';
 import {plotWidth} from './layout.js';
@@ -17,28 +17,17 @@ export async function render([idText], ctx) {
   const view = h('div', {id: 'job'});
   ctx.main.append(view);
   const cache = new Map();
-  let last = '';
-  await startPolling(async () => {
-    let j;
-    try {
-      j = await getJson(`/api/v1/jobs/${id}`, {signal: ctx.signal});
-    } catch (e) {
-      if (e instanceof ApiError && e.status === 404) {
-        clear(view).append(h('h1', {}, `Job #${id}`), h('p', {class: 'error', role: 'alert'}, e.message));
-        return false;
-      }
-      throw e;
-    }
-    const text = JSON.stringify(j);
-    if (text !== last) {
-      last = text;
+  await watchJson(`/api/v1/jobs/${id}`, {
+    signal: ctx.signal,
+    live,
+    missing: (e) => clear(view).append(h('h1', {}, `Job #${id}`), h('p', {class: 'error', role: 'alert'}, e.message)),
+    show: async (j) => {
       const next = await jobView(j, {...ctx, cache});
       const focus = rememberFocus(ctx.main);
       clear(view).append(...next);
       focus.restore();
-    }
-    return live(j);
-  }, {signal: ctx.signal});
+    },
+  });
 }
 
 async function campaignLab(j, ctx) {

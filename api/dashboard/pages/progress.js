@@ -12,19 +12,13 @@ export function progressOf(c) {
   const s = c.summary || {};
   const parts = [];
   let fraction = p.fraction;
-  // A driver adds jobs as it goes, so the jobs' own ETA covers only those queued now.
-  let eta = p.eta_seconds;
+  // A driver adds jobs as it goes, so the server's ETA covers only the jobs queued now.
   let etaText = 'ETA';
   if (c.kind === 'calibration' && typeof s.evaluations === 'number') {
     parts.push(`${s.evaluations} of ${s.max_evaluations} evaluations`);
     if (isLive(c)) {
       fraction = s.max_evaluations ? s.evaluations / s.max_evaluations : fraction;
-      // At the pace so far, the rest of the budget; the search may stop sooner.
-      const elapsed = Date.now() / 1000 - c.created_at;
-      if (s.evaluations > 0 && elapsed > 0) {
-        eta = (elapsed / s.evaluations) * Math.max(0, s.max_evaluations - s.evaluations);
-        etaText = 'at most';
-      }
+      etaText = 'queued jobs done in';
     } else {
       fraction = 1;
     }
@@ -39,7 +33,9 @@ export function progressOf(c) {
   if (p.failed) parts.push(`${p.failed} failed`);
   if (p.cancelled) parts.push(`${p.cancelled} cancelled`);
   if (p.cached) parts.push(`${p.cached} from the store`);
-  if (isLive(c) && typeof eta === 'number') parts.push(`${etaText} ${duration(eta)}${etaText === 'at most' ? ' left' : ''}`);
+  if (isLive(c) && typeof p.eta_seconds === 'number' && (p.queued || p.running)) {
+    parts.push(`${etaText} ${duration(p.eta_seconds)}`);
+  }
   return {fraction: fraction ?? 0, text: parts.join(', ')};
 }
 

@@ -1,7 +1,7 @@
 // Submitting a campaign: a JSON editor with starting templates, checked as JSON in the page and
 // validated by the server, whose error names the field; the editor then selects that field.
 import {getJson, getText, postJson} from '../api.js';
-import {h, note} from '../dom.js';
+import {append, h, note} from '../dom.js';
 import {TEMPLATES} from '../templates.js';
 
 const DRAFT_KEY = 'rockcal.draft';
@@ -122,6 +122,7 @@ export async function render(_params, ctx) {
       return;
     }
     editor.value = JSON.stringify(request, null, 2);
+    choice.value = '';  // a menu of starting points, not a state: the editor is the request
     saveDraft(editor.value);
     check();
   });
@@ -147,9 +148,18 @@ export async function render(_params, ctx) {
 
   function showError(err) {
     error.hidden = false;
-    error.replaceChildren(h('strong', {}, `The server refused it (${err.status || 'no answer'}): `),
-      err.field ? h('code', {class: 'field'}, err.field) : null, err.field ? ': ' : '', err.message,
-      err.status === 401 ? h('p', {}, 'Set the server’s token under "Token" at the top of the page.') : null);
+    // The server's message may already start with the field's name.
+    const message = err.field && err.message.startsWith(`${err.field}: `) ? err.message.slice(err.field.length + 2) : err.message;
+    error.replaceChildren();
+    append(error, [h('strong', {}, `The server refused it (${err.status || 'no answer'}): `),
+      err.field ? [h('code', {class: 'field'}, err.field), ': '] : null, message,
+      err.status === 401 ? h('p', {}, 'Set the server’s token under "Token" at the top of the page.') : null]);
+    if (err.status === 401) {
+      // The way out, opened: the header's token form.
+      document.getElementById('token').open = true;
+      document.getElementById('token-input').focus();
+      return;
+    }
     const at = locateField(editor.value, err.field);
     if (at >= 0) {
       const end = editor.value.indexOf('\n', at);
