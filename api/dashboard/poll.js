@@ -42,9 +42,25 @@ export function startPolling(tick, {signal, period = POLL_MS} = {}) {
 }
 
 // Polls a JSON resource while live(value) holds; show(value) runs when it changed, missing(error)
-// when it does not exist (404, which ends the polling).
-export function watchJson(url, {signal, show, live, missing}) {
+// when it does not exist (404, which ends the polling). With `resize`, show() runs again when the
+// page's width changes (plots are drawn for the width they have, so their text keeps its size).
+export function watchJson(url, {signal, show, live, missing, resize}) {
   let last = '';
+  let latest;
+  if (resize) {
+    let width = resize.clientWidth;
+    let timer = null;
+    const onResize = () => {
+      clearTimeout(timer);
+      timer = setTimeout(() => {
+        if (Math.abs(resize.clientWidth - width) < 24 || latest === undefined) return;
+        width = resize.clientWidth;
+        show(latest);
+      }, 200);
+    };
+    window.addEventListener('resize', onResize);
+    if (signal) signal.addEventListener('abort', () => window.removeEventListener('resize', onResize));
+  }
   return startPolling(async () => {
     let value;
     try {
@@ -59,6 +75,7 @@ export function watchJson(url, {signal, show, live, missing}) {
     const text = JSON.stringify(value);
     if (text !== last) {
       last = text;
+      latest = value;
       await show(value);
     }
     return live(value);

@@ -276,6 +276,30 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
   await page.keyboard.press('ArrowRight');
   assert.match(await conv.locator('.readout').innerText(), /evaluation 1 \(\w+\): misfit/);
   await shot(page, '05-calibration-finished');
+  // The consistent set of strengths and whether it is unique (fields of issue 17's report, which
+  // the server does not write yet): the test adds them, in the contract's shape, to the real
+  // summary on its way to the page, and the page must render them.
+  const two = ok.slice().sort((a, b) => a.misfit - b.misfit).slice(0, 2);
+  const span = (k) => [Math.min(...two.map((r) => r[k])), Math.max(...two.map((r) => r[k]))];
+  const extra = {
+    consistent: {fr0: span('fr0'), fs0: span('fs0'), ratio: [Math.min(...two.map((r) => r.fs0 / r.fr0)), Math.max(...two.map((r) => r.fs0 / r.fr0))],
+      points: two.map((r) => ({fr0: r.fr0, fs0: r.fs0, uct: {mean: r.uct, se: 0.02 * r.uct}, btt: {mean: r.btt, se: 0.03 * r.btt}}))},
+    unique: false,
+    suggestion: {observable: 'BTT peak load on a thicker disc', values: [8], why: 'it moves differently with F_s0 / F_r0'},
+  };
+  await page.route(`**/api/v1/campaigns/${ids.calibration}`, (route) => route.fulfill({json: {...c, summary: {...s, ...extra}}}));
+  await page.reload();
+  const consistent = page.locator('section', {has: page.locator('h2', {hasText: 'Consistent strengths'})});
+  await consistent.waitFor();
+  const text = await consistent.innerText();
+  assert.match(text, /Not unique/);
+  assert.match(text, new RegExp(`F_r0 \\(N, model\\)\\s+${num(extra.consistent.fr0[0])} – ${num(extra.consistent.fr0[1])}`));
+  assert.match(text, /To narrow it: measure BTT peak load on a thicker disc \(8\)/);
+  assert.equal(await fig('Consistent strengths').locator('svg.chart').getAttribute('data-points'), '2');
+  assert.equal(await fig('Evaluated strengths').locator('svg.chart').getAttribute('data-points'), String(s.history.length + 1 + 2));
+  assert.match(text, new RegExp(`${num(two[0].uct)} ± ${num(0.02 * two[0].uct, 2)}`));
+  await consistent.screenshot({path: path.join(shots, '05b-calibration-consistent-set.png')});
+  log('screenshot', path.join(shots, '05b-calibration-consistent-set.png'));
   assert.deepEqual(page.problems, []);
 });
 

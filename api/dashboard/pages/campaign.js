@@ -23,6 +23,7 @@ export async function render([idText], ctx) {
   const cache = new Map();
   await watchJson(`/api/v1/campaigns/${id}`, {
     signal: ctx.signal,
+    resize: ctx.main,
     live: isLive,
     missing: (e) => clear(head).append(h('h1', {}, `Campaign #${id}`), h('p', {class: 'error', role: 'alert'}, e.message)),
     show: async (c) => {

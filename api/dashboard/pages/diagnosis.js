@@ -9,6 +9,9 @@ import {plotWidth} from './layout.js';
 import {fetchResults, resultsTable} from './results.js';
 
 const effectName = (c) => (typeof c.effect === 'string' ? c.effect : 'base model');
+// The report's values are in model units (its "units"); the unit of each observable.
+const UNITS = {peak_load: 'N', strength: 'Pa', youngs_modulus: 'Pa', poisson_ratio: ''};
+const withUnit = (x, o) => `${num(x)}${UNITS[o.observable] ? ` ${UNITS[o.observable]}` : ''}`;
 
 export async function renderDiagnosis(c, ctx) {
   const s = c.summary || {};
@@ -81,7 +84,7 @@ function residualSection(s, width) {
     caption: 'a bar beyond its band is a gap, not noise',
     describe: (k) => {
       const o = obs[k];
-      return `${o.id} (${o.test} ${o.observable}, ${o.role.replace('_', ' ')}): lab ${num(o.lab)}, base ${num(o.base && o.base.sim)} ` +
+      return `${o.id} (${o.test} ${o.observable}, ${o.role.replace('_', ' ')}): lab ${withUnit(o.lab, o)}, base ${withUnit(o.base && o.base.sim, o)} ` +
         `(ln ${signed(o.base && o.base.residual, 3)}${o.base && o.base.significant ? ', beyond its band' : ''})` +
         (later ? `, ${after}: ln ${signed(later.values[k], 3)}` : '') + `; band ±${num(band[k], 3)}`;
     }});
@@ -89,8 +92,8 @@ function residualSection(s, width) {
     {label: 'observation', value: (o) => o.id},
     {label: 'test', value: (o) => `${o.test} ${o.observable}`},
     {label: 'role', value: (o) => o.role.replace('_', ' ')},
-    {label: 'lab', num: true, value: (o) => num(o.lab)},
-    {label: 'base sim', num: true, value: (o) => num(o.base && o.base.sim)},
+    {label: `lab (${s.units || 'model'} units)`, num: true, value: (o) => withUnit(o.lab, o)},
+    {label: 'base sim', num: true, value: (o) => withUnit(o.base && o.base.sim, o)},
     {label: 'ln(sim/lab) before', num: true, value: (o) => [signed(o.base && o.base.residual, 3), o.base && o.base.significant ? ' ⚠ gap' : '']},
     {label: `after (${later ? later.short : 'no effect'})`, num: true, value: (o) => (later ? signed(later.values[obs.indexOf(o)], 3) : '–')},
     {label: 'budget', num: true, value: (o) => num(o.budget, 3)},

@@ -19,6 +19,7 @@ export async function render([idText], ctx) {
   const cache = new Map();
   await watchJson(`/api/v1/jobs/${id}`, {
     signal: ctx.signal,
+    resize: ctx.main,
     live,
     missing: (e) => clear(view).append(h('h1', {}, `Job #${id}`), h('p', {class: 'error', role: 'alert'}, e.message)),
     show: async (j) => {
