@@ -8,7 +8,7 @@ export function h(tag, attrs = {}, ...children) {
   return el;
 }
 
-export function setAttributes(el, attrs) {
+function setAttributes(el, attrs) {
   for (const [key, value] of Object.entries(attrs || {})) {
     if (value === undefined || value === null || value === false) continue;
     if (key === 'text') el.textContent = value;

@@ -4,9 +4,9 @@
 // connection closes between polls and no server thread stays held by an open page.
 import {ApiError, getJson} from './api.js';
 
-export const POLL_MS = 3000;
+const POLL_MS = 3000;
 
-export function startPolling(tick, {signal, period = POLL_MS} = {}) {
+function startPolling(tick, {signal, period = POLL_MS} = {}) {
   let timer = null;
   let parked = false;
   const run = async () => {

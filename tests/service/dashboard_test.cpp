@@ -60,7 +60,8 @@ TEST_F(Dashboard, EveryPagePathServesTheShell) {
     ASSERT_TRUE(r) << path;
     EXPECT_EQ(r->status, 200) << path;
     EXPECT_EQ(r->get_header_value("Content-Type"), "text/html; charset=utf-8") << path;
-    EXPECT_NE(r->body.find(R"(<script type="module" src="/ui/app.js">)"), std::string::npos) << path;
+    EXPECT_NE(r->body.find(R"(<script type="module" src="/ui/app.js">)"), std::string::npos)
+        << path;
     EXPECT_NE(r->get_header_value("Content-Security-Policy").find("script-src 'self'"),
               std::string::npos);
   }
@@ -99,7 +100,8 @@ TEST_F(Dashboard, EveryModuleTheShellLoadsIsServedWithItsType) {
     EXPECT_EQ(r->get_header_value("X-Content-Type-Options"), "nosniff");
     if (!js) continue;
     const std::string dir = path.substr(0, path.rfind('/') + 1);
-    for (const std::string& target : relative_imports(r->body)) todo.push_back(normalise(dir + target));
+    for (const std::string& target : relative_imports(r->body))
+      todo.push_back(normalise(dir + target));
   }
   // The shell, its stylesheet, the app and its pages, the plots: a broken import shows up above.
   EXPECT_GE(seen.size(), 20u);

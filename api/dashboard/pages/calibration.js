@@ -56,7 +56,7 @@ export async function renderCalibration(c, ctx) {
   return out;
 }
 
-export function bestSoFar(history) {
+function bestSoFar(history) {
   let best = null;
   for (const r of history) {
     if (r.ok && (!best || r.misfit < best.misfit)) best = r;

@@ -7,7 +7,7 @@ export function isLive(c) {
   return c.state === 'queued' || c.state === 'running' || c.driver_status === 'running';
 }
 
-export function progressOf(c) {
+function progressOf(c) {
   const p = c.progress || {};
   const s = c.summary || {};
   const parts = [];

@@ -30,7 +30,7 @@ function lineCol(text, offset) {
 
 // Where a field path ("job.sample.diameter", "grid.fr0[2]") is in the text: the offset of its last
 // key, found key by key from the top; -1 when a key is not there.
-export function locateField(text, field) {
+function locateField(text, field) {
   if (!field || field === '(body)') return -1;
   let at = 0;
   let found = -1;

@@ -10,7 +10,7 @@ import {fetchResults, resultsTable} from './results.js';
 const sortNum = (a, b) => a - b;
 
 // rows -> {xs, ys, tests, at(test, ix, iy) -> {mean, n, rows}}
-export function sweepGrid(rows) {
+function sweepGrid(rows) {
   const xs = [...new Set(rows.map((r) => r.fr0))].sort(sortNum);
   const ys = [...new Set(rows.map((r) => r.fs0))].sort(sortNum);
   const tests = [...new Set(rows.map((r) => r.test))];

@@ -22,7 +22,9 @@ function swatch(item) {
     svg.append(s('line', {x1: 1, x2: 33, y1: 7, y2: 7, stroke: item.colour, 'stroke-width': 2,
       'stroke-dasharray': item.dash || null}));
   }
-  if (item.marker) svg.append(marker(item.marker, 17, 7, 8, {fill: item.colour, stroke: item.colour}));
+  if (item.marker) {
+    svg.append(marker(item.marker, 17, 7, 8, {fill: item.hollow ? '#fff' : item.colour, stroke: item.colour, 'stroke-width': 1.5}));
+  }
   return svg;
 }
 

@@ -110,8 +110,9 @@ export function linePlot({title, caption, width = 640, height = 300, x = {}, y =
   plot.append(markLayer);
   navigable(marks, {readout, onActivate});
   svg.dataset.points = String(marks.length + (followed ? followed.length : 0));
-  const legendItems = series.filter((sr) => sr.name && !sr.noLegend).map((sr) => ({name: sr.name,
-    colour: sr.style.colour, marker: sr.cursor ? null : sr.style.marker, dash: sr.style.dash, line: !!sr.line}))
+  const legendItems = series.filter((sr) => sr.name).map((sr) => ({name: sr.name,
+    colour: sr.style.colour, marker: sr.cursor ? null : sr.style.marker, dash: sr.style.dash, line: !!sr.line,
+    hollow: sr.hollow}))
     .concat(hlines.filter((l) => l.legend).map((l) => ({name: l.legend, colour: '#333', dash: l.dash || '7 4', line: true})))
     .concat(hlines.filter((l) => l.band && l.bandLegend).map((l) => ({name: l.bandLegend, band: true})));
   return figure({title, caption, svg, legendItems, readout});
