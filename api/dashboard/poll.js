@@ -1,4 +1,4 @@
-// Live updates by polling: `tick` runs now, and again `period` ms after each answer while it
+// Live updates by polling: `tick` runs now, and again `period()` ms after each answer while it
 // returns true. One request at a time per page, none while the tab is hidden, none after the page
 // is left. The period is longer than the server's keep-alive timeout (2 s), so the browser's idle
 // connection closes between polls and no server thread stays held by an open page.
@@ -6,7 +6,7 @@ import {ApiError, getJson} from './api.js';
 
 const POLL_MS = 3000;
 
-function startPolling(tick, {signal, period = POLL_MS} = {}) {
+function startPolling(tick, {signal, period = () => POLL_MS} = {}) {
   let timer = null;
   let parked = false;
   const run = async () => {
@@ -23,7 +23,7 @@ function startPolling(tick, {signal, period = POLL_MS} = {}) {
       if (e && e.name === 'AbortError') return;
       again = true;  // a failed poll (server restarting) is tried again
     }
-    if (again && !(signal && signal.aborted)) timer = setTimeout(run, period);
+    if (again && !(signal && signal.aborted)) timer = setTimeout(run, period());
   };
   const onVisible = () => {
     if (!document.hidden && parked) {
@@ -44,7 +44,8 @@ function startPolling(tick, {signal, period = POLL_MS} = {}) {
 // Polls a JSON resource while live(value) holds; show(value) runs when it changed, missing(error)
 // when it does not exist (404, which ends the polling). With `resize`, show() runs again when the
 // page's width changes (plots are drawn for the width they have, so their text keeps its size).
-export function watchJson(url, {signal, show, live, missing, resize}) {
+// `slower(value)` adds milliseconds to the period (a big campaign's page fetches more per update).
+export function watchJson(url, {signal, show, live, missing, resize, slower = () => 0}) {
   let last = '';
   let latest;
   if (resize) {
@@ -79,5 +80,5 @@ export function watchJson(url, {signal, show, live, missing, resize}) {
       await show(value);
     }
     return live(value);
-  }, {signal});
+  }, {signal, period: () => POLL_MS + (latest === undefined ? 0 : slower(latest))});
 }

@@ -90,7 +90,9 @@ function verdictSection(c, s, best, lab) {
       const target = t[test] && t[test].peak_load;
       const rel = Number.isFinite(r.relative_error) ? r.relative_error
         : Number.isFinite(r.peak_load) && target ? r.peak_load / target - 1 : null;
-      const cells = {test: test.toUpperCase(), sim: newtons(r.peak_load), target: newtons(target), rel: Number.isFinite(rel) ? `${signed(rel * 100, 3)} %` : '–'};
+      // An ensemble's mean carries its standard error.
+      const se = Number.isFinite(r.se) ? ` ± ${newtons(r.se)} (n = ${r.n})` : '';
+      const cells = {test: test.toUpperCase(), sim: newtons(r.peak_load) + se, target: newtons(target), rel: Number.isFinite(rel) ? `${signed(rel * 100, 3)} %` : '–'};
       if (lab) {
         cells.labSim = newtons(labBest ? labBest[test].peak_load : r.peak_load * lab.force);
         cells.labTarget = newtons(t.lab ? t.lab[test].peak_load : target * lab.force);

@@ -5,6 +5,9 @@ import {linePlot} from '../plot/line_plot.js';
 
 const PHASE_MARKERS = {start: 'circle', ratio: 'triangle', scale: 'diamond', direct_2d: 'square', local: 'square'};
 
+// The standard error of an evaluation's load when it ran several realisations (packings).
+const seOf = (r, test) => r.ensemble && r.ensemble[test] && r.ensemble[test].peak_load ? r.ensemble[test].peak_load.se : null;
+
 function byPhase(history) {
   const phases = [...new Set(history.map((r) => r.phase))];
   return phases.map((phase) => ({phase, rows: history.filter((r) => r.phase === phase)}));
@@ -33,8 +36,9 @@ export function loadsPlot(history, test, s, lab, width) {
   const name = test.toUpperCase();
   const series = byPhase(ok).map(({phase, rows}, i) => ({
     name: `${phase} evaluations`, marker: PHASE_MARKERS[phase] || ['circle', 'square', 'triangle'][i % 3],
-    points: rows.map((r) => ({x: r.index, y: r[test], key: `e${r.index}`,
+    points: rows.map((r) => ({x: r.index, y: r[test], key: `e${r.index}`, yErr: seOf(r, test),
       label: `evaluation ${r.index}: ${name} peak ${num(r[test])} N` +
+        (Number.isFinite(seOf(r, test)) ? ` ± ${num(seOf(r, test), 2)} (se of ${r.ensemble[test].peak_load.n} realisations)` : '') +
         (target ? ` (${num((r[test] / target - 1) * 100, 3)} % from the target)` : '') +
         (lab ? `, lab ${num(r[test] * lab.force / 1e3)} kN` : '')})),
   }));
@@ -77,6 +81,15 @@ export function scatterPlot(s, lab, width) {
   const series = [{name: 'one packing seed', marker: 'circle',
     points: runs.map((r) => ({x: r.uct, y: r.btt, key: `seed${r.seed}`,
       label: `seed ${r.seed}: UCT ${num(r.uct)} N, BTT ${num(r.btt)} N`}))}];
+  // The best point's own realisations, when the search ran an ensemble per evaluation.
+  const e = s.best && s.best.ensemble;
+  if (e && e.uct && e.btt && Array.isArray(e.uct.realisations)) {
+    const btt = new Map(e.btt.realisations.map((r) => [r.seed, r.peak_load_n]));
+    const pairs = e.uct.realisations.filter((r) => Number.isFinite(r.peak_load_n) && Number.isFinite(btt.get(r.seed)));
+    series.push({name: 'realisation of the search', marker: 'triangle', hollow: true,
+      points: pairs.map((r) => ({x: r.peak_load_n, y: btt.get(r.seed), key: `real${r.seed}`,
+        label: `realisation seed ${r.seed}: UCT ${num(r.peak_load_n)} N, BTT ${num(btt.get(r.seed))} N`}))});
+  }
   const su = s.scatter.uct;
   const sb = s.scatter.btt;
   if (su && sb) {

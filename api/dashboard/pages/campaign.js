@@ -12,6 +12,9 @@ import {renderResultsTable} from './results.js';
 import {renderSweep} from './sweep.js';
 
 const KINDS = {sweep: renderSweep, calibration: renderCalibration, diagnosis: renderDiagnosis};
+// What the campaign's driver (the search of a calibration or diagnosis) is doing, in words.
+const DRIVER = {running: 'search running', done: 'report ready', failed: 'search failed (see below)',
+  cancelled: 'stopped before its report'};
 
 export async function render([idText], ctx) {
   const id = Number(idText);
@@ -25,6 +28,8 @@ export async function render([idText], ctx) {
     signal: ctx.signal,
     resize: ctx.main,
     live: isLive,
+    // Each update of a sweep's page fetches every job's row: 2 ms more per job between updates.
+    slower: (c) => 2 * ((c.progress && c.progress.total) || 0),
     missing: (e) => clear(head).append(h('h1', {}, `Campaign #${id}`), h('p', {class: 'error', role: 'alert'}, e.message)),
     show: async (c) => {
       ctx.setTitle(`#${c.id} ${c.name}`);
@@ -54,7 +59,7 @@ function header(c, ctx) {
       live && !c.cancel_requested ? cancelButton(c, ctx) : null),
     facts([
       ['kind', c.kind],
-      ['state', [badge(c.state), c.driver_status && c.driver_status !== c.state ? ` (driver ${c.driver_status})` : '',
+      ['state', [badge(c.state), c.driver_status ? ` · ${DRIVER[c.driver_status] || c.driver_status}` : '',
         c.cancel_requested && c.state !== 'cancelled' ? ' cancelling…' : '']],
       ['progress', progressCell(c)],
       ['created', dateTime(c.created_at)],

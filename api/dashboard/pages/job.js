@@ -62,7 +62,8 @@ async function jobView(j, ctx) {
   ];
   if (j.error) out.push(h('pre', {class: 'error', role: 'alert'}, j.error));
   if (j.result) out.push(resultSection(r, lab));
-  if (j.state === 'succeeded') {
+  // A run without a peak keeps its result and curve for inspection (its job failed).
+  if (j.state === 'succeeded' || j.result) {
     try {
       const curve = await fetchCurve(j.id, ctx);
       const width = plotWidth(ctx.main, {columns: 2});

@@ -23,8 +23,11 @@ function sweepGrid(rows) {
   const at = (test, ix, iy) => {
     const list = cells.get(`${test}|${ix}|${iy}`) || [];
     const loads = list.filter((r) => r.state === 'succeeded' && Number.isFinite(r.peak_load)).map((r) => r.peak_load);
-    const mean = loads.length ? loads.reduce((a, b) => a + b, 0) / loads.length : null;
-    return {mean, n: loads.length, rows: list};
+    const n = loads.length;
+    const mean = n ? loads.reduce((a, b) => a + b, 0) / n : null;
+    // Several realisations (packing seeds) of a point: their standard error, sd over n - 1.
+    const se = n >= 2 ? Math.sqrt(loads.reduce((a, b) => a + (b - mean) ** 2, 0) / (n - 1) / n) : null;
+    return {mean, se, n, rows: list};
   };
   return {xs, ys, tests, at};
 }
@@ -108,7 +111,7 @@ function sweepView(c, rows, ctx, redraw) {
     const maps = [];
     if (has('uct')) maps.push(map('uct', uct, 'UCT peak load', 'UCT peak load (N)', iso));
     if (has('btt')) maps.push(map('btt', btt, 'BTT peak load', 'BTT peak load (N)', iso));
-    if (has('uct') && has('btt')) maps.push(map('uct', ratio, 'UCT / BTT peak-load ratio', 'UCT/BTT (–)', iso.concat(ratioIso)));
+    if (has('uct') && has('btt')) maps.push(map('ratio', ratio, 'UCT / BTT peak-load ratio', 'UCT/BTT (–)', iso.concat(ratioIso)));
     out.push(h('div', {class: 'plots'}, maps));
     if (iso.length === 2) {
       out.push(note('Where the solid (UCT) and dashed (BTT) iso-lines cross, both targets are met; if they do not ',
@@ -128,7 +131,7 @@ function cellInfo(grid, test, ix, iy, value, valueLabel) {
   const b = grid.at('btt', ix, iy);
   const own = test === 'btt' ? b : u;
   const job = own.rows[0]?.job_id;
-  const n = own.n > 1 ? ` (mean of ${own.n} runs)` : '';
+  const n = test !== 'ratio' && own.n > 1 ? ` ± ${num(own.se, 2)} (mean ± se of ${own.n} realisations)` : '';
   const label = `F_r0 ${num(x)} N, F_s0 ${num(y)} N: ${valueLabel.replace(/ \(.*\)$/, '')} ` +
     (Number.isFinite(value) ? `${num(value)}${valueLabel.endsWith('(N)') ? ' N' : ''}${n}` : `none (${missingNote(own.rows)})`) +
     (job ? `, job #${job}` : '');
