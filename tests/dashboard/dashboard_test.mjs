@@ -36,6 +36,9 @@ const calibration = (name, maxEvaluations, tolerance) => ({kind: 'calibration', 
   job: {...JOB, effects: {heterogeneity: {weibull_m: 4}}},
   targets: {uct: {peak_load: 2000}, btt: {peak_load: 1000}},
   bounds: {fr0: [16, 1024], fs0: [16, 1024]}, max_evaluations: maxEvaluations, tolerance, seeds: [2, 3]});
+// The one the page submits and cancels: a global search (DIRECT-L) with an unreachable tolerance
+// and a budget it cannot spend before the test cancels it.
+const LIVE = {...calibration('live calibration from the page', 1000, 1e-6), strategy: 'direct_2d', algorithm: 'direct_l'};
 // A synthetic twin (examples/datasets) whose hidden effect is heterogeneity, without its triaxial
 // and large-UCT observations (the costly runs); the base model and that one candidate on a 3 x 3
 // (x 3) grid.
@@ -355,7 +358,7 @@ test('submitting from the page: the server\'s field error, the token, a live cal
   assert.equal(example.dataset_file, undefined);
   assert.deepEqual(example.dataset.observations.map((o) => o.id), ['uct-1', 'btt-1']);
   // Without the token: 401, said on the page (the server checks the token before the body).
-  await editor.fill(JSON.stringify(calibration('live calibration from the page', 40, 1e-6), null, 2));
+  await editor.fill(JSON.stringify(LIVE, null, 2));
   await page.click('#submit');
   await page.locator('#submit-error', {hasText: '401'}).waitFor();
   assert.match(await page.locator('#submit-error').innerText(), /Token/);
@@ -380,7 +383,7 @@ test('submitting from the page: the server\'s field error, the token, a live cal
   await shot(page, '08-submit-field-error');
   const before = (await api('GET', '/api/v1/campaigns')).total;
   // Accepted: created, and the page moves to the campaign.
-  await editor.fill(JSON.stringify(calibration('live calibration from the page', 40, 1e-6), null, 2));
+  await editor.fill(JSON.stringify(LIVE, null, 2));
   await page.click('#submit');
   await page.waitForURL(/\/campaigns\/\d+$/);
   const id = Number(page.url().split('/').pop());
@@ -392,7 +395,7 @@ test('submitting from the page: the server\'s field error, the token, a live cal
   await until('two evaluations on the page', async () => (await conv.count()) > 0 && (await points()) >= 2, 120);
   const seen = await points();
   await until('a later evaluation on the page', async () => (await points()) > seen, 60);
-  assert.match(await page.locator('.verdict').first().innerText(), /Running: \d+ of 40 evaluations/);
+  assert.match(await page.locator('.verdict').first().innerText(), /Running: \d+ of 1000 evaluations/);
   const state = await api('GET', `/api/v1/campaigns/${id}`);
   assert.equal(state.state, 'running');
   await shot(page, '09-calibration-running');

@@ -37,7 +37,7 @@ function view(list, offset) {
       {label: 'kind', value: (c) => c.kind},
       {label: 'state', value: (c) => [badge(c.state), c.cancel_requested && c.state !== 'cancelled' ? ' cancelling' : '']},
       {label: 'progress', value: progressCell},
-      {label: 'created', value: (c) => dateTime(c.created_at)},
+      {label: 'created', value: (c) => h('span', {class: 'nowrap'}, dateTime(c.created_at))},
     ], rows, {rowAttrs: (c) => ({dataset: {campaign: c.id, state: c.state}})}),
     pager.length ? h('p', {class: 'pager'}, pager) : null,
   ];

@@ -12,20 +12,19 @@ function progressOf(c) {
   const s = c.summary || {};
   const parts = [];
   let fraction = p.fraction;
-  // A driver adds jobs as it goes, so the server's ETA covers only the jobs queued now.
-  let etaText = 'ETA';
+  // A driver (calibration, diagnosis) adds jobs as it goes, so the server's ETA covers only the
+  // jobs queued now.
+  const etaText = c.driver_status ? 'queued jobs done in' : 'ETA';
   if (c.kind === 'calibration' && typeof s.evaluations === 'number') {
     parts.push(`${s.evaluations} of ${s.max_evaluations} evaluations`);
     if (isLive(c)) {
       fraction = s.max_evaluations ? s.evaluations / s.max_evaluations : fraction;
-      etaText = 'queued jobs done in';
     } else {
       fraction = 1;
     }
   } else if (c.kind === 'diagnosis' && typeof s.phase === 'string') {
     parts.push(`phase ${s.step} of ${s.steps}: ${s.phase}`);
     if (s.steps) fraction = (s.step - 1 + (p.fraction || 0)) / s.steps;
-    etaText = 'queued jobs done in';
   }
   parts.push(`${p.succeeded ?? 0} of ${p.total ?? 0} jobs done`);
   if (p.running) parts.push(`${p.running} running`);

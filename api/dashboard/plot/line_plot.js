@@ -59,7 +59,9 @@ export function linePlot({title, caption, width = 640, height = 300, x = {}, y =
     if (!finite(l.y)) continue;
     inside.append(s('line', {class: 'refline', x1: 0, x2: w, y1: py(l.y), y2: py(l.y),
       'stroke-dasharray': l.dash || '7 4'}));
-    plot.append(s('text', {class: 'reflabel', x: w - 4, y: py(l.y) - 5, 'text-anchor': 'end'}, l.label));
+    // Above its line, or below it when the line runs along the top of the frame.
+    const ly = py(l.y) < 16 ? py(l.y) + 14 : py(l.y) - 5;
+    plot.append(s('text', {class: 'reflabel', x: w - 4, y: ly, 'text-anchor': 'end'}, l.label));
   }
 
   const marks = [];
