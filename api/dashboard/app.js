@@ -119,6 +119,16 @@ async function footer() {
   f.append(h('a', {href: '/api/v1/campaigns'}, 'API (JSON)'));
 }
 
+// Live pages keep polling through a server restart; the banner says so meanwhile.
+window.addEventListener('rockcal:offline', (e) => {
+  const banner = document.getElementById('offline');
+  banner.textContent = `No answer from the server (${e.detail}); trying again every few seconds.`;
+  banner.hidden = false;
+});
+window.addEventListener('rockcal:online', () => {
+  document.getElementById('offline').hidden = true;
+});
+
 tokenForm();
 footer();
 render();

@@ -19,9 +19,12 @@ function startPolling(tick, {signal, period = () => POLL_MS} = {}) {
     let again = true;
     try {
       again = await tick();
+      window.dispatchEvent(new CustomEvent('rockcal:online'));
     } catch (e) {
       if (e && e.name === 'AbortError') return;
-      again = true;  // a failed poll (server restarting) is tried again
+      // A failed poll (the server restarting) is said on the page and tried again.
+      window.dispatchEvent(new CustomEvent('rockcal:offline', {detail: e.message || String(e)}));
+      again = true;
     }
     if (again && !(signal && signal.aborted)) timer = setTimeout(run, period());
   };
