@@ -119,6 +119,12 @@ async function onPhone(url, ready, name) {
   assert.ok(overflow <= 0, `${url} is ${overflow} px wider than a phone`);
   const widest = await phone.locator('svg.chart').evaluateAll((svgs) => Math.max(0, ...svgs.map((e) => e.getBoundingClientRect().right)));
   assert.ok(widest <= 390, `a plot reaches ${widest} px on a 390 px screen`);
+  // No text of a plot (tick, label, category) runs off the screen.
+  const cut = await phone.locator('svg.chart text').evaluateAll((ts) => ts.filter((t) => {
+    const r = t.getBoundingClientRect();
+    return r.width > 0 && (r.right > window.innerWidth + 1 || r.left < -1);
+  }).map((t) => t.textContent));
+  assert.deepEqual(cut, [], `plot text off a 390 px screen on ${url}`);
   await shot(phone, name);
   return phone;
 }

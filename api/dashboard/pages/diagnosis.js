@@ -117,8 +117,8 @@ function candidateSection(s, width) {
       c.effect === s.verdict.effect ? 'the verdict' : null].filter(Boolean).join(', '),
   }));
   const chart = items.length ? horizontalBars({title: 'Candidate effects: gap closure G', width, items,
-    xLabel: 'G, share of the held-out gap closed (1 = all, 0 = none)',
-    caption: 'solid: the verdict; hatched: the others'}) : note('No candidate effects were tried (base model only).');
+    xLabel: 'G, held-out gap closed (–)',
+    caption: 'the share of the held-out gap each effect closes (1 all, 0 none); solid: the verdict, hatched: the others'}) : note('No candidate effects were tried (base model only).');
   const all = s.candidates || [];
   const rows = table([
     {label: 'candidate', value: (c) => effectName(c)},

@@ -56,7 +56,8 @@ export function groupedBars({title, caption, width = 640, height = 320, categori
     });
     const tx = k * bx + bx / 2;
     g.append(rotate
-      ? s('text', {class: 'cat', transform: `translate(${tx},${ph + 12}) rotate(35)`, 'text-anchor': 'start'}, cat)
+      // Rotated labels end under their bars, so the last one stays inside the chart.
+      ? s('text', {class: 'cat', transform: `translate(${tx + 4},${ph + 12}) rotate(-35)`, 'text-anchor': 'end'}, cat)
       : s('text', {class: 'cat', x: tx, y: ph + 18, 'text-anchor': 'middle'}, cat));
     bars.append(g);
     marks.push({el: g, key: cat, label: describe ? describe(k) :
