@@ -180,11 +180,18 @@ test('the campaigns list shows every campaign with its live state and progress',
 
 test('a sweep: heat maps of both peak loads and their ratio, with the targets\' iso-lines', async () => {
   const results = (await api('GET', `/api/v1/campaigns/${ids.sweep}/results`)).results;
-  const load = (test, fr0, fs0) => results.find((r) => r.test === test && r.fr0 === fr0 && r.fs0 === fs0).peak_load;
+  // A point's value, or null where its run has none (failed, or no peak once such runs fail).
+  const load = (test, fr0, fs0) => {
+    const r = results.find((x) => x.test === test && x.fr0 === fr0 && x.fs0 === fs0);
+    return r.state === 'succeeded' && Number.isFinite(r.peak_load) ? r.peak_load : null;
+  };
   const median = (v) => v.slice().sort((a, b) => a - b)[Math.floor(v.length / 2)];
-  const uct = results.filter((r) => r.test === 'uct').map((r) => r.peak_load);
-  const btt = results.filter((r) => r.test === 'btt').map((r) => r.peak_load);
-  assert.equal(uct.length, 16);
+  const xs = [32, 64, 128, 256];
+  const values = (test) => xs.flatMap((x) => xs.map((y) => load(test, x, y))).filter((v) => v !== null);
+  const uct = values('uct');
+  const btt = values('btt');
+  assert.equal(results.length, 32);
+  assert.ok(uct.length >= 12 && btt.length >= 12, `${uct.length} UCT and ${btt.length} BTT values of 16`);
   const targets = {uct: Number(median(uct).toPrecision(3)), btt: Number(median(btt).toPrecision(3))};
   const page = await newPage();
   await page.goto(`${base}/campaigns/${ids.sweep}?uct=${targets.uct}&btt=${targets.btt}`);
@@ -193,22 +200,27 @@ test('a sweep: heat maps of both peak loads and their ratio, with the targets\' 
   assert.equal(await maps.count(), 3);
   const titles = await maps.locator('figcaption strong').allInnerTexts();
   assert.deepEqual(titles, ['UCT peak load', 'BTT peak load', 'UCT / BTT peak-load ratio']);
-  for (let k = 0; k < 3; ++k) {
+  const both = xs.flatMap((x) => xs.map((y) => load('uct', x, y) !== null && load('btt', x, y) !== null)).filter(Boolean).length;
+  for (const [k, n] of [[0, uct.length], [1, btt.length], [2, both]]) {
     assert.equal(await maps.nth(k).locator('svg.chart').getAttribute('data-points'), '16');
-    assert.equal(await maps.nth(k).locator('.cell:not(.missing)').count(), 16);
+    assert.equal(await maps.nth(k).locator('.cell:not(.missing)').count(), n);
   }
-  // Every cell's number is the API's value, at its own (F_r0, F_s0): key "ix,iy".
-  const xs = [32, 64, 128, 256];
+  // Every cell's number is the API's value, at its own (F_r0, F_s0): key "ix,iy"; a point
+  // without a value is hatched.
   for (const [k, test] of [[0, 'uct'], [1, 'btt']]) {
     for (let ix = 0; ix < 4; ++ix) {
       for (let iy = 0; iy < 4; ++iy) {
         const cell = maps.nth(k).locator(`.cell[data-key="${ix},${iy}"]`);
-        assert.equal(await cell.locator('text').textContent(), num(load(test, xs[ix], xs[iy]), 3), `${test} ${ix},${iy}`);
+        const v = load(test, xs[ix], xs[iy]);
+        if (v === null) assert.equal(await cell.getAttribute('class'), 'cell missing mark');
+        else assert.equal(await cell.locator('text').textContent(), num(v, 3), `${test} ${ix},${iy}`);
       }
     }
   }
-  const ratioCell = maps.nth(2).locator('.cell[data-key="2,1"] text');
-  assert.equal(await ratioCell.textContent(), num(load('uct', 128, 64) / load('btt', 128, 64), 3));
+  if (load('uct', 128, 64) !== null && load('btt', 128, 64) !== null) {
+    const ratioCell = maps.nth(2).locator('.cell[data-key="2,1"] text');
+    assert.equal(await ratioCell.textContent(), num(load('uct', 128, 64) / load('btt', 128, 64), 3));
+  }
   // The targets' iso-lines: on each map, the UCT and BTT lines; on the ratio map also the ratio's.
   for (let k = 0; k < 3; ++k) {
     const levels = await maps.nth(k).locator('path.iso').evaluateAll((ps) => ps.map((p) => Number(p.dataset.level)));
@@ -227,7 +239,8 @@ test('a sweep: heat maps of both peak loads and their ratio, with the targets\' 
   const key = await page.evaluate(() => document.activeElement.dataset.key);
   assert.equal(key, '1,2');
   const readout = await maps.nth(0).locator('.readout').innerText();
-  assert.match(readout, new RegExp(`F_r0 64 N, F_s0 128 N: UCT peak load ${num(load('uct', 64, 128))} N, job #\\d+`));
+  const at = load('uct', 64, 128);
+  assert.match(readout, new RegExp(`F_r0 64 N, F_s0 128 N: UCT peak load ${at === null ? 'none' : `${num(at)} N`}.*job #\\d+`));
   await shot(page, '02-sweep-heat-maps');
   const jobId = results.find((r) => r.test === 'uct' && r.fr0 === 64 && r.fs0 === 128).job_id;
   await page.keyboard.press('Enter');
@@ -285,7 +298,7 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
   }
   // The seed scatter: one point per seed, the mean and the target.
   const runs = s.scatter.runs.filter((r) => r.uct && r.btt);
-  assert.equal(runs.length, 3);
+  assert.ok(runs.length >= 1, JSON.stringify(s.scatter));
   assert.equal(await fig('Packing-seed scatter').locator('svg.chart').getAttribute('data-points'), String(runs.length + 2));
   // Keyboard: the convergence plot's points, one by one.
   const conv = fig('Objective per evaluation');
