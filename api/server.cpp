@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "api/dashboard.hpp"
 #include "api/http_util.hpp"
 #include "orchestrator/request_error.hpp"
 
@@ -76,6 +77,8 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
     if (route.method == "POST") server_.Post(pattern, wrapped);
     if (route.method == "DELETE") server_.Delete(pattern, wrapped);
   }
+
+  mount_dashboard(server_);
 
   // Unrouted paths, oversized bodies and the like: httplib sets the status; we add the JSON body.
   server_.set_error_handler(httplib::Server::HandlerWithResponse(

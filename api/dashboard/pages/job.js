@@ -1,0 +1,118 @@
+// One engine job: its state, the result's numbers, the load-displacement curve and broken bonds,
+// the log and the raw spec and result. Polled while it is queued or running.
+import {getJson, getText} from '../api.js';
+import {badge, clear, facts, h, note, progressBar, rememberFocus, section} from '../dom.js';
+import {dateTime, duration, newtons, num, pascals} from '../format.js';
+import {watchJson} from '../poll.js';
+import {labFactors} from './calibration.js';
+import {brokenBondsPlot, fetchCurve, loadCurvePlot} from './curves.js';
+import {plotWidth} from './layout.js';
+
+const live = (j) => j.state === 'queued' || j.state === 'running';
+
+export async function render([idText], ctx) {
+  const id = Number(idText);
+  if (!Number.isInteger(id) || id <= 0) throw new Error(`"${idText}" is not a job id`);
+  ctx.setTitle(`Job #${id}`);
+  const view = h('div', {id: 'job'});
+  ctx.main.append(view);
+  const cache = new Map();
+  await watchJson(`/api/v1/jobs/${id}`, {
+    signal: ctx.signal,
+    resize: ctx.main,
+    live,
+    missing: (e) => clear(view).append(h('h1', {}, `Job #${id}`), h('p', {class: 'error', role: 'alert'}, e.message)),
+    show: async (j) => {
+      const next = await jobView(j, {...ctx, cache});
+      const focus = rememberFocus(ctx.main);
+      clear(view).append(...next);
+      focus.restore();
+    },
+  });
+}
+
+async function campaignLab(j, ctx) {
+  try {
+    const c = await getJson(`/api/v1/campaigns/${j.campaign_id}`, {signal: ctx.signal});
+    return {campaign: c, lab: c.kind === 'calibration' ? labFactors(c.summary) : null};
+  } catch (e) {
+    if (e.name === 'AbortError') throw e;
+    return {campaign: null, lab: null};
+  }
+}
+
+async function jobView(j, ctx) {
+  const name = j.test.toUpperCase();
+  ctx.setTitle(`Job #${j.id} ${name}`);
+  const {campaign, lab} = await campaignLab(j, ctx);
+  const r = j.result || {};
+  const out = [
+    h('div', {class: 'page-head'}, h('h1', {}, h('span', {class: 'muted'}, `Job #${j.id} `),
+      `${name} at F_r0 ${num(j.fr0)} N, F_s0 ${num(j.fs0)} N`)),
+    facts([
+      ['campaign', h('a', {href: `/campaigns/${j.campaign_id}`}, `#${j.campaign_id}${campaign ? ` ${campaign.name}` : ''}`)],
+      ['state', [badge(j.state), j.cached ? ' (answered from the store: an identical job ran before)' : '',
+        j.attempts > 1 ? ` after ${j.attempts} attempts` : '']],
+      live(j) ? ['progress', progressBar(j.progress || 0, j.state === 'queued' ? 'queued' : `${Math.round((j.progress || 0) * 100)}% of the run`)] : null,
+      ['created', dateTime(j.created_at)],
+      j.started_at ? ['ran', `${dateTime(j.started_at)}${j.finished_at ? ` for ${duration(j.finished_at - j.started_at)}` : ''}`] : null,
+      ['data', [h('a', {href: `/api/v1/jobs/${j.id}`}, 'JSON'), ' · ', h('a', {href: `/api/v1/jobs/${j.id}/curve`}, 'curve CSV'),
+        ' · ', h('a', {href: `/api/v1/jobs/${j.id}/log`}, 'log')]],
+    ]),
+  ];
+  if (j.error) out.push(h('pre', {class: 'error', role: 'alert'}, j.error));
+  if (j.result) out.push(resultSection(r, lab));
+  // A run without a peak keeps its result and curve for inspection (its job failed).
+  if (j.state === 'succeeded' || j.result) {
+    try {
+      const curve = await fetchCurve(j.id, ctx);
+      const width = plotWidth(ctx.main, {columns: 2});
+      out.push(section('Load and broken bonds', h('div', {class: 'plots'},
+        loadCurvePlot({title: `${name} load against displacement`, width, lab, curves: [{name, curve}],
+          peak: r.peak_load, caption: `${curve.load.length} points`}),
+        brokenBondsPlot({title: 'Broken bonds against displacement', width, curve, lab, bonds: r.bonds}))));
+    } catch (e) {
+      if (e.name === 'AbortError') throw e;
+      out.push(note(`No load curve: ${e.message}`));
+    }
+  }
+  out.push(await logSection(j, ctx));
+  out.push(h('details', {}, h('summary', {}, 'Spec (canonical JSON)'), h('pre', {class: 'json'}, JSON.stringify(j.spec, null, 2))));
+  if (j.result) out.push(h('details', {}, h('summary', {}, 'result.json'), h('pre', {class: 'json'}, JSON.stringify(j.result, null, 2))));
+  return out;
+}
+
+function resultSection(r, lab) {
+  const by = r.broken_by || {};
+  const modes = Object.entries(by).filter(([, n]) => n > 0).map(([k, n]) => `${k} ${n}`).join(', ');
+  const labLoad = (x) => (lab && Number.isFinite(x) ? ` (lab ${newtons(x * lab.force)})` : '');
+  return section('Result', facts([
+    ['peak load', [newtons(r.peak_load), labLoad(r.peak_load),
+      r.peak_reached === false ? h('strong', {class: 'warn'}, ` — no peak: ${r.no_peak_reason || r.stop_reason}; not a result`) : '']],
+    // No lab strength: a model specimen at demo resolution is not the lab specimen scaled, so the
+    // mapped load is comparable and the stress is not (docs/calibration.md).
+    ['strength', [pascals(r.strength), ' (model units', r.test === 'btt' ? '; BTS = 2P / (π D t))' : r.test === 'uct' ? '; UCS = F / A)' : ')']],
+    Number.isFinite(r.youngs_modulus) ? ['Young’s modulus', pascals(r.youngs_modulus)] : null,
+    Number.isFinite(r.poisson_ratio) ? ['Poisson’s ratio', num(r.poisson_ratio, 3)] : null,
+    ['displacement at peak', [`${num(r.peak_displacement)} m`, lab ? ` (lab ${num(r.peak_displacement * lab.length * 1e3)} mm)` : '']],
+    ['particles, bonds', `${r.particles}, ${r.bonds}`],
+    ['broken bonds', `${r.broken_bonds} (${r.broken_bonds_at_peak} at the peak)${modes ? `; by mode: ${modes}` : ''}`],
+    ['stop', `${String(r.stop_reason || '').replaceAll('_', ' ')} after ${r.steps} steps of ${num(r.dt)} s`],
+    ['run time', `${duration(r.wall_seconds)} on ${r.ranks} rank${r.ranks === 1 ? '' : 's'} (${num(r.particle_steps_per_second, 3)} particle-steps/s)`],
+  ]));
+}
+
+async function logSection(j, ctx) {
+  if (j.cached) return section('Log', note('This job was answered from the store and never ran: it has no log.'));
+  if (j.state === 'queued') return section('Log', note('Not started yet.'));
+  try {
+    const text = await getText(`/api/v1/jobs/${j.id}/log`, {signal: ctx.signal});
+    const lines = text.split('\n');
+    const tail = lines.slice(-200).join('\n');
+    return section('Log', lines.length > 200 ? note(`The last 200 of ${lines.length} lines.`) : null,
+      h('pre', {class: 'log', tabindex: 0}, tail || '(empty)'));
+  } catch (e) {
+    if (e.name === 'AbortError') throw e;
+    return section('Log', note(e.message));
+  }
+}
