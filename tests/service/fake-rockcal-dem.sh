@@ -27,7 +27,8 @@ echo '{"step": 10, "fraction": 1.0, "load": 1, "peak_load": 2, "broken_bonds": 0
 printf 'step,time_s,displacement_m,load_n,broken_bonds\n1,0.1,0.001,%s,0\n' "$fr0" > "$out/curve.csv"
 cat > "$out/result.json.tmp" <<JSON
 {"test": "$test", "peak_load": $fr0, "strength": $fs0, "youngs_modulus": 1000.0, "poisson_ratio": null,
- "particles": 7, "wall_seconds": 0.01, "engine_version": "fake", "stop_reason": "post_peak"}
+ "particles": 7, "wall_seconds": 0.01, "engine_version": "fake", "stop_reason": "post_peak",
+ "ended_at": $EPOCHREALTIME}
 JSON
 mv "$out/result.json.tmp" "$out/result.json"
 echo "fake-rockcal-dem: done"

@@ -110,20 +110,24 @@ TEST_F(JobServiceTest, CancelStopsRunningJobsAndDropsQueuedOnes) {
 }
 
 // A diagnosis runs thousands of jobs of 10-100 ms: the pool must notice a short job's end soon,
-// not a whole poll interval (100 ms) later (a demo diagnosis took 542 s with that, 431 s without).
-TEST_F(JobServiceTest, AShortJobIsRecordedSoonAfterItEnds) {
+// not a whole poll interval (100 ms) later. Measured from the moment the fake engine wrote its
+// result (its "ended_at") to the job's finished_at, so a loaded machine's slow process start-up
+// does not count (it runs alone: RUN_SERIAL); the exit, the result read and the commit take
+// 30-40 ms, polling every 100 ms would add about 50 ms more.
+TEST_F(JobServiceTest, AloneAShortJobIsRecordedSoonAfterItEnds) {
   start(1);
   auto id = service->create_campaign(
       points_request({{31, 1}, {37, 1}, {41, 1}, {43, 1}, {47, 1}, {53, 1}, {59, 1}}));
   ASSERT_TRUE(test::poll_until([&] { return finished(id); }, 60s));
-  std::vector<double> held_s;
+  std::vector<double> noticed_s;
   for (const auto& row : service->store().campaign_results(id)) {
     ASSERT_EQ(row.job.state, "succeeded");
-    held_s.push_back(*row.job.finished_at - *row.job.started_at);
+    ASSERT_TRUE(row.result);
+    double ended = json::parse(row.result->result).at("ended_at").get<double>();
+    noticed_s.push_back(*row.job.finished_at - ended);
   }
-  std::sort(held_s.begin(), held_s.end());
-  // The fake engine (a shell script) takes 30-40 ms; the median job is held under one interval.
-  EXPECT_LT(held_s[held_s.size() / 2], 0.09) << "median of " << held_s.size() << " jobs";
+  std::sort(noticed_s.begin(), noticed_s.end());
+  EXPECT_LT(noticed_s[noticed_s.size() / 2], 0.07) << "median of " << noticed_s.size() << " jobs";
 }
 
 TEST_F(JobServiceTest, DriversSubmitJobsAndWaitForResults) {

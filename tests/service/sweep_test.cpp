@@ -40,7 +40,7 @@ TEST(Sweep, OneJobPerPointAndTest) {
   json spec = json::parse(plan.jobs[3].spec);
   EXPECT_EQ(spec["bond"]["fr0"], 80.0);
   EXPECT_EQ(spec["bond"]["fs0"], 90.0);
-  EXPECT_EQ(spec["sample"]["diameter"], 6.0);
+  EXPECT_EQ(spec["sample"]["diameter"], test::sweep_request({"uct"}, {1}, {1})["job"]["sample"]["diameter"]);
 }
 
 TEST(Sweep, ExplicitPoints) {
