@@ -58,8 +58,9 @@ CREATE INDEX results_by_point ON results (test, fr0, fs0);
 )sql"},
       // A run that ended without a peak ("peak_reached": false; issue 16) is a failed job whose
       // result stays for inspection: no_peak says why, and the value columns are emptied so that
-      // nothing takes its largest load for a peak. Stored runs are judged by the same rule as new
-      // ones (orch::no_peak_reason; the elastic test loads below failure and has no peak to reach).
+      // nothing takes its largest load for a peak. Stored runs are judged by the rule of new ones
+      // (orch::no_peak_reason), except that engines before 0.2.0 also wrote peak_reached false for
+      // the elastic test, which has no peak to reach.
       {2, R"sql(
 ALTER TABLE results ADD COLUMN no_peak TEXT;
 UPDATE results SET

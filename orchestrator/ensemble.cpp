@@ -32,8 +32,8 @@ std::optional<std::string> realisations_problem(int count, std::uint64_t base_se
     return "sample.seed + realisations - 1 exceeds the largest seed, " + std::to_string(largest);
   }
   if (count > 1 && !seed_matters) {
-    return "the template's specimen is the same under every seed (an FCC packing without seeded "
-           "effects): more than one realisation would repeat one run";
+    return "the template's specimen is the same under every seed (an aligned FCC lattice without "
+           "seeded effects): more than one realisation would repeat one run";
   }
   return std::nullopt;
 }

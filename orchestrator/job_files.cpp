@@ -56,7 +56,6 @@ std::optional<std::string> no_peak_reason(const json& result) {
   if (reached == result.end() || !reached->is_boolean() || reached->get<bool>()) {
     return std::nullopt;
   }
-  if (result.value("test", json()) == "elastic") return std::nullopt;
   auto why = result.find("no_peak_reason");
   if (why != result.end() && why->is_string() && !why->get<std::string>().empty()) {
     return why->get<std::string>();

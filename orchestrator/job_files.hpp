@@ -22,7 +22,8 @@ std::filesystem::path prepare_job_dir(const std::filesystem::path& jobs_dir, con
 
 // Why a finished run's result.json counts as a run without a peak, or nullopt when it does not:
 // it says "peak_reached": false (its "no_peak_reason", else its stop reason). The largest load such
-// a run saw is no result. The elastic test loads below failure by design and has no peak to reach.
+// a run saw is no result. (The engine writes peak_reached for the loading tests only: the elastic
+// test has no peak to reach.)
 std::optional<std::string> no_peak_reason(const nlohmann::json& result);
 
 // Reads result.json and curve.csv of a finished run into a result row for `job`; a run without a

@@ -41,11 +41,13 @@ TEST(CalibrationRealisations, AreValidatedNamingTheField) {
                              std::string("realisations: must be an integer in [1, 100]")))
         << bad.dump();
   }
-  EXPECT_EQ(refusal({{"realisations", 2}}),
-            std::make_pair(std::string("realisations"),
-                           std::string("realisations: the template's specimen is the same under "
-                                       "every seed (an FCC packing without seeded effects): more "
-                                       "than one realisation would repeat one run")));
+  EXPECT_EQ(
+      refusal({{"realisations", 2}, {"job", {{"sample", {{"lattice", "aligned"}}}}}}),
+      std::make_pair(std::string("realisations"),
+                     std::string("realisations: the template's specimen is the same under "
+                                 "every seed (an aligned FCC lattice without seeded "
+                                 "effects): more than one realisation would repeat one run")));
+  EXPECT_EQ(refusal({{"realisations", 2}}).first, "(accepted)") << "FCC is seeded by default";
   EXPECT_EQ(refusal(with({{"realisations", 3}, {"seeds", {4, 5}}})),
             std::make_pair(std::string("realisations"),
                            std::string("realisations: give \"realisations\" (every evaluation an "
