@@ -42,7 +42,7 @@ struct Ensembles : ApiServerFixture {
     return get_json(c, "/api/v1/campaigns/" + std::to_string(id) + "/results");
   }
   std::size_t job_dirs() {
-    auto it = std::filesystem::directory_iterator(service->data_dir() / "jobs");
+    auto it = std::filesystem::directory_iterator(service->jobs_dir());
     return std::size_t(std::distance(it, std::filesystem::directory_iterator()));
   }
 };
