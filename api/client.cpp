@@ -140,6 +140,62 @@ int client_status(const ClientOptions& o, std::int64_t id, bool wait) {
   }
 }
 
+namespace {
+
+// "52 ± 0.707" (mean ± standard error), "52" for one value, "-" for none.
+std::string mean_se(const json& stats) {
+  if (!stats.is_object() || !stats["mean"].is_number()) return "-";
+  char buffer[64];
+  if (stats["se"].is_number()) {
+    std::snprintf(buffer, sizeof buffer, "%.6g ± %.3g", stats["mean"].get<double>(),
+                  stats["se"].get<double>());
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.6g", stats["mean"].get<double>());
+  }
+  return buffer;
+}
+
+// `text` padded to `width` characters (UTF-8: "±" is two bytes, one column).
+std::string padded(std::string text, std::size_t width) {
+  std::size_t columns = 0;
+  for (unsigned char ch : text) columns += (ch & 0xC0) != 0x80;
+  if (columns < width) text.append(width - columns, ' ');
+  return text;
+}
+
+std::string first_line(const std::string& text) {
+  return text.substr(0, text.find('\n'));
+}
+
+}  // namespace
+
+std::string results_text(const json& body) {
+  std::string out;
+  char line[512];
+  std::snprintf(line, sizeof line, "%-8s %10s %10s %3s %6s  ", "test", "fr0", "fs0", "n", "failed");
+  out += line + padded("peak_load (mean ± se)", 24) + padded("strength", 24) + "youngs_modulus\n";
+  std::string failures;
+  for (const json& p : body.value("points", json::array())) {
+    std::snprintf(line, sizeof line, "%-8s %10.5g %10.5g %3d %6d  ",
+                  p["test"].get<std::string>().c_str(), p["fr0"].get<double>(),
+                  p["fs0"].get<double>(), p["peak_load"]["n"].get<int>(), p["failed"].get<int>());
+    out += line + padded(mean_se(p["peak_load"]), 24) + padded(mean_se(p["strength"]), 24) +
+           mean_se(p["modulus"]) + "\n";
+    for (const json& r : p["realisations"]) {
+      if (!r["error"].is_string()) continue;
+      std::snprintf(
+          line, sizeof line,
+          "  %s %.5g/%.5g seed %llu (job %lld): ", p["test"].get<std::string>().c_str(),
+          p["fr0"].get<double>(), p["fs0"].get<double>(),
+          static_cast<unsigned long long>(r["seed"].get<std::uint64_t>()),
+          r["job_id"].is_number() ? static_cast<long long>(r["job_id"].get<std::int64_t>()) : -1LL);
+      failures += line + first_line(r["error"].get<std::string>()) + "\n";
+    }
+  }
+  if (!failures.empty()) out += "runs without values (left out of the statistics):\n" + failures;
+  return out;
+}
+
 int client_results(const ClientOptions& o, std::int64_t id, bool csv) {
   Http http(o);
   auto r = http.client.Get(path_of(id, csv ? "/results?format=csv" : "/results"), http.headers);
@@ -148,20 +204,7 @@ int client_results(const ClientOptions& o, std::int64_t id, bool csv) {
     std::cout << r->body;
     return 0;
   }
-  json body = json::parse(r->body);
-  std::printf("%8s %5s %12s %12s %14s %14s %14s %10s %10s\n", "job", "test", "fr0", "fs0",
-              "peak_load", "strength", "youngs_mod", "particles", "state");
-  auto num = [](const json& v) { return v.is_number() ? v.get<double>() : NAN; };
-  for (const auto& row : body["results"]) {
-    std::printf("%8lld %5s %12.5g %12.5g %14.6g %14.6g %14.6g %10lld %10s\n",
-                static_cast<long long>(row["job_id"].get<std::int64_t>()),
-                row["test"].get<std::string>().c_str(), num(row["fr0"]), num(row["fs0"]),
-                num(row["peak_load"]), num(row["strength"]), num(row["youngs_modulus"]),
-                row["particles"].is_number()
-                    ? static_cast<long long>(row["particles"].get<std::int64_t>())
-                    : -1LL,
-                row["state"].get<std::string>().c_str());
-  }
+  std::cout << results_text(json::parse(r->body));
   return 0;
 }
 

@@ -27,6 +27,11 @@ int client_diagnose(const ClientOptions& o, const std::string& file, const std::
 // The verdict, the gap and the candidates of a diagnosis summary as plain-text tables.
 std::string diagnosis_text(const nlohmann::json& summary);
 
+// A campaign's results (GET .../results) as a table: one row per test and point with n, failed
+// realisations and mean ± standard error of peak load, strength and Young's modulus, then the
+// realisations without values and why.
+std::string results_text(const nlohmann::json& results_body);
+
 // "[#########.........] 45%" for a fraction in [0, 1].
 std::string progress_bar(double fraction, int width);
 

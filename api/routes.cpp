@@ -52,9 +52,15 @@ db::JobRow job_or_404(orch::JobService& svc, const Req& req) {
   return *j;
 }
 
+// A succeeded job's result, or the result a run without a peak kept for inspection (its job failed
+// with a "no peak" error).
 std::optional<db::ResultRow> result_of(orch::JobService& svc, const db::JobRow& j) {
-  if (j.state != db::kSucceeded) return std::nullopt;
-  return svc.store().result(j.hash);
+  if (j.state != db::kSucceeded && j.state != db::kFailed) return std::nullopt;
+  auto r = svc.store().result(j.hash);
+  if (r && j.state == db::kFailed && !(r->no_peak && j.error == db::no_peak_error(*r->no_peak))) {
+    return std::nullopt;
+  }
+  return r;
 }
 
 void create_campaign(ApiContext& ctx, const Req& req, Res& res) {
@@ -114,7 +120,9 @@ void campaign_results(ApiContext& ctx, const Req& req, Res& res) {
   }
   json items = json::array();
   for (const auto& row : rows) items.push_back(result_row_json(row));
-  send_json(res, {{"campaign_id", c.id}, {"results", items}});
+  json points = json::array();
+  for (const auto& p : orch::point_ensembles(rows)) points.push_back(point_json(p));
+  send_json(res, {{"campaign_id", c.id}, {"results", items}, {"points", points}});
 }
 
 // A kind's HTML page of a finished campaign's summary (the diagnosis report), rendered from the

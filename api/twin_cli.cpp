@@ -67,7 +67,6 @@ int run_twin(const TwinOptions& o, const std::string& argv0) {
   std::printf("confining pressures %g and %g Pa (%g and %g of the template's UCS %g Pa)\n",
               design.p_low_pa, design.p_high_pa, kLowConfinement, kHighConfinement,
               design.base_ucs_pa);
-  for (const std::string& w : twin.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::printf("%d engine runs; dataset %s, truth %s (not shown)%s\n", runner.runs_started(),
               o.out.c_str(), truth_file.c_str(),
               o.keep_runs ? (", runs in " + runs.string()).c_str() : "");

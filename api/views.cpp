@@ -19,6 +19,11 @@ json parsed_or_null(const std::optional<std::string>& text) {
   return j.is_discarded() ? json(nullptr) : j;
 }
 
+// The packing seed of a job (its realisation), from its canonical spec.
+json seed_of(const db::JobRow& j) {
+  return orch::realisation(j, std::nullopt).seed;
+}
+
 }  // namespace
 
 json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s) {
@@ -73,13 +78,21 @@ json result_row_json(const db::JobResultRow& row) {
           {"fr0", j.fr0},
           {"fs0", j.fs0},
           {"test", j.test},
+          {"seed", seed_of(j)},
           {"peak_load", r ? or_null(r->peak_load) : json(nullptr)},
           {"strength", r ? or_null(r->strength) : json(nullptr)},
           {"youngs_modulus", r ? or_null(r->youngs_modulus) : json(nullptr)},
           {"particles", r ? or_null(r->particles) : json(nullptr)},
           {"wall_seconds", r ? or_null(r->wall_seconds) : json(nullptr)},
           {"state", j.state},
-          {"cached", j.cached}};
+          {"cached", j.cached},
+          {"error", or_null(j.error)}};
+}
+
+json point_json(const orch::PointEnsemble& p) {
+  json j = {{"test", p.test}, {"fr0", p.fr0}, {"fs0", p.fs0}};
+  j.update(orch::to_json(p.ensemble));
+  return j;
 }
 
 json stored_result_json(const db::ResultRow& r) {
@@ -94,12 +107,13 @@ json stored_result_json(const db::ResultRow& r) {
           {"poisson_ratio", or_null(r.poisson_ratio)},
           {"particles", or_null(r.particles)},
           {"wall_seconds", or_null(r.wall_seconds)},
-          {"engine_version", r.engine_version}};
+          {"engine_version", r.engine_version},
+          {"no_peak", or_null(r.no_peak)}};
 }
 
 std::string results_csv(const std::vector<db::JobResultRow>& rows) {
   std::string out =
-      "fr0,fs0,test,peak_load,strength,youngs_modulus,particles,wall_seconds,state,job_id\n";
+      "fr0,fs0,test,peak_load,strength,youngs_modulus,particles,wall_seconds,state,job_id,seed\n";
   auto num = [](const std::optional<double>& v) { return v ? number_text(*v) : std::string(); };
   for (const auto& row : rows) {
     const auto& r = row.result;
@@ -108,7 +122,10 @@ std::string results_csv(const std::vector<db::JobResultRow>& rows) {
     out += (r ? num(r->youngs_modulus) : "") + ",";
     out += (r && r->particles ? std::to_string(*r->particles) : "") + ",";
     out += (r ? num(r->wall_seconds) : "") + "," + row.job.state + "," + std::to_string(row.job.id);
-    out += "\n";
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "," + std::string.
+    out += ',';
+    out += seed_of(row.job).dump();
+    out += '\n';
   }
   return out;
 }

@@ -5,15 +5,18 @@
 
 #include "db/records.hpp"
 #include "orchestrator/campaign_status.hpp"
+#include "orchestrator/realisations.hpp"
 
 namespace rockcal::api {
 
 nlohmann::json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s);
 // With `detail`, the spec and the full result.json are included.
 nlohmann::json job_json(const db::JobRow& j, const std::optional<db::ResultRow>& r, bool detail);
-// One row of a results table: fr0, fs0, test, peak_load, strength, youngs_modulus, particles,
-// wall_seconds, state (and job id, cached).
+// One row of a results table: fr0, fs0, test, seed, peak_load, strength, youngs_modulus,
+// particles, wall_seconds, state, error (and job id, cached).
 nlohmann::json result_row_json(const db::JobResultRow& row);
+// One test at one point over its realisations: test, fr0, fs0 and the ensemble (orch::to_json).
+nlohmann::json point_json(const orch::PointEnsemble& point);
 nlohmann::json stored_result_json(const db::ResultRow& r);
 
 std::string results_csv(const std::vector<db::JobResultRow>& rows);

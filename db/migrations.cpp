@@ -56,6 +56,23 @@ CREATE TABLE results (
 );
 CREATE INDEX results_by_point ON results (test, fr0, fs0);
 )sql"},
+      // A run that ended without a peak ("peak_reached": false; issue 16) is a failed job whose
+      // result stays for inspection: no_peak says why, and the value columns are emptied so that
+      // nothing takes its largest load for a peak. Stored runs are judged by the rule of new ones
+      // (orch::no_peak_reason), except that engines before 0.2.0 also wrote peak_reached false for
+      // the elastic test, which has no peak to reach.
+      {2, R"sql(
+ALTER TABLE results ADD COLUMN no_peak TEXT;
+UPDATE results SET
+  no_peak = COALESCE(NULLIF(json_extract(result, '$.no_peak_reason'), ''),
+                     'the run stopped (' || COALESCE(json_extract(result, '$.stop_reason'), '?') ||
+                     ') before a peak'),
+  peak_load = NULL, strength = NULL, youngs_modulus = NULL, poisson_ratio = NULL
+  WHERE test <> 'elastic' AND json_valid(result) AND json_extract(result, '$.peak_reached') = 0;
+UPDATE jobs SET state = 'failed',
+  error = 'no peak: ' || (SELECT no_peak FROM results r WHERE r.hash = jobs.hash)
+  WHERE state = 'succeeded' AND hash IN (SELECT hash FROM results WHERE no_peak IS NOT NULL);
+)sql"},
   };
   return all;
 }

@@ -69,6 +69,10 @@ struct ResultRow {
   std::string result;  // result.json text
   std::optional<std::string> curve;
   double created_at = 0;
+  // Set when the run ended without a peak (result.json "peak_reached": false): why. Its job is
+  // failed, and peak_load, strength, youngs_modulus and poisson_ratio are empty; the result JSON
+  // and the curve stay for inspection.
+  std::optional<std::string> no_peak;
 };
 
 // A job with its result, if it has one (one row of a campaign's results table).

@@ -37,7 +37,7 @@ inline constexpr int kJobColumnCount = 17;
 
 inline constexpr const char* kResultColumns =
     "hash, job_id, test, fr0, fs0, peak_load, strength, youngs_modulus, poisson_ratio, particles, "
-    "wall_seconds, engine_version, result, curve, created_at";
+    "wall_seconds, engine_version, result, curve, created_at, no_peak";
 
 inline ResultRow read_result(const Statement& st, int c = 0) {
   ResultRow r;
@@ -56,6 +56,7 @@ inline ResultRow read_result(const Statement& st, int c = 0) {
   r.result = st.text(c + 12);
   r.curve = st.opt_text(c + 13);
   r.created_at = st.real(c + 14);
+  r.no_peak = st.opt_text(c + 15);
   return r;
 }
 

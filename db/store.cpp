@@ -17,6 +17,10 @@ using detail::read_job;
 #define OWNED(t) \
   "(" t ".state = 'running' OR (" t ".state = 'queued' AND " t ".handle IS NOT NULL))"
 
+std::string no_peak_error(const std::string& reason) {
+  return "no peak: " + reason;
+}
+
 double now_seconds() {
   using namespace std::chrono;
   return duration<double>(system_clock::now().time_since_epoch()).count();
@@ -55,23 +59,35 @@ void Store::with_connection(const std::function<void(Connection&)>& fn) {
 
 namespace {
 
-bool has_result(Connection& conn, const std::string& hash) {
-  auto st = conn.prepare("SELECT 1 FROM results WHERE hash = ?");
+// What the store knows of a job's identity: nothing (run it), a result, or a run without a peak
+// (the same spec gives the same run: answered as failed, with its reason).
+struct KnownResult {
+  bool found = false;
+  std::optional<std::string> no_peak;
+};
+
+KnownResult known_result(Connection& conn, const std::string& hash) {
+  auto st = conn.prepare("SELECT no_peak FROM results WHERE hash = ?");
   st.bind_all(hash);
-  return st.step();
+  if (!st.step()) return {};
+  return {true, st.opt_text(0)};
 }
 
 std::int64_t insert_job(Connection& conn, std::int64_t campaign_id, const NewJob& job,
                         const char* forced_state) {
-  bool cached = !forced_state && has_result(conn, job.hash);
-  const char* state = forced_state ? forced_state : (cached ? kSucceeded : kQueued);
+  const KnownResult known = forced_state ? KnownResult{} : known_result(conn, job.hash);
+  const char* state = forced_state    ? forced_state
+                      : !known.found  ? kQueued
+                      : known.no_peak ? kFailed
+                                      : kSucceeded;
   double now = now_seconds();
   auto st = conn.prepare(
       "INSERT INTO jobs (campaign_id, test, fr0, fs0, spec, hash, state, cached, created_at, "
-      "finished_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  st.bind_all(campaign_id, job.test, job.fr0, job.fs0, job.spec, job.hash, state, cached ? 1 : 0,
-              now);
+      "finished_at, error) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  st.bind_all(campaign_id, job.test, job.fr0, job.fs0, job.spec, job.hash, state,
+              known.found ? 1 : 0, now);
   st.bind(10, std::string(state) == kQueued ? std::optional<double>() : std::optional(now));
+  st.bind(11, known.no_peak ? std::optional(no_peak_error(*known.no_peak)) : std::nullopt);
   st.run();
   return conn.last_insert_rowid();
 }
@@ -153,25 +169,29 @@ bool Store::finish_success(std::int64_t job_id, const ResultRow& r) {
   auto conn = lease();
   Transaction tx(*conn);
   double now = now_seconds();
+  // A run without a peak is a failed job (deterministic: not retried), its result kept.
+  const char* state = r.no_peak ? kFailed : kSucceeded;
+  const std::optional<std::string> error =
+      r.no_peak ? std::optional(no_peak_error(*r.no_peak)) : std::nullopt;
   conn->prepare(
-          "UPDATE jobs SET state = 'succeeded', finished_at = ?, progress = 1, error = NULL "
+          "UPDATE jobs SET state = ?, finished_at = ?, progress = 1, error = ? "
           "WHERE id = ? AND " OWNED("jobs"))
-      .bind_all(now, job_id)
+      .bind_all(state, now, error, job_id)
       .run();
   if (conn->changes() == 0) return false;
   // OR IGNORE: an identical job may have finished first (e.g. after a crash); its result stands.
   auto st = conn->prepare(
       "INSERT OR IGNORE INTO results (hash, job_id, test, fr0, fs0, peak_load, strength, "
       "youngs_modulus, poisson_ratio, particles, wall_seconds, engine_version, result, curve, "
-      "created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "created_at, no_peak) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   st.bind_all(r.hash, job_id, r.test, r.fr0, r.fs0, r.peak_load, r.strength, r.youngs_modulus,
               r.poisson_ratio, r.particles, r.wall_seconds, r.engine_version, r.result, r.curve,
-              now);
+              now, r.no_peak);
   st.run();
   conn->prepare(
-          "UPDATE jobs SET state = 'succeeded', cached = 1, finished_at = ? "
+          "UPDATE jobs SET state = ?, cached = 1, finished_at = ?, error = ? "
           "WHERE hash = ? AND state = 'queued' AND handle IS NULL")
-      .bind_all(now, r.hash)
+      .bind_all(state, now, error, r.hash)
       .run();
   tx.commit();
   return true;

@@ -30,7 +30,8 @@ class Store {
   // ---- writes (store.cpp) ----
 
   // Creates a campaign and its jobs in one transaction. A job whose hash already has a result is
-  // created succeeded and cached: it is answered from the store, not run again.
+  // created succeeded and cached: it is answered from the store, not run again (a stored run
+  // without a peak answers it as failed, with that reason).
   std::int64_t create_campaign(const std::string& kind, const std::string& name,
                                const std::string& request, bool has_driver,
                                const std::vector<NewJob>& jobs);
@@ -47,8 +48,9 @@ class Store {
   void set_progress(std::int64_t job_id, double fraction);
 
   // Marks a running job succeeded and records its result, in one transaction; queued jobs with the
-  // same hash are answered too. Returns false (and stores nothing) if the job is no longer running
-  // (it was cancelled meanwhile).
+  // same hash are answered too. A result with `no_peak` marks them failed with the error
+  // no_peak_error(reason) instead, never retried. Returns false (and stores nothing) if the job is
+  // no longer running (it was cancelled meanwhile).
   bool finish_success(std::int64_t job_id, const ResultRow& result);
 
   // A running job failed: re-queued while attempts < max_attempts and `retryable`, else failed.
@@ -122,5 +124,8 @@ class Store::Lease {
 
 // Seconds since the Unix epoch, as stored in the *_at columns.
 double now_seconds();
+
+// The error of a job whose run ended without a peak: "no peak: <reason>".
+std::string no_peak_error(const std::string& reason);
 
 }  // namespace rockcal::db

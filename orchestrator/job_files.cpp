@@ -50,6 +50,22 @@ std::optional<double> number_or_null(const json& j, const char* key) {
 
 }  // namespace
 
+std::optional<std::string> no_peak_reason(const json& result) {
+  if (!result.is_object()) return std::nullopt;
+  auto reached = result.find("peak_reached");
+  if (reached == result.end() || !reached->is_boolean() || reached->get<bool>()) {
+    return std::nullopt;
+  }
+  auto why = result.find("no_peak_reason");
+  if (why != result.end() && why->is_string() && !why->get<std::string>().empty()) {
+    return why->get<std::string>();
+  }
+  auto stop = result.find("stop_reason");
+  return "the run stopped (" +
+         (stop != result.end() && stop->is_string() ? stop->get<std::string>() : "?") +
+         ") before a peak";
+}
+
 db::ResultRow read_result(const fs::path& dir, const db::JobRow& job) {
   auto text = read_text(dir / "result.json");
   if (!text) throw std::runtime_error("the run wrote no result.json");
@@ -61,10 +77,13 @@ db::ResultRow read_result(const fs::path& dir, const db::JobRow& job) {
   r.test = job.test;
   r.fr0 = job.fr0;
   r.fs0 = job.fs0;
-  r.peak_load = number_or_null(j, "peak_load");
-  r.strength = number_or_null(j, "strength");
-  r.youngs_modulus = number_or_null(j, "youngs_modulus");
-  r.poisson_ratio = number_or_null(j, "poisson_ratio");
+  r.no_peak = no_peak_reason(j);
+  if (!r.no_peak) {
+    r.peak_load = number_or_null(j, "peak_load");
+    r.strength = number_or_null(j, "strength");
+    r.youngs_modulus = number_or_null(j, "youngs_modulus");
+    r.poisson_ratio = number_or_null(j, "poisson_ratio");
+  }
   if (auto p = number_or_null(j, "particles")) r.particles = static_cast<std::int64_t>(*p);
   r.wall_seconds = number_or_null(j, "wall_seconds");
   auto version = j.find("engine_version");

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "db/records.hpp"
 
 namespace rockcal::orch {
@@ -18,8 +20,15 @@ std::filesystem::path job_dir(const std::filesystem::path& jobs_dir, std::int64_
 // job.json. Returns the directory.
 std::filesystem::path prepare_job_dir(const std::filesystem::path& jobs_dir, const db::JobRow& job);
 
-// Reads result.json and curve.csv of a finished run into a result row for `job`.
-// Throws std::runtime_error when result.json is missing or malformed.
+// Why a finished run's result.json counts as a run without a peak, or nullopt when it does not:
+// it says "peak_reached": false (its "no_peak_reason", else its stop reason). The largest load such
+// a run saw is no result. (The engine writes peak_reached for the loading tests only: the elastic
+// test has no peak to reach.)
+std::optional<std::string> no_peak_reason(const nlohmann::json& result);
+
+// Reads result.json and curve.csv of a finished run into a result row for `job`; a run without a
+// peak gets `no_peak` and no values. Throws std::runtime_error when result.json is missing or
+// malformed.
 db::ResultRow read_result(const std::filesystem::path& dir, const db::JobRow& job);
 
 // The run's progress fraction (0..1) from progress.json, if it has written one.

@@ -2,6 +2,9 @@
 
 #include <utility>
 
+#include "engine/effects/effect.hpp"
+#include "engine/spec.hpp"
+#include "orchestrator/ensemble.hpp"
 #include "orchestrator/job_identity.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/request_fields.hpp"
@@ -50,10 +53,21 @@ std::vector<Point> listed_points(const json& points, std::size_t cap) {
   return out;
 }
 
+// The template's seed (from `first`, the first job), once `count` realisations are checked
+// against it.
+std::uint64_t base_seed(int count, const db::NewJob& first) {
+  const rockcal::JobSpec spec = rockcal::parse_job(json::parse(first.spec));
+  if (auto problem = realisations_problem(count, spec.sample.seed, rockcal::seed_matters(spec))) {
+    throw RequestError("realisations", *problem);
+  }
+  return spec.sample.seed;
+}
+
 }  // namespace
 
 CampaignPlan plan_sweep(const json& request, const Limits& limits) {
-  reject_unknown_keys(request, {"kind", "name", "tests", "job", "grid", "points"}, "");
+  reject_unknown_keys(request, {"kind", "name", "tests", "job", "grid", "points", "realisations"},
+                      "");
   CampaignPlan plan;
   plan.name = campaign_name(request, "sweep");
   auto tests = test_names(request);
@@ -61,15 +75,26 @@ CampaignPlan plan_sweep(const json& request, const Limits& limits) {
   if (request.contains("grid") == request.contains("points")) {
     throw RequestError("grid", "give exactly one of \"grid\" and \"points\"");
   }
+  int realisations = 1;
+  try {
+    realisations =
+        realisation_count(request.contains("realisations") ? &request["realisations"] : nullptr);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError("realisations", e.what());
+  }
   std::size_t cap = limits.max_jobs_per_campaign;
   auto points = request.contains("grid") ? grid_points(request["grid"], cap)
                                          : listed_points(request["points"], cap);
-  if (points.size() * tests.size() > cap) {
-    throw RequestError(request.contains("grid") ? "grid" : "points",
-                       std::to_string(points.size() * tests.size()) + " jobs exceed the cap of " +
-                           std::to_string(cap) + " per campaign");
+  // points and tests are each <= cap and realisations <= kMaxRealisations: no overflow.
+  const std::size_t jobs = points.size() * tests.size() * std::size_t(realisations);
+  if (jobs > cap) {
+    throw RequestError(
+        request.contains("grid") ? "grid" : "points",
+        std::to_string(jobs) + " jobs exceed the cap of " + std::to_string(cap) + " per campaign");
   }
-  // Every job goes through the engine's validation before anything is stored.
+  // Every job goes through the engine's validation before anything is stored. Realisation k of a
+  // point runs seed s + k, s the template's: its own job, so the cache knows it.
+  std::vector<std::uint64_t> seeds;
   for (const auto& test : tests) {
     for (auto [fr0, fs0] : points) {
       json spec = tmpl;
@@ -80,6 +105,12 @@ CampaignPlan plan_sweep(const json& request, const Limits& limits) {
         spec["bond"]["fs0"] = fs0;
       }
       plan.jobs.push_back(make_job(spec, "job."));
+      if (seeds.empty())
+        seeds = realisation_seeds(base_seed(realisations, plan.jobs[0]), realisations);
+      for (std::size_t k = 1; k < seeds.size(); ++k) {
+        spec["sample"]["seed"] = seeds[k];
+        plan.jobs.push_back(make_job(spec, "job."));
+      }
     }
   }
   return plan;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 
+#include "engine/effects/effect.hpp"
 #include "engine/spec.hpp"
 #include "orchestrator/calibration/algorithms.hpp"
 #include "orchestrator/calibration/json_fields.hpp"
@@ -106,6 +107,26 @@ void parse_weights(JsonFields& root, CalibrationCampaign& c) {
   w.reject_unknown();
 }
 
+// Every evaluation an ensemble of `realisations` packings. The scatter of the best point over
+// other seeds is the older way to the same uncertainty; the two together would mix ensemble means
+// with single runs, so a campaign asks for one of them.
+void parse_realisations(JsonFields& root, const JobSpec& model, CalibrationCampaign& c) {
+  try {
+    c.realisations = orch::realisation_count(root.get("realisations"));
+  } catch (const std::invalid_argument& e) {
+    throw CampaignError("realisations", e.what());
+  }
+  if (auto problem =
+          orch::realisations_problem(c.realisations, c.sample_seed, seed_matters(model))) {
+    throw CampaignError("realisations", *problem);
+  }
+  if (c.realisations > 1 && !c.scatter_seeds.empty()) {
+    throw CampaignError("realisations",
+                        "give \"realisations\" (every evaluation an ensemble) or \"seeds\" (the "
+                        "best point re-run on other packings), not both");
+  }
+}
+
 }  // namespace
 
 CalibrationCampaign parse_calibration_campaign(const json& campaign) {
@@ -144,6 +165,7 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.homogeneity_tolerance =
       root.positive("homogeneity_tolerance").value_or(c.homogeneity_tolerance);
   c.scatter_seeds = parse_seeds(root);
+  parse_realisations(root, model, c);
   root.reject_unknown();
   return c;
 }

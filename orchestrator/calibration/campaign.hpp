@@ -30,10 +30,11 @@ struct CalibrationCampaign {
   nlohmann::json job_template;    // the "job" block: no "test", no "bond" (the search sets both)
   Specimen model_specimen;        // the template's sample, for strengths in model units
   std::uint64_t sample_seed = 1;  // the template's packing seed, used by the search
+  int realisations = 1;  // packings per evaluation: seeds sample_seed, sample_seed + 1, ...
   Targets targets;
   Range fr0_n{1, 1000};
   Range fs0_n{1, 1000};
-  int max_evaluations = 40;  // points evaluated by the search (each = one UCT + one BTT job)
+  int max_evaluations = 40;  // points evaluated by the search (each = realisations x UCT + BTT)
   double tolerance = 0.02;   // relative, on each peak load
   double weight_uct = 1.0;
   double weight_btt = 1.0;

@@ -3,13 +3,39 @@
 namespace rockcal::calibration {
 
 nlohmann::json job_for(const nlohmann::json& job_template, const EvaluationRequest& request,
-                       TestKind test) {
+                       TestKind test, std::uint64_t seed) {
   nlohmann::json job = job_template;
   job["test"] = to_string(test);
   job["bond"] = {{"fr0", request.point.fr0_n}, {"fs0", request.point.fs0_n}};
-  job["sample"]["seed"] = request.sample_seed;
+  job["sample"]["seed"] = seed;
   // Canonical form: equal requests give byte-equal jobs, so the job cache recognises them.
   return to_json(parse_job(job));
+}
+
+namespace {
+
+std::string first_error(const orch::Ensemble& e) {
+  for (const orch::Realisation& r : e.realisations) {
+    if (!r.error.empty()) return r.error;
+  }
+  return "";
+}
+
+}  // namespace
+
+EvaluationOutcome outcome_of(orch::Ensemble uct, orch::Ensemble btt) {
+  EvaluationOutcome out;
+  if (uct.peak_load.mean && btt.peak_load.mean) {
+    out.loads = PeakLoads{*uct.peak_load.mean, *btt.peak_load.mean};
+  } else {
+    const bool uct_missing = !uct.peak_load.mean;
+    const std::string why = first_error(uct_missing ? uct : btt);
+    out.error = std::string(uct_missing ? "uct: " : "btt: ") +
+                (why.empty() ? "no realisation reported a peak load" : why);
+  }
+  out.uct = std::move(uct);
+  out.btt = std::move(btt);
+  return out;
 }
 
 }  // namespace rockcal::calibration

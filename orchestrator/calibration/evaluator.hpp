@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/spec.hpp"
+#include "orchestrator/ensemble.hpp"
 
 namespace rockcal::calibration {
 
@@ -28,20 +29,31 @@ struct PeakLoads {
   double btt_n;
 };
 
-// One evaluation: a point run on a sample packed with `sample_seed` (the search uses the job
-// template's seed; the final uncertainty scatter re-runs the best point with other seeds).
+// One evaluation: a point run on `realisations` samples packed with seeds sample_seed,
+// sample_seed + 1, ... (orch::realisation_seeds; the search uses the job template's seed, the final
+// uncertainty scatter re-runs the best point with other seeds).
 struct EvaluationRequest {
   BondPoint point;
   std::uint64_t sample_seed;
+  int realisations = 1;
 };
 
-// A failed evaluation (job failed after its retries, crash, timeout) carries no loads and a
-// message; the driver turns it into a penalty, never a NaN for NLopt.
+// The loads of an evaluation are the ensemble means of each test's peak load over the realisations
+// that reached a peak; `uct` and `btt` hold the realisations and their statistics (the standard
+// error of each mean is uct->peak_load.se). A failed evaluation (no realisation of a test reached a
+// peak: jobs failed after their retries, crashed, timed out, ended without a peak) carries no loads
+// and a message; the driver turns it into a penalty, never a NaN for NLopt.
 struct EvaluationOutcome {
   std::optional<PeakLoads> loads;
   std::string error;
+  std::optional<orch::Ensemble> uct;  // absent from evaluators that do not report realisations
+  std::optional<orch::Ensemble> btt;
   bool ok() const { return loads.has_value(); }
 };
+
+// The outcome of an evaluation from its two ensembles: loads when each test has a peak load from
+// at least one realisation, else the first failed realisation's error.
+EvaluationOutcome outcome_of(orch::Ensemble uct, orch::Ensemble btt);
 
 // Thrown by an evaluator (or the driver) when the campaign is cancelled; the driver stops the
 // optimiser and reports what it has.
@@ -61,9 +73,10 @@ class Evaluator {
       std::span<const EvaluationRequest> requests) = 0;
 };
 
-// The full job (test, bond strengths, seed filled in) that evaluates one test of a request:
-// what the orchestrator submits to its pool. `job_template` is the campaign's "job" block.
+// The full job (test, bond strengths, seed filled in) that evaluates one test of a request on the
+// sample packed with `seed` (one of the request's realisation seeds): what the orchestrator submits
+// to its pool. `job_template` is the campaign's "job" block.
 nlohmann::json job_for(const nlohmann::json& job_template, const EvaluationRequest& request,
-                       TestKind test);
+                       TestKind test, std::uint64_t seed);
 
 }  // namespace rockcal::calibration

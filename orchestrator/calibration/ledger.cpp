@@ -26,10 +26,13 @@ std::vector<EvaluationRecord> Ledger::evaluate(const std::vector<BondPoint>& poi
   if (truncated) fresh.resize(std::max(0, remaining()));
   if (!fresh.empty()) {
     std::vector<EvaluationRequest> requests;
-    for (const BondPoint& p : fresh) requests.push_back({p, campaign_.sample_seed});
+    for (const BondPoint& p : fresh) {
+      requests.push_back({p, campaign_.sample_seed, campaign_.realisations});
+    }
     const std::vector<EvaluationOutcome> outcomes = evaluator_.evaluate_batch(requests);
     for (std::size_t i = 0; i < fresh.size(); ++i) {
-      const EvaluationOutcome missing{std::nullopt, "the evaluator returned no outcome"};
+      EvaluationOutcome missing;
+      missing.error = "the evaluator returned no outcome";
       history_.push_back(record(fresh[i], i < outcomes.size() ? outcomes[i] : missing, phase));
       index_of_point_[{fresh[i].fr0_n, fresh[i].fs0_n}] = history_.back().index;
       if (on_record_) on_record_(history_.back());
@@ -54,6 +57,8 @@ EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome&
   r.point = point;
   r.sample_seed = campaign_.sample_seed;
   r.error = outcome.error;
+  r.uct = outcome.uct;
+  r.btt = outcome.btt;
   // A zero or non-finite peak load has no log-ratio: it is a failed run, not a data point.
   const bool usable = outcome.loads && std::isfinite(outcome.loads->uct_n) &&
                       std::isfinite(outcome.loads->btt_n) && outcome.loads->uct_n > 0 &&

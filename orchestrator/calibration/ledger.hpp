@@ -18,12 +18,14 @@
 namespace rockcal::calibration {
 
 struct EvaluationRecord {
-  int index = 0;      // order of evaluation, from 0
-  std::string phase;  // start | ratio | scale | local | scatter
-  BondPoint point{};  // model units, as run
-  std::uint64_t sample_seed = 0;
-  std::optional<PeakLoads> loads;  // absent when the evaluation failed
+  int index = 0;                   // order of evaluation, from 0
+  std::string phase;               // start | ratio | scale | local | scatter
+  BondPoint point{};               // model units, as run
+  std::uint64_t sample_seed = 0;   // of the first realisation
+  std::optional<PeakLoads> loads;  // ensemble means; absent when the evaluation failed
   std::string error;
+  std::optional<orch::Ensemble> uct;  // realisations and statistics, when the evaluator gave them
+  std::optional<orch::Ensemble> btt;
   double misfit = 0.0;  // the objective; a penalty for a failed evaluation
   bool within_tolerance = false;
 };

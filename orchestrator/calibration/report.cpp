@@ -11,14 +11,9 @@ std::optional<LoadStats> stats(const std::vector<ScatterRun>& runs, double PeakL
   for (const ScatterRun& r : runs) {
     if (r.loads) x.push_back((*r.loads).*load);
   }
-  if (x.empty()) return std::nullopt;
-  LoadStats s;
-  s.runs = int(x.size());
-  for (double v : x) s.mean_n += v / x.size();
-  double ss = 0.0;
-  for (double v : x) ss += (v - s.mean_n) * (v - s.mean_n);
-  s.stddev_n = x.size() > 1 ? std::sqrt(ss / (x.size() - 1)) : 0.0;
-  return s;
+  const orch::SampleStats s = orch::sample_stats(x);
+  if (!s.mean) return std::nullopt;
+  return LoadStats{*s.mean, s.sd.value_or(0.0), s.n};
 }
 
 }  // namespace

@@ -26,9 +26,24 @@ json loads_json(const PeakLoads& loads, const PeakLoads& targets, const Specimen
           {"btt", test_result(loads.btt_n, targets.btt_n, btt_strength_pa(loads.btt_n, specimen))}};
 }
 
+// Each test's realisations and statistics (peak load mean, sd, se, n; failed runs with their
+// reason), or null from an evaluator that reports none.
+json ensemble_json(const EvaluationRecord& r) {
+  if (!r.uct || !r.btt) return nullptr;
+  return {{"uct", orch::to_json(*r.uct)}, {"btt", orch::to_json(*r.btt)}};
+}
+
 json best_json(const EvaluationRecord& best, const CalibrationCampaign& c) {
   const PeakLoads& targets = c.targets.model_loads_n;
   json j = loads_json(*best.loads, targets, c.model_specimen);
+  // The loads are ensemble means: their standard errors and sizes beside them.
+  auto spread = [&j](const char* test, const std::optional<orch::Ensemble>& e) {
+    j[test]["se"] = e && e->peak_load.se ? json(*e->peak_load.se) : json(nullptr);
+    j[test]["n"] = e ? e->peak_load.n : 1;
+  };
+  spread("uct", best.uct);
+  spread("btt", best.btt);
+  j["ensemble"] = ensemble_json(best);
   j["fr0"] = best.point.fr0_n;
   j["fs0"] = best.point.fs0_n;
   j["misfit"] = best.misfit;
@@ -92,7 +107,8 @@ json history_json(const std::vector<EvaluationRecord>& history) {
                     {"misfit", r.misfit},
                     {"best_misfit_so_far", number_or_null(best_so_far)},
                     {"within_tolerance", r.within_tolerance},
-                    {"error", r.error}});
+                    {"error", r.error},
+                    {"ensemble", ensemble_json(r)}});
   }
   return rows;
 }
@@ -147,6 +163,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
               {"algorithm", c.algorithm}}},
             {"homogeneity", homogeneity_json(r.homogeneity)},
             {"tolerance", c.tolerance},
+            {"realisations", c.realisations},
             {"evaluations", r.history.size()},
             {"failed_evaluations", failed},
             {"max_evaluations", c.max_evaluations},
@@ -173,6 +190,7 @@ json progress_json(const std::vector<EvaluationRecord>& history, const Calibrati
           {"stop_reason", nullptr},
           {"evaluations", history.size()},
           {"max_evaluations", c.max_evaluations},
+          {"realisations", c.realisations},
           {"targets", targets_json(c)},
           {"history", history_json(history)}};
 }

@@ -223,7 +223,6 @@ void count_failures(DiagnosisReport& report, const DiagnosisCampaign& c,
     for (std::size_t r = 0; r < own; ++r) {
       const RunOutcome& o = samples[k].outcomes[r];
       report.failed_values += int(std::count(o.values.begin(), o.values.end(), std::nullopt));
-      report.censored_values += o.censored;
       if (report.first_error.empty()) report.first_error = o.error;
     }
   }

@@ -25,7 +25,11 @@ json read_result(const fs::path& dir, const orch::ExitStatus& status) {
   }
   const auto text = orch::read_text(dir / "result.json");
   if (!text) throw std::runtime_error(failure(dir, "no result.json"));
-  return json::parse(*text);
+  json result = json::parse(*text);
+  // The service's rule: a run that ended without a peak failed, whatever load it reached.
+  if (auto why = orch::no_peak_reason(result))
+    throw std::runtime_error(failure(dir, "no peak: " + *why));
+  return result;
 }
 
 }  // namespace

@@ -20,8 +20,8 @@ class EngineRunner {
  public:
   explicit EngineRunner(EngineRunConfig config) : config_(std::move(config)) {}
   // Runs every job (full rockcal-dem job JSON) and returns each result.json, in order. Throws
-  // std::runtime_error naming the job directory and the end of its log when a run fails; the
-  // others are stopped first.
+  // std::runtime_error naming the job directory and the end of its log when a run fails (a run
+  // that ended without a peak fails: "no peak: ..."); the others are stopped first.
   std::vector<nlohmann::json> run(const std::vector<nlohmann::json>& jobs);
   int runs_started() const { return next_; }
 

@@ -37,11 +37,11 @@ struct RunRequest {
 };
 
 // One value per target, in the evaluator's target order (model units); nullopt where the run that
-// measures it failed, or measured no peak for a peak observable. `error` is the first failure.
+// measures it failed (a run that ended without a peak is a failed run). `error` is the first
+// failure.
 struct RunOutcome {
   std::vector<std::optional<double>> values;
   std::string error;
-  int censored = 0;  // values that are the largest load within loading.max_strain, not a peak
 };
 
 // Thrown by an evaluator when the campaign is cancelled or the server stops.

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "engine/effects/effect.hpp"
+#include "orchestrator/job_files.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -55,23 +56,13 @@ json job_for(const json& job_template, const JobSpec& model, const RunConditions
 }
 
 std::optional<double> observable_value(const json& result, Observable observable) {
-  if (!result.is_object()) return std::nullopt;
+  if (!result.is_object() || orch::no_peak_reason(result)) return std::nullopt;
   const char* key = to_string(observable);
-  const bool peak = observable != Observable::youngs_modulus;
-  if (peak && !result.value("peak_reached", true) && !censored_value(result, observable)) {
-    return std::nullopt;
-  }
   auto it = result.find(key);
   if (it == result.end() || !it->is_number()) return std::nullopt;
   const double v = it->get<double>();
   if (!std::isfinite(v) || !(v > 0)) return std::nullopt;
   return v;
-}
-
-bool censored_value(const json& result, Observable observable) {
-  return observable != Observable::youngs_modulus && result.is_object() &&
-         !result.value("peak_reached", true) &&
-         result.value("stop_reason", std::string()) == "max_strain";
 }
 
 }  // namespace rockcal::diagnosis

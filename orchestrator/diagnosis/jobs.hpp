@@ -31,11 +31,9 @@ RunPlan plan_runs(const std::vector<Target>& targets);
 nlohmann::json job_for(const nlohmann::json& job_template, const JobSpec& model,
                        const RunConditions& conditions, const RunRequest& request);
 
-// What a finished run's result.json says about one observable; nullopt when it has no value. A
-// peak observable of a run that reached loading.max_strain before its load fell is the largest
-// load within that strain (censored_value says so): the twin reports the same for its lab value,
-// and a lab's stroke limit does the same. A run stopped for any other reason has no peak.
+// What a finished run's result.json says about one observable; nullopt when it has no value. A run
+// that ended without a peak (orch::no_peak_reason) is a failed run with no value at all: the
+// largest load it saw is not a peak, and the service stores it as a failed job.
 std::optional<double> observable_value(const nlohmann::json& result, Observable observable);
-bool censored_value(const nlohmann::json& result, Observable observable);
 
 }  // namespace rockcal::diagnosis

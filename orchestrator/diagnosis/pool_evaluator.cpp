@@ -69,11 +69,11 @@ std::vector<RunOutcome> PoolEvaluator::run_batch(std::span<const RunRequest> req
     RunOutcome o;
     for (std::size_t i = 0; i < targets_.size(); ++i) {
       const JobResult& jr = results.at(spec_of[r][plan_.run_of[i]]);
+      // A run without a peak comes back as a failed job ("no peak: ..."), like any failure.
       o.values.push_back(observable_value(jr.result, targets_[i].observable));
-      o.censored += o.values.back() && censored_value(jr.result, targets_[i].observable);
       if (!o.values.back() && o.error.empty()) {
-        o.error = jr.error.empty() ? targets_[i].id + ": no " + to_string(targets_[i].observable) +
-                                         " (run stopped before its peak)"
+        o.error = jr.error.empty() ? targets_[i].id + ": the run reported no " +
+                                         to_string(targets_[i].observable)
                                    : jr.error;
       }
     }

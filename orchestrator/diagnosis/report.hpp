@@ -127,8 +127,7 @@ struct DiagnosisReport {
   Confidence confidence;
   int model_points = 0;  // distinct model points run (each = one job per distinct condition)
   int failed_values = 0;
-  int censored_values = 0;  // grid values that are the largest load within loading.max_strain
-  std::string first_error;  // of the first run that left a value missing
+  std::string first_error;              // of the first run that left a value missing
   std::vector<int> base_grid_failures;  // per target: base grid runs without a value
 };
 

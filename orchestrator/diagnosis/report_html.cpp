@@ -310,8 +310,7 @@ std::string report_html(const json& s) {
       (at(at(s, "runs"), "first_error").is_string()
            ? " (first: " + show(at(at(s, "runs"), "first_error")) + ")"
            : std::string()) +
-      ", " + show(at(at(s, "runs"), "censored_values")) +
-      " peak values taken as the largest load within loading.max_strain.</p>\n";
+      "; a run that ended without a peak is a failed run.</p>\n";
   out += verdict_section(s);
   out += gap_section(s);
   out += residual_plot(s);

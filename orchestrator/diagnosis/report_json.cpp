@@ -277,7 +277,6 @@ json to_json(const DiagnosisReport& r, const DiagnosisCampaign& c) {
           {"runs",
            {{"model_points", r.model_points},
             {"failed_values", r.failed_values},
-            {"censored_values", r.censored_values},
             {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
           {"units", "model"}};
 }

@@ -113,17 +113,8 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
     const double clean = measured(result, o);
     o.value = clean * std::exp(request.noise * stream.normal());
     o.uncertainty = request.noise * o.value;
-    const bool peak = o.observable != Observable::youngs_modulus;
-    const bool reached = result.value("peak_reached", true);
-    if (peak && !reached) {
-      twin.warnings.push_back(o.id + ": the run ended at loading.max_strain before a peak; its " +
-                              to_string(o.observable) + " is the largest reached");
-    }
-    truth_observations.push_back({{"id", o.id},
-                                  {"noise_free", clean},
-                                  {"value", o.value},
-                                  {"job", job_of[i]},
-                                  {"peak_reached", reached}});
+    truth_observations.push_back(
+        {{"id", o.id}, {"noise_free", clean}, {"value", o.value}, {"job", job_of[i]}});
     twin.dataset.observations.push_back(o);
   }
   const std::string param = effects.empty() ? "" : effects.begin().value().begin().key();
@@ -142,8 +133,7 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
         {"template_bond", {{"fr0", design.model.bond.fr0_n}, {"fs0", design.model.bond.fs0_n}}}}},
       {"job_template", design.job_template},
       {"observations", truth_observations},
-      {"jobs", jobs},
-      {"warnings", twin.warnings}};
+      {"jobs", jobs}};
   // The dataset must parse as any lab dataset would.
   parse_dataset_json(to_json(twin.dataset));
   return twin;

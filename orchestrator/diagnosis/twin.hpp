@@ -35,15 +35,15 @@ TruthBonds draw_truth_bonds(const JobSpec& model, std::uint64_t seed);
 nlohmann::json twin_effects(const TwinRequest& request);
 
 struct Twin {
-  Dataset dataset;                    // model units; names no effect
-  nlohmann::json truth;               // what the dataset hides (FILE.truth.json)
-  std::vector<std::string> warnings;  // runs that ended at loading.max_strain before a peak
+  Dataset dataset;       // model units; names no effect
+  nlohmann::json truth;  // what the dataset hides (FILE.truth.json)
 };
 
-// Runs the design's distinct jobs at the truth with the effect on, reads each observation off its
-// run, and applies the noise: value = noise-free x exp(noise N(0,1)), uncertainty = noise x value.
-// The seed's stream draws u1, u2, then one N(0,1) per observation in design order (SplitMix64 and
-// Box-Muller, so a seed gives the same twin on every platform).
+// Runs the design's distinct jobs at the truth with the effect on (`run` fails on a run without a
+// peak, as EngineRunner does), reads each observation off its run, and applies the noise: value =
+// noise-free x exp(noise N(0,1)), uncertainty = noise x value. The seed's stream draws u1, u2, then
+// one N(0,1) per observation in design order (SplitMix64 and Box-Muller, so a seed gives the same
+// twin on every platform).
 Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJobs& run);
 
 // FILE.json or FILE.csv -> FILE.truth.json (any other name: NAME.truth.json).

@@ -5,7 +5,7 @@
 namespace rockcal::diagnosis {
 
 // max_strain 0.2: with platen friction 0.5 the D = 8 triaxial at p_high peaks at 0.166 strain; at
-// 0.1 the runs ended before the peak and the twin's values were censored.
+// 0.1 the runs ended before the peak (a run without a peak fails).
 nlohmann::json demo_twin_template() {
   return nlohmann::json::parse(R"({
     "sample": {"diameter": 8, "height": 16, "radius": 1, "packing": "fcc", "seed": 1},

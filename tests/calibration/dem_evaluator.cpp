@@ -66,7 +66,8 @@ std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
   for (const EvaluationRequest& r : requests) {
     for (TestKind test : {TestKind::uct, TestKind::btt}) {
       const std::string name = "job" + std::to_string(jobs_run + int(jobs.size()));
-      jobs.push_back({job_for(job_template, r, test), work_dir / name, std::nullopt, ""});
+      jobs.push_back(
+          {job_for(job_template, r, test, r.sample_seed), work_dir / name, std::nullopt, ""});
     }
   }
   jobs_run += int(jobs.size());
@@ -91,11 +92,13 @@ std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const Job& uct = jobs[2 * i];
     const Job& btt = jobs[2 * i + 1];
+    EvaluationOutcome outcome;  // one realisation per test: no ensembles reported
     if (uct.peak_load_n && btt.peak_load_n) {
-      outcomes.push_back({PeakLoads{*uct.peak_load_n, *btt.peak_load_n}, ""});
+      outcome.loads = PeakLoads{*uct.peak_load_n, *btt.peak_load_n};
     } else {
-      outcomes.push_back({std::nullopt, uct.error.empty() ? btt.error : uct.error});
+      outcome.error = uct.error.empty() ? btt.error : uct.error;
     }
+    outcomes.push_back(outcome);
   }
   return outcomes;
 }

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -35,6 +36,7 @@ class ServiceCalibration : public ::testing::Test {
   void TearDown() override {
     if (service_) service_->stop();
     service_.reset();
+    unsetenv("FAKE_DEM_NO_PEAK_SEEDS");
     std::filesystem::remove_all(dir_);
   }
 
@@ -92,6 +94,13 @@ class ServiceCalibration : public ::testing::Test {
 
   static json request() {
     return testing::campaign_json(testing::power_law({40, 90}), {{"name", "service twin"}});
+  }
+  // Each evaluation an ensemble of `n` packings (random: the seed makes another specimen).
+  static json ensemble_request(int n) {
+    json r = request();
+    r["job"]["sample"]["packing"] = "random";
+    r["realisations"] = n;
+    return r;
   }
 
   std::filesystem::path dir_;
@@ -154,6 +163,66 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   EXPECT_EQ(int(times.size()), 2 * report["evaluations"].get<int>());
   std::printf("resumed calibration: %d evaluations, %zu engine runs before the stop, %d re-run\n",
               report["evaluations"].get<int>(), before, repeated);
+}
+
+// The formula engine multiplies its loads by 1 + (s - 1) / 100 on seed s, so an ensemble of seeds
+// 1-3 has mean 1.01 x the power law and standard deviation 0.01 x it, exactly.
+TEST_F(ServiceCalibration, EvaluationsAreEnsemblesMatchedByTheirMean) {
+  start();
+  const std::int64_t id = service_->create_campaign(ensemble_request(3));
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 90s)) << job_table(id);
+  const json report = json::parse(*service_->store().campaign(id)->summary);
+  EXPECT_EQ(report["verdict"], "feasible") << report["verdict_reason"];
+  EXPECT_EQ(report["realisations"], 3);
+  const int evaluations = report["evaluations"].get<int>();
+  EXPECT_EQ(service_->store().counts(id).total(), 6 * evaluations);
+  EXPECT_EQ(int(runs().size()), 6 * evaluations) << "every realisation run once";
+  const json& best = report["best"];
+  const PeakLoads p = testing::power_law({best["fr0"].get<double>(), best["fs0"].get<double>()});
+  for (const auto& [test, load] : {std::pair("uct", p.uct_n), std::pair("btt", p.btt_n)}) {
+    EXPECT_NEAR(best[test]["peak_load"].get<double>() / (1.01 * load), 1.0, 1e-12) << test;
+    EXPECT_NEAR(best[test]["se"].get<double>() / (0.01 * load / std::sqrt(3.0)), 1.0, 1e-9) << test;
+    EXPECT_EQ(best[test]["n"], 3);
+    const json& runs = best["ensemble"][test]["realisations"];
+    ASSERT_EQ(runs.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(runs[k]["seed"], k + 1);
+      EXPECT_NEAR(runs[k]["peak_load_n"].get<double>() / ((1 + 0.01 * double(k)) * load), 1.0,
+                  1e-12);
+    }
+  }
+  // Each evaluation of the history carries its own mean, se and n.
+  for (const json& e : report["history"]) {
+    EXPECT_EQ(e["ensemble"]["uct"]["peak_load"]["n"], 3);
+    EXPECT_EQ(e["ensemble"]["btt"]["peak_load"]["mean"], e["btt"]);
+  }
+}
+
+// Seed 2 ends without a peak on every point: its runs are failed jobs, run once (not retried),
+// listed with their reason, and the evaluation uses the mean of seeds 1 and 3.
+TEST_F(ServiceCalibration, RunsWithoutAPeakAreLeftOutOfTheEnsembleAndCounted) {
+  setenv("FAKE_DEM_NO_PEAK_SEEDS", "2", 1);
+  start();
+  const std::int64_t id = service_->create_campaign(ensemble_request(3));
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 90s)) << job_table(id);
+  const json report = json::parse(*service_->store().campaign(id)->summary);
+  EXPECT_EQ(report["verdict"], "feasible") << report["verdict_reason"];
+  const int evaluations = report["evaluations"].get<int>();
+  EXPECT_EQ(service_->store().counts(id).failed, 2 * evaluations);
+  EXPECT_EQ(int(runs().size()), 6 * evaluations) << "a run without a peak is not retried";
+  const json& best = report["best"];
+  const PeakLoads p = testing::power_law({best["fr0"].get<double>(), best["fs0"].get<double>()});
+  for (const auto& [test, load] : {std::pair("uct", p.uct_n), std::pair("btt", p.btt_n)}) {
+    EXPECT_NEAR(best[test]["peak_load"].get<double>() / (1.01 * load), 1.0, 1e-12) << test;
+    EXPECT_NEAR(best[test]["se"].get<double>() / (0.01 * load), 1.0, 1e-9) << test;
+    EXPECT_EQ(best[test]["n"], 2);
+    const json& ensemble = best["ensemble"][test];
+    EXPECT_EQ(ensemble["failed"], 1);
+    EXPECT_EQ(ensemble["realisations"][1]["state"], "failed");
+    EXPECT_EQ(ensemble["realisations"][1]["peak_load_n"], nullptr);
+    EXPECT_EQ(ensemble["realisations"][1]["error"],
+              "no peak: no bond broke before the load fell (fake, seed 2)");
+  }
 }
 
 }  // namespace

@@ -33,13 +33,30 @@ double hash_unit(const BondPoint& p, std::uint64_t seed, std::uint64_t salt) {
 }
 
 EvaluationOutcome ModelEvaluator::evaluate(const EvaluationRequest& r) const {
-  if (failure_rate > 0 && 0.5 * (hash_unit(r.point, r.sample_seed, 7) + 1.0) < failure_rate) {
-    return {std::nullopt, "synthetic failure"};
+  std::vector<orch::Realisation> uct, btt;
+  for (std::uint64_t seed : orch::realisation_seeds(r.sample_seed, r.realisations)) {
+    if (failure_rate > 0 && 0.5 * (hash_unit(r.point, seed, 7) + 1.0) < failure_rate) {
+      uct.push_back({seed, 0, "failed", {}, {}, {}, "synthetic failure"});
+      btt.push_back(uct.back());
+      continue;
+    }
+    const PeakLoads loads = model(r.point);
+    uct.push_back({seed,
+                   0,
+                   "succeeded",
+                   loads.uct_n * (1.0 + noise * hash_unit(r.point, seed, 1)),
+                   {},
+                   {},
+                   ""});
+    btt.push_back({seed,
+                   0,
+                   "succeeded",
+                   loads.btt_n * (1.0 + noise * hash_unit(r.point, seed, 2)),
+                   {},
+                   {},
+                   ""});
   }
-  PeakLoads loads = model(r.point);
-  loads.uct_n *= 1.0 + noise * hash_unit(r.point, r.sample_seed, 1);
-  loads.btt_n *= 1.0 + noise * hash_unit(r.point, r.sample_seed, 2);
-  return {loads, ""};
+  return outcome_of(orch::make_ensemble(uct), orch::make_ensemble(btt));
 }
 
 std::vector<EvaluationOutcome> ModelEvaluator::evaluate_batch(
@@ -58,7 +75,7 @@ std::vector<EvaluationOutcome> CachingEvaluator::evaluate_batch(
   std::vector<EvaluationOutcome> out;
   for (const EvaluationRequest& r : batch) {
     log.push_back(r);
-    const auto key = std::make_tuple(r.point.fr0_n, r.point.fs0_n, r.sample_seed);
+    const auto key = std::make_tuple(r.point.fr0_n, r.point.fs0_n, r.sample_seed, r.realisations);
     auto it = cache.find(key);
     if (it == cache.end()) {
       if (cancel_after >= 0 && fresh >= cancel_after) throw EvaluationCancelled();

@@ -28,6 +28,7 @@ PeakLoads non_homogeneous(const BondPoint& p);
 // A deterministic pseudo-random number in [-1, 1] for a point and a seed (so replays agree).
 double hash_unit(const BondPoint& p, std::uint64_t seed, std::uint64_t salt);
 
+// Runs each request's realisations (seeds sample_seed, sample_seed + 1, ...) through the model.
 struct ModelEvaluator : Evaluator {
   Model model;
   double noise = 0.0;         // relative amplitude, varies with point and seed
@@ -45,7 +46,7 @@ struct ModelEvaluator : Evaluator {
 // the fresh ones; optionally cancels once `cancel_after` fresh requests have run.
 struct CachingEvaluator : Evaluator {
   Evaluator& inner;
-  std::map<std::tuple<double, double, std::uint64_t>, EvaluationOutcome> cache;
+  std::map<std::tuple<double, double, std::uint64_t, int>, EvaluationOutcome> cache;
   std::vector<EvaluationRequest> log;
   int fresh = 0;
   int cancel_after = -1;

@@ -249,26 +249,22 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   EXPECT_EQ(planned_jobs(c), (25 + 6 * 100 + 125 + 2 * 5 * 8 + 8 * 5) * 7u);
 }
 
-TEST(DiagnosisRuns, APeakCutOffByTheStrainLimitIsTheLargestLoadAndSaysSo) {
-  const json peaked = {{"peak_load", 900.0},
+TEST(DiagnosisRuns, ARunWithoutAPeakHasNoValueAtAll) {
+  const json peaked = {{"test", "uct"},
+                       {"peak_load", 900.0},
                        {"youngs_modulus", 50.0},
                        {"peak_reached", true},
                        {"stop_reason", "post_peak"}};
   EXPECT_EQ(observable_value(peaked, Observable::peak_load), 900.0);
-  EXPECT_FALSE(censored_value(peaked, Observable::peak_load));
-  // What the twin reports for its lab value too: the largest load within loading.max_strain.
-  json cut = peaked;
-  cut["peak_reached"] = false;
-  cut["stop_reason"] = "max_strain";
-  EXPECT_EQ(observable_value(cut, Observable::peak_load), 900.0);
-  EXPECT_TRUE(censored_value(cut, Observable::peak_load));
-  EXPECT_EQ(observable_value(cut, Observable::youngs_modulus), 50.0);
-  EXPECT_FALSE(censored_value(cut, Observable::youngs_modulus));
-  // A run stopped by its step limit or a cancel has no peak to speak of.
-  for (const char* why : {"max_steps", "cancelled"}) {
-    json stopped = cut;
+  EXPECT_EQ(observable_value(peaked, Observable::youngs_modulus), 50.0);
+  // The largest load within loading.max_strain (or the step limit, or a cancel) is no peak, and
+  // the run is a failed run: not even its modulus counts.
+  for (const char* why : {"max_strain", "max_steps", "cancelled"}) {
+    json stopped = peaked;
+    stopped["peak_reached"] = false;
     stopped["stop_reason"] = why;
     EXPECT_FALSE(observable_value(stopped, Observable::peak_load).has_value()) << why;
+    EXPECT_FALSE(observable_value(stopped, Observable::youngs_modulus).has_value()) << why;
   }
 }
 
@@ -276,7 +272,7 @@ TEST(DiagnosisBudget, IsTheRmsChangeOverItsPointsAndTheLargestOverTheVariants) {
   // Two points, two variants, three targets. Target 0: the resolution moves it by e^0.3 at one
   // point and e^-0.1 at the other: rms 0.2236, above the speed variant's 0.05. Target 1 failed at
   // point 1's reference, so point 0 alone counts. Target 2 never ran: the largest budget.
-  const auto run = [](std::vector<std::optional<double>> v) { return RunOutcome{v, "", 0}; };
+  const auto run = [](std::vector<std::optional<double>> v) { return RunOutcome{v, ""}; };
   const std::vector<RunOutcome> refs{run({100.0, 50.0, std::nullopt}),
                                      run({200.0, std::nullopt, std::nullopt})};
   const std::vector<std::vector<RunOutcome>> changed{

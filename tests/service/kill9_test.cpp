@@ -65,16 +65,25 @@ TEST(Recovery, KillNineMidSweepThenRestartFinishesWithOneResultPerPoint) {
       << restarted.stderr_text();
   auto c2 = restarted.client();
   json done = wait_campaign(c2, id, 120s);
-  ASSERT_EQ(done["state"], "succeeded") << done.dump(2);
-  EXPECT_EQ(done["progress"]["succeeded"], 6);
+  // Every point ends with its run's result: a peak, or a run that reached none (the engine's
+  // physics decides which, e.g. a UCT that hardens to loading.max_strain), which is a failed job
+  // "no peak: ..." with its result kept. Nothing else may fail.
+  EXPECT_EQ(done["progress"]["succeeded"].get<int>() + done["progress"]["failed"].get<int>(), 6)
+      << done.dump(2);
 
   json results = get_json(c2, "/api/v1/campaigns/" + std::to_string(id) + "/results");
   std::set<std::pair<double, double>> points;
+  int no_peak = 0;
   for (const auto& row : results["results"]) {
-    EXPECT_EQ(row["state"], "succeeded");
-    EXPECT_TRUE(row["peak_load"].is_number()) << row.dump();
+    if (row["state"] == "failed" && row["error"].get<std::string>().rfind("no peak: ", 0) == 0) {
+      ++no_peak;
+    } else {
+      EXPECT_EQ(row["state"], "succeeded") << row.dump();
+      EXPECT_TRUE(row["peak_load"].is_number()) << row.dump();
+    }
     points.insert({row["fr0"].get<double>(), row["fs0"].get<double>()});
   }
+  EXPECT_LT(no_peak, 6) << "the sweep should measure some peaks";
   EXPECT_EQ(results["results"].size(), 6u);
   EXPECT_EQ(points.size(), 6u);
   EXPECT_EQ(restarted.terminate(), 0);
@@ -84,9 +93,14 @@ TEST(Recovery, KillNineMidSweepThenRestartFinishesWithOneResultPerPoint) {
   ASSERT_TRUE(count.step());
   EXPECT_EQ(count.int64(0), 6) << "exactly one result per point";
   EXPECT_EQ(count.int64(1), 6);
-  auto jobs = conn.prepare("SELECT COUNT(*) FROM jobs WHERE state <> 'succeeded'");
+  auto jobs = conn.prepare(
+      "SELECT COUNT(*) FROM jobs WHERE state <> 'succeeded' AND NOT (state = 'failed' AND "
+      "error LIKE 'no peak: %')");
   ASSERT_TRUE(jobs.step());
   EXPECT_EQ(jobs.int64(0), 0);
+  auto kept = conn.prepare("SELECT COUNT(*) FROM results WHERE no_peak IS NOT NULL");
+  ASSERT_TRUE(kept.step());
+  EXPECT_EQ(kept.int64(0), no_peak) << "a run without a peak keeps its result, once";
   auto check = conn.prepare("PRAGMA integrity_check");
   ASSERT_TRUE(check.step());
   EXPECT_EQ(check.text(0), "ok");
