@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace rockcal::api {
 
@@ -18,8 +19,12 @@ struct ServeOptions {
   double job_timeout_s = 6 * 3600;
   std::size_t max_jobs = 10000;
   std::size_t max_body = 1 << 20;
-  int http_threads = 32;
-  std::string port_file;  // written with the bound port once listening
+  std::vector<std::string> allowed_hosts;  // Host values served; empty: from the listen address
+  std::size_t max_connections = 512;       // open HTTP connections (one thread each)
+  double read_timeout_s = 5;               // one read of a request may wait this long
+  double request_timeout_s = 20;           // a whole request must arrive within this
+  double keep_alive_timeout_s = 5;         // idle connections are closed after this
+  std::string port_file;                   // written with the bound port once listening
 };
 
 int run_serve(const ServeOptions& options, const std::string& argv0);

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "engine/spec.hpp"
 #include "orchestrator/job_identity.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/request_fields.hpp"
@@ -69,17 +70,20 @@ CampaignPlan plan_sweep(const json& request, const Limits& limits) {
                        std::to_string(points.size() * tests.size()) + " jobs exceed the cap of " +
                            std::to_string(cap) + " per campaign");
   }
-  // Every job goes through the engine's validation before anything is stored.
+  // The template is validated once per test as it stands (the request's JSON is never copied);
+  // each job is the parsed spec with its point's strengths, and every job goes through the
+  // engine's validation again before anything is stored.
   for (const auto& test : tests) {
+    rockcal::JobSpec base;
+    try {
+      const rockcal::BondSpec first{points.front().first, points.front().second};
+      base = rockcal::parse_job_template(tmpl, *rockcal::test_kind_from_string(test), first);
+    } catch (const rockcal::SpecError& e) {
+      throw RequestError("job." + e.field, e.what());
+    }
     for (auto [fr0, fs0] : points) {
-      json spec = tmpl;
-      spec["test"] = test;
-      if (!spec.contains("bond")) spec["bond"] = json::object();
-      if (spec["bond"].is_object()) {
-        spec["bond"]["fr0"] = fr0;
-        spec["bond"]["fs0"] = fs0;
-      }
-      plan.jobs.push_back(make_job(spec, "job."));
+      base.bond = {fr0, fs0};
+      plan.jobs.push_back(make_job(rockcal::to_json(base), "job."));
     }
   }
   return plan;

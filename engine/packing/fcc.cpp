@@ -2,9 +2,17 @@
 
 #include <cmath>
 #include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "engine/stop_request.hpp"
 
 namespace rockcal {
 namespace {
+
+// Lattice sites one walk may visit: bounds its time and memory whatever the caller asks (the job
+// spec's particle limit keeps real specimens far below).
+constexpr double kMaxLatticeSites = 2.0e8;
 
 // Walks the lattice over a box of half-extents `half` and keeps the centres `inside` accepts.
 std::vector<Vec3> lattice_in(const Vec3& half, double radius,
@@ -13,15 +21,23 @@ std::vector<Vec3> lattice_in(const Vec3& half, double radius,
   const Vec3 basis[4] = {
       {0, 0, 0}, {0.5 * a, 0.5 * a, 0}, {0.5 * a, 0, 0.5 * a}, {0, 0.5 * a, 0.5 * a}};
   std::vector<Vec3> out;
-  const int nx = static_cast<int>(half.x() / a) + 1, ny = static_cast<int>(half.y() / a) + 1,
-            nz = static_cast<int>(half.z() / a) + 1;
-  for (int k = -nz; k <= nz; ++k)
+  const Vec3 cells = half / a;  // +inf or NaN for absurd sizes: refused by the next test
+  const double sites =
+      4.0 * (2.0 * cells.x() + 3.0) * (2.0 * cells.y() + 3.0) * (2.0 * cells.z() + 3.0);
+  if (!(radius > 0.0) || !(sites <= kMaxLatticeSites))
+    throw std::length_error("FCC lattice of " + std::to_string(sites) + " sites (limit " +
+                            std::to_string(kMaxLatticeSites) + ")");
+  const int nx = static_cast<int>(cells.x()) + 1, ny = static_cast<int>(cells.y()) + 1,
+            nz = static_cast<int>(cells.z()) + 1;
+  for (int k = -nz; k <= nz; ++k) {
+    throw_if_stop_requested();
     for (int j = -ny; j <= ny; ++j)
       for (int i = -nx; i <= nx; ++i)
         for (const Vec3& b : basis) {
           const Vec3 x = Vec3(i * a, j * a, k * a) + b;
           if (inside(x)) out.push_back(x);
         }
+  }
   return out;
 }
 

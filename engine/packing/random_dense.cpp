@@ -7,6 +7,9 @@
 #include <functional>
 #include <random>
 #include <stdexcept>
+#include <string>
+
+#include "engine/stop_request.hpp"
 
 namespace rockcal {
 namespace {
@@ -141,6 +144,7 @@ class Jammer {
   bool compress(double target, double force_tol, int max_iterations) {
     constexpr double kGain = 0.15, kMaxGrowth = 2e-3;  // per iteration
     for (int it = 0; it < max_iterations; ++it) {
+      throw_if_stop_requested();
       const Load l = forces();
       const double pressure = l.overlap_sum / (static_cast<double>(n_) * c_.s * a_mean_);
       const double f_rms = std::sqrt(l.force2_sum / static_cast<double>(n_));
@@ -160,6 +164,7 @@ class Jammer {
   // sum (below jamming this reaches zero energy).
   bool relax(double overlap_tol, int max_iterations) {
     for (int it = 0; it < max_iterations; ++it) {
+      throw_if_stop_requested();
       if (forces().max_relative_overlap < overlap_tol) return true;
       fire_step();
     }
@@ -285,6 +290,9 @@ class Jammer {
 // which the margin absorbs; every particle outside the shape is wasted work, so it stays small.
 constexpr double kExpectedSolidFraction = 0.62;
 constexpr double kStartSolidFraction = 0.3;
+// Particles one cloud may hold: bounds the time and memory of a packing whatever the caller asks
+// (the job spec's particle limit keeps real specimens far below).
+constexpr double kMaxCloudParticles = 2.0e7;
 
 PeriodicCloud random_cloud(const Vec3& bounding_box, const RandomPackingParams& p) {
   if (!(p.mean_radius_m > 0.0) || !(p.radius_ratio >= 1.0))
@@ -299,9 +307,11 @@ PeriodicCloud random_cloud(const Vec3& bounding_box, const RandomPackingParams& 
   c.box = bounding_box + Vec3::Constant(2.0 * r_max);
   // Three cells a side of at least 2 r_max plus the skin (see CellGrid).
   c.box = c.box.cwiseMax(Vec3::Constant(3.0 * (2.0 * r_max + 0.5 * p.mean_radius_m)));
-  const double box_volume = c.box.prod();
-  const auto n = static_cast<std::size_t>(
-      std::llround(kExpectedSolidFraction * box_volume / (4.0 / 3.0 * kPi * mean_r3)));
+  const double count = kExpectedSolidFraction * c.box.prod() / (4.0 / 3.0 * kPi * mean_r3);
+  if (!(count <= kMaxCloudParticles))  // also a count that is not a number
+    throw std::length_error("random packing of " + std::to_string(count) + " particles (limit " +
+                            std::to_string(kMaxCloudParticles) + ")");
+  const auto n = static_cast<std::size_t>(std::llround(count));
   std::mt19937_64 g(p.seed);
   c.x.resize(n);
   c.a.resize(n);
