@@ -19,8 +19,11 @@ using std::chrono::milliseconds;
 
 // Waits are cut into slices this long so that a stopping server ends its connections soon.
 constexpr milliseconds kSlice{100};
-// A connection over the cap gets this long to send the request its 503 answers.
-constexpr milliseconds kRefusalTimeout{1000};
+// A connection over the cap is answered 503 if its request starts within kRefusalWait and arrives
+// within kRefusalTimeout, else closed: the threads that answer them must not be held long.
+constexpr milliseconds kRefusalWait{100};
+constexpr milliseconds kRefusalTimeout{250};
+constexpr std::size_t kRefusalThreads = 64;
 // After answering a request whose body was left unread, the rest of what the client sends is read
 // and dropped for up to this long (and this much) before closing: closing with unread data would
 // reset the connection, and the client would lose the answer (typically a 413) with it.
@@ -207,8 +210,8 @@ void HttpServer::widen_backlog() {
 }
 
 HttpServer::HttpServer(ConnectionLimits limits) : limits_(limits) {
-  // One thread per connection, plus a few to answer the connections over the cap.
-  const std::size_t threads = limits_.max_connections + 16;
+  // One thread per connection, plus some to answer the connections over the cap.
+  const std::size_t threads = limits_.max_connections + kRefusalThreads;
   new_task_queue = [threads] { return new ConnectionThreads(threads); };
 }
 
@@ -219,7 +222,7 @@ bool HttpServer::process_and_close_socket(socket_t sock) {
   state.over_capacity = open > limits_.max_connections;
   ConnectionStream stream(sock, limits_, svr_sock_);
   const milliseconds wait_first = state.over_capacity
-                                      ? std::min(limits_.keep_alive_timeout, kRefusalTimeout)
+                                      ? std::min(limits_.keep_alive_timeout, kRefusalWait)
                                       : limits_.keep_alive_timeout;
   const milliseconds request_timeout =
       state.over_capacity ? kRefusalTimeout : limits_.request_timeout;

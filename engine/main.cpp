@@ -1,6 +1,8 @@
 // rockcal-dem: runs one DEM job (UCT, BTT, triaxial or elastic) described by a JSON spec.
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -16,7 +18,15 @@
 
 namespace {
 
+constexpr int kExitOk = 0, kExitFailure = 1, kExitInvalid = 2, kExitStopped = 3;
+
 extern "C" void on_signal(int) {
+  if (rockcal::setup_stages.load() > 0) {  // nothing to keep yet: stop now (async-signal-safe)
+    static const char message[] =
+        "rockcal-dem: stopped on request (SIGTERM or SIGINT) while setting up the run\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, message, sizeof message - 1);
+    _exit(kExitStopped);
+  }
   rockcal::process_stop_requested.store(true);
 }
 
@@ -25,8 +35,6 @@ extern "C" void on_signal(int) {
 std::string json_text(const nlohmann::json& j) {
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
-
-constexpr int kExitOk = 0, kExitFailure = 1, kExitInvalid = 2, kExitStopped = 3;
 
 // Reads and validates a job file. Prints {"error", "field"} and returns nullopt when invalid.
 std::optional<rockcal::JobSpec> load_job(const std::string& path, bool report) {
@@ -106,11 +114,6 @@ int main(int argc, char** argv) {
           rockcal::run_job(*spec, out_dir, &rockcal::process_stop_requested, rank == 0, world);
       if (rank == 0) std::cout << json_text(result) << std::endl;
       if (result["stop_reason"] == "cancelled") code = kExitStopped;
-    } catch (const rockcal::StopRequested& e) {
-      // Stopped while setting up (building the packing): there is nothing to keep.
-      if (rank == 0) std::cerr << "rockcal-dem: " << e.what() << " before the run started\n";
-      if (ranks > 1) MPI_Abort(world, kExitStopped);
-      code = kExitStopped;
     } catch (const std::exception& e) {
       std::cerr << "rockcal-dem: run failed on rank " << rank << ": " << e.what() << std::endl;
       if (ranks > 1) MPI_Abort(world, kExitFailure);  // the other ranks would wait forever

@@ -1,22 +1,23 @@
-// A stop asked of the whole process: SIGTERM or SIGINT to rockcal-dem set it. The time-step loops
-// poll it through RunHooks::stop; the set-up stages that can take long before them (building a
-// packing) call throw_if_stop_requested(), so that a stop is honoured at any stage of a run.
+// A stop asked of the whole process: SIGTERM or SIGINT to rockcal-dem. The time-step loops poll
+// process_stop_requested through RunHooks::stop and end the run keeping its curve. While a set-up
+// stage runs (a SetupStage is alive: building the packing, bonds, neighbour lists) there is nothing
+// a stop could keep, and those stages take seconds to minutes for large specimens: rockcal-dem's
+// handler then exits at once. So a stop is honoured at any stage of a run.
 #pragma once
 
 #include <atomic>
-#include <stdexcept>
 
 namespace rockcal {
 
-// Set from a signal handler: lock-free and constant-initialised.
+// Both are read by a signal handler: lock-free and constant-initialised.
 inline std::atomic<bool> process_stop_requested{false};
+inline std::atomic<int> setup_stages{0};
 
-struct StopRequested : std::runtime_error {
-  StopRequested() : std::runtime_error("stopped on request (SIGTERM or SIGINT)") {}
+struct SetupStage {
+  SetupStage() { ++setup_stages; }
+  ~SetupStage() { --setup_stages; }
+  SetupStage(const SetupStage&) = delete;
+  SetupStage& operator=(const SetupStage&) = delete;
 };
-
-inline void throw_if_stop_requested() {
-  if (process_stop_requested.load(std::memory_order_relaxed)) throw StopRequested();
-}
 
 }  // namespace rockcal

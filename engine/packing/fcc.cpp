@@ -5,8 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "engine/stop_request.hpp"
-
 namespace rockcal {
 namespace {
 
@@ -29,15 +27,13 @@ std::vector<Vec3> lattice_in(const Vec3& half, double radius,
                             std::to_string(kMaxLatticeSites) + ")");
   const int nx = static_cast<int>(cells.x()) + 1, ny = static_cast<int>(cells.y()) + 1,
             nz = static_cast<int>(cells.z()) + 1;
-  for (int k = -nz; k <= nz; ++k) {
-    throw_if_stop_requested();
+  for (int k = -nz; k <= nz; ++k)
     for (int j = -ny; j <= ny; ++j)
       for (int i = -nx; i <= nx; ++i)
         for (const Vec3& b : basis) {
           const Vec3 x = Vec3(i * a, j * a, k * a) + b;
           if (inside(x)) out.push_back(x);
         }
-  }
   return out;
 }
 

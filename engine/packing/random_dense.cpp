@@ -9,8 +9,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "engine/stop_request.hpp"
-
 namespace rockcal {
 namespace {
 
@@ -144,7 +142,6 @@ class Jammer {
   bool compress(double target, double force_tol, int max_iterations) {
     constexpr double kGain = 0.15, kMaxGrowth = 2e-3;  // per iteration
     for (int it = 0; it < max_iterations; ++it) {
-      throw_if_stop_requested();
       const Load l = forces();
       const double pressure = l.overlap_sum / (static_cast<double>(n_) * c_.s * a_mean_);
       const double f_rms = std::sqrt(l.force2_sum / static_cast<double>(n_));
@@ -164,7 +161,6 @@ class Jammer {
   // sum (below jamming this reaches zero energy).
   bool relax(double overlap_tol, int max_iterations) {
     for (int it = 0; it < max_iterations; ++it) {
-      throw_if_stop_requested();
       if (forces().max_relative_overlap < overlap_tol) return true;
       fire_step();
     }

@@ -159,7 +159,7 @@ TEST(Cli, SigtermWhileBuildingThePackingStopsTheRunAtOnce) {
   EXPECT_LT(seconds, 1.0);
   std::ifstream err(dir / "stderr");
   const std::string text((std::istreambuf_iterator<char>(err)), {});
-  EXPECT_NE(text.find("stopped on request (SIGTERM or SIGINT) before the run started"),
+  EXPECT_NE(text.find("stopped on request (SIGTERM or SIGINT) while setting up the run"),
             std::string::npos)
       << text;
   EXPECT_FALSE(fs::exists(dir / "out" / "result.json"));

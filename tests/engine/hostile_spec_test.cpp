@@ -70,10 +70,12 @@ TEST(HostileSpec, JsonNestedPastTheLimitIsRefusedWhileParsing) {
   EXPECT_EQ(input_error(nested(63, "{\"a\":", "}")), "(parsed)");
   EXPECT_EQ(input_error(nested(65, "[", "]")), too_deep);
   EXPECT_EQ(input_error(nested(65, "{\"a\":", "}")), too_deep);
+  // Refused at level 65, whatever follows: parsing stops there.
+  const std::string objects = nested(1000000, "{\"a\":", "}"), arrays(10000000, '[');
   const auto t0 = std::chrono::steady_clock::now();
-  EXPECT_EQ(input_error(nested(1000000, "{\"a\":", "}")), too_deep);
-  EXPECT_EQ(input_error(std::string(10000000, '[')), too_deep);
-  EXPECT_LT(seconds_since(t0), 1.0);
+  EXPECT_EQ(input_error(objects), too_deep);
+  EXPECT_EQ(input_error(arrays), too_deep);
+  EXPECT_LT(seconds_since(t0), 0.1);
   EXPECT_EQ(
       input_error("{\"a\": 1e999}").rfind("malformed JSON: [json.exception.out_of_range.406]", 0),
       0u);
