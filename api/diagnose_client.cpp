@@ -11,6 +11,7 @@
 
 #include "api/client.hpp"
 #include "api/client_http.hpp"
+#include "engine/json_input.hpp"
 
 namespace rockcal::api {
 namespace {
@@ -27,7 +28,7 @@ std::string read_file(const std::filesystem::path& path) {
 
 // The request as the server takes it: kind filled in, a dataset file read and inlined.
 json diagnosis_request(const std::string& file) {
-  json request = json::parse(read_file(file));
+  json request = parse_json_input(read_file(file));
   if (!request.is_object()) throw std::runtime_error(file + ": not a JSON object");
   if (!request.contains("kind")) request["kind"] = "diagnosis";
   if (request.contains("dataset_file")) {
@@ -38,7 +39,7 @@ json diagnosis_request(const std::string& file) {
     if (path.extension() == ".csv") {
       request["dataset_csv"] = text;
     } else {
-      request["dataset"] = json::parse(text);
+      request["dataset"] = parse_json_input(text);
     }
     request.erase("dataset_file");
   }

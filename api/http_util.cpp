@@ -23,9 +23,10 @@ void send_error(httplib::Response& res, int status, const std::string& message,
 std::int64_t parse_id(const std::string& text, const std::string& what) {
   std::int64_t value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  // Canonical form only: "01" is not another name for job 1.
   if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value <= 0 ||
-      !std::isdigit(static_cast<unsigned char>(text[0]))) {
-    throw HttpError(400, what + " must be a positive integer", "id");
+      text[0] == '0' || !std::isdigit(static_cast<unsigned char>(text[0]))) {
+    throw HttpError(400, what + " must be a positive integer without leading zeros", "id");
   }
   return value;
 }
@@ -56,13 +57,6 @@ std::int64_t query_int(const httplib::Request& req, const std::string& name, std
                     name);
   }
   return value;
-}
-
-void reject_unknown_params(const httplib::Request& req, std::initializer_list<const char*> known) {
-  for (const auto& [key, value] : req.params) {
-    bool ok = std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; });
-    if (!ok) throw HttpError(400, "unknown query parameter '" + key + "'", key);
-  }
 }
 
 std::string number_text(double x) {

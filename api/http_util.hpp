@@ -23,15 +23,15 @@ void send_json(httplib::Response& res, const nlohmann::json& body, int status = 
 void send_error(httplib::Response& res, int status, const std::string& message,
                 const std::string& field = "");
 
-// A positive decimal id from a path segment; anything else (e.g. "../x") is a 400.
+// A positive decimal id from a path segment in canonical form (no sign, no leading zero); anything
+// else (e.g. "../x", "01") is a 400.
 std::int64_t parse_id(const std::string& text, const std::string& what);
 
-// Optional query parameters, validated (400 naming the parameter when malformed).
+// Optional query parameters, validated (400 naming the parameter when malformed). Which parameters
+// a route takes, and that none is given twice, the server checks (Route::params).
 std::optional<double> query_number(const httplib::Request& req, const std::string& name);
 std::int64_t query_int(const httplib::Request& req, const std::string& name, std::int64_t fallback,
                        std::int64_t min, std::int64_t max);
-// Rejects query parameters not in `known`.
-void reject_unknown_params(const httplib::Request& req, std::initializer_list<const char*> known);
 
 // Shortest text that reads back as the same double.
 std::string number_text(double x);

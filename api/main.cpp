@@ -34,7 +34,24 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   s->add_option("--max-jobs", serve.max_jobs, "cap on jobs per campaign")->capture_default_str();
   s->add_option("--max-body", serve.max_body, "cap on request body bytes")->capture_default_str();
-  s->add_option("--http-threads", serve.http_threads, "HTTP worker threads")->capture_default_str();
+  s->add_option("--allowed-hosts", serve.allowed_hosts,
+                "Host header values served, NAME or NAME:PORT, comma-separated; * for any "
+                "(default: the --listen address's names)")
+      ->delimiter(',');
+  s->add_option("--max-connections", serve.max_connections, "open HTTP connections; more get 503")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  s->add_option("--read-timeout", serve.read_timeout_s, "seconds one read of a request may wait")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  s->add_option("--request-timeout", serve.request_timeout_s,
+                "seconds a whole request (head and body) may take to arrive")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  s->add_option("--keep-alive-timeout", serve.keep_alive_timeout_s,
+                "seconds an idle connection is kept open")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   s->add_option("--port-file", serve.port_file, "write the bound port here once listening");
   s->add_option("--executor", serve.executor, "where jobs run: local processes or Slurm jobs")
       ->capture_default_str()

@@ -3,6 +3,7 @@
 #include "api/http_util.hpp"
 #include "api/metrics.hpp"
 #include "api/views.hpp"
+#include "engine/json_input.hpp"
 #include "engine/spec.hpp"
 #include "orchestrator/job_files.hpp"
 
@@ -32,9 +33,9 @@ namespace {
 
 json parse_body(const Req& req) {
   try {
-    return json::parse(req.body);
-  } catch (const json::exception& e) {  // parse_error, or out_of_range for 1e999
-    throw HttpError(400, std::string("malformed JSON: ") + e.what(), "(body)");
+    return rockcal::parse_json_input(req.body);
+  } catch (const rockcal::JsonInputError& e) {  // malformed, or nested too deep
+    throw HttpError(400, e.what(), "(body)");
   }
 }
 
@@ -73,7 +74,6 @@ void create_campaign(ApiContext& ctx, const Req& req, Res& res) {
 }
 
 void list_campaigns(ApiContext& ctx, const Req& req, Res& res) {
-  reject_unknown_params(req, {"limit", "offset"});
   auto limit = query_int(req, "limit", 50, 1, 500);
   auto offset = query_int(req, "offset", 0, 0, INT64_MAX / 2);
   auto& store = ctx.service.store();
@@ -107,7 +107,6 @@ void cancel_campaign(ApiContext& ctx, const Req& req, Res& res) {
 }
 
 void campaign_results(ApiContext& ctx, const Req& req, Res& res) {
-  reject_unknown_params(req, {"format"});
   auto c = campaign_or_404(ctx.service, req);
   std::string format = req.has_param("format") ? req.get_param_value("format") : "json";
   if (format != "json" && format != "csv") {
@@ -164,8 +163,6 @@ void job_curve(ApiContext& ctx, const Req& req, Res& res) {
 }
 
 void query_results(ApiContext& ctx, const Req& req, Res& res) {
-  reject_unknown_params(req,
-                        {"test", "fr0_min", "fr0_max", "fs0_min", "fs0_max", "limit", "offset"});
   db::ResultFilter f;
   if (req.has_param("test")) {
     f.test = req.get_param_value("test");
@@ -202,15 +199,18 @@ std::vector<Route> api_routes(ApiContext& ctx) {
          res.set_content(metrics_text(ctx.service, ctx.workers), "text/plain; version=0.0.4");
        }},
       {"POST", "/api/v1/campaigns", bind(create_campaign)},
-      {"GET", "/api/v1/campaigns", bind(list_campaigns)},
+      {"GET", "/api/v1/campaigns", bind(list_campaigns), {"limit", "offset"}},
       {"GET", "/api/v1/campaigns/{id}", bind(get_campaign)},
       {"DELETE", "/api/v1/campaigns/{id}", bind(cancel_campaign)},
-      {"GET", "/api/v1/campaigns/{id}/results", bind(campaign_results)},
+      {"GET", "/api/v1/campaigns/{id}/results", bind(campaign_results), {"format"}},
       {"GET", "/api/v1/campaigns/{id}/report.html", bind(campaign_report)},
       {"GET", "/api/v1/jobs/{id}", bind(get_job)},
       {"GET", "/api/v1/jobs/{id}/log", bind(job_log)},
       {"GET", "/api/v1/jobs/{id}/curve", bind(job_curve)},
-      {"GET", "/api/v1/results", bind(query_results)},
+      {"GET",
+       "/api/v1/results",
+       bind(query_results),
+       {"test", "fr0_min", "fr0_max", "fs0_min", "fs0_max", "limit", "offset"}},
   };
 }
 

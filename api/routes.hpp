@@ -15,6 +15,8 @@ struct Route {
   std::string method;  // GET | POST | DELETE
   std::string path;    // OpenAPI template, e.g. /api/v1/jobs/{id}
   httplib::Server::Handler handler;
+  // The query parameters it takes; the server refuses any other, and any given twice.
+  std::vector<std::string> params = {};
 };
 
 struct ApiContext {

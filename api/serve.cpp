@@ -1,6 +1,7 @@
 #include "api/serve.hpp"
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -98,8 +99,26 @@ int run_serve(const ServeOptions& o, const std::string& argv0) {
   server_cfg.host = host;
   server_cfg.port = port;
   server_cfg.max_body_bytes = o.max_body;
-  server_cfg.http_threads = o.http_threads;
+  server_cfg.allowed_hosts = o.allowed_hosts;
+  auto ms = [](double s) { return std::chrono::milliseconds(static_cast<std::int64_t>(s * 1000)); };
+  server_cfg.connections.max_connections = o.max_connections;
+  server_cfg.connections.read_timeout = ms(o.read_timeout_s);
+  server_cfg.connections.request_timeout = ms(o.request_timeout_s);
+  server_cfg.connections.keep_alive_timeout = ms(o.keep_alive_timeout_s);
   if (!o.token_file.empty()) server_cfg.token = read_token_file(o.token_file);
+  // Each open connection is a descriptor: raise the soft limit as far as allowed, and say so when
+  // it still cannot hold --max-connections (accept() would then wait for descriptors to free up).
+  rlimit files{};
+  if (getrlimit(RLIMIT_NOFILE, &files) == 0) {
+    files.rlim_cur = files.rlim_max;
+    setrlimit(RLIMIT_NOFILE, &files);
+    getrlimit(RLIMIT_NOFILE, &files);
+    if (files.rlim_cur != RLIM_INFINITY && files.rlim_cur < o.max_connections + 256) {
+      std::cerr << "rockcal: warning: " << files.rlim_cur
+                << " open files allowed (ulimit -n), fewer than --max-connections "
+                << o.max_connections << " + 256 for the store and the jobs\n";
+    }
+  }
   if (!is_loopback(host) && !server_cfg.token) {
     std::cerr << "rockcal: warning: listening on " << host << " without --token-file\n";
   }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace rockcal::api {
 
@@ -18,7 +19,11 @@ struct ServeOptions {
   double job_timeout_s = 6 * 3600;
   std::size_t max_jobs = 10000;
   std::size_t max_body = 1 << 20;
-  int http_threads = 32;
+  std::vector<std::string> allowed_hosts;  // Host values served; empty: from the listen address
+  std::size_t max_connections = 512;       // open HTTP connections (one thread each)
+  double read_timeout_s = 5;               // one read of a request may wait this long
+  double request_timeout_s = 20;           // a whole request must arrive within this
+  double keep_alive_timeout_s = 5;         // idle connections are closed after this
   std::string port_file;           // written with the bound port once listening
   std::string executor = "local";  // local | slurm
   std::string jobs_dir;            // default "<data-dir>/jobs"; slurm: shared with compute nodes

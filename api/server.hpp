@@ -1,12 +1,15 @@
 // The HTTP server: registers the route table, turns every error into the JSON error shape, checks
-// the bearer token on mutating requests and caps body sizes.
+// Host (and Origin) against the allowed hosts, the bearer token and Content-Type on mutating
+// requests and the query parameters of each route, and caps body sizes and connections.
 #pragma once
 
 #include <httplib.h>
 
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "api/connections.hpp"
 #include "api/routes.hpp"
 
 namespace rockcal::api {
@@ -16,8 +19,17 @@ struct ServerConfig {
   int port = 8080;                   // 0: any free port (see ApiServer::bind)
   std::optional<std::string> token;  // when set, POST/DELETE need "Authorization: Bearer <token>"
   std::size_t max_body_bytes = 1 << 20;
-  int http_threads = 32;
+  // Host header values served, as "name" (with the bound port) or "name:port"; "*" serves any.
+  // Empty: the listen address's names (allowed_hosts_for), so that a web page in a browser cannot
+  // reach the server under a name of its own (DNS rebinding).
+  std::vector<std::string> allowed_hosts;
+  ConnectionLimits connections;  // max_request_bytes is derived from max_body_bytes
 };
+
+// The default allowed hosts for a listen address: loopback names for a loopback address, the
+// address itself otherwise, plus this machine's host name and interface addresses for a wildcard
+// address (0.0.0.0 or ::).
+std::vector<std::string> allowed_hosts_for(const std::string& listen_host);
 
 class ApiServer {
  public:
@@ -29,14 +41,21 @@ class ApiServer {
   void stop() { server_.stop(); }
   bool is_running() const { return server_.is_running(); }
   const std::vector<Route>& routes() const { return routes_; }
+  std::size_t open_connections() const { return server_.open_connections(); }
 
  private:
   bool authorized(const httplib::Request& req) const;
+  bool host_allowed(const std::string& host) const;
+  // Answers requests the route handlers must not see (wrong Host, token or Content-Type, too
+  // large, over the connection cap); true when it did.
+  bool refused(const httplib::Request& req, httplib::Response& res) const;
 
   ApiContext ctx_;
   ServerConfig config_;
   std::vector<Route> routes_;
-  httplib::Server server_;
+  HttpServer server_;
+  int bound_port_ = 0;
+  std::vector<std::string> default_hosts_;  // allowed_hosts_for(host), set by bind()
 };
 
 // Reads a token file (first line, surrounding whitespace trimmed); throws if missing or empty.

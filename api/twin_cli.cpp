@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "api/serve.hpp"
+#include "engine/json_input.hpp"
 #include "orchestrator/diagnosis/engine_runs.hpp"
 #include "orchestrator/diagnosis/twin.hpp"
 #include "orchestrator/diagnosis/twin_design.hpp"
@@ -22,8 +23,8 @@ json read_template(const std::string& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error("cannot read " + file);
   try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
+    return parse_json_input(in);
+  } catch (const JsonInputError& e) {
     throw std::runtime_error(file + ": not JSON (" + e.what() + ")");
   }
 }

@@ -1,6 +1,8 @@
 // rockcal-dem: runs one DEM job (UCT, BTT, triaxial or elastic) described by a JSON spec.
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -9,17 +11,30 @@
 
 #include <CLI/CLI.hpp>
 
+#include "engine/json_input.hpp"
 #include "engine/run_job.hpp"
 #include "engine/spec.hpp"
+#include "engine/stop_request.hpp"
 
 namespace {
 
-std::atomic<bool> g_stop{false};
+constexpr int kExitOk = 0, kExitFailure = 1, kExitInvalid = 2, kExitStopped = 3;
+
 extern "C" void on_signal(int) {
-  g_stop.store(true);
+  if (rockcal::setup_stages.load() > 0) {  // nothing to keep yet: stop now (async-signal-safe)
+    static const char message[] =
+        "rockcal-dem: stopped on request (SIGTERM or SIGINT) while setting up the run\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, message, sizeof message - 1);
+    _exit(kExitStopped);
+  }
+  rockcal::process_stop_requested.store(true);
 }
 
-constexpr int kExitOk = 0, kExitFailure = 1, kExitInvalid = 2, kExitStopped = 3;
+// Everything printed is valid JSON whatever bytes the job file held: an error message may quote
+// them (a parse error shows the bytes it stopped at), and invalid UTF-8 becomes U+FFFD.
+std::string json_text(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 // Reads and validates a job file. Prints {"error", "field"} and returns nullopt when invalid.
 std::optional<rockcal::JobSpec> load_job(const std::string& path, bool report) {
@@ -29,16 +44,16 @@ std::optional<rockcal::JobSpec> load_job(const std::string& path, bool report) {
     if (!in) throw rockcal::SpecError("(file)", "cannot open " + path);
     nlohmann::json j;
     try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw rockcal::SpecError("(root)", std::string("malformed JSON: ") + e.what());
+      j = rockcal::parse_json_input(in);
+    } catch (const rockcal::JsonInputError& e) {
+      throw rockcal::SpecError("(root)", e.what());
     }
     return rockcal::parse_job(j);
   } catch (const rockcal::SpecError& e) {
     error = {{"error", e.what()}, {"field", e.field}};
   }
   if (report) {
-    std::cout << error.dump() << std::endl;
+    std::cout << json_text(error) << std::endl;
     std::cerr << "rockcal-dem: invalid job: " << error["error"].get<std::string>() << std::endl;
   }
   return std::nullopt;
@@ -90,14 +105,14 @@ int main(int argc, char** argv) {
     code = kExitInvalid;
   } else if (validate->parsed()) {
     if (rank == 0)
-      std::cout << nlohmann::json{{"valid", true}, {"spec", rockcal::to_json(*spec)}}.dump()
-                << std::endl;
+      std::cout << json_text({{"valid", true}, {"spec", rockcal::to_json(*spec)}}) << std::endl;
   } else {
     std::signal(SIGTERM, on_signal);
     std::signal(SIGINT, on_signal);
     try {
-      const nlohmann::json result = rockcal::run_job(*spec, out_dir, &g_stop, rank == 0, world);
-      if (rank == 0) std::cout << result.dump() << std::endl;
+      const nlohmann::json result =
+          rockcal::run_job(*spec, out_dir, &rockcal::process_stop_requested, rank == 0, world);
+      if (rank == 0) std::cout << json_text(result) << std::endl;
       if (result["stop_reason"] == "cancelled") code = kExitStopped;
     } catch (const std::exception& e) {
       std::cerr << "rockcal-dem: run failed on rank " << rank << ": " << e.what() << std::endl;

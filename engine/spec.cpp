@@ -1,6 +1,7 @@
 #include "engine/spec.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "engine/units.hpp"
@@ -9,10 +10,6 @@ namespace rockcal {
 namespace {
 
 using nlohmann::json;
-
-// Upper bound on the particles a spec may ask for: beyond this a typo (mm vs m) is likelier than
-// intent.
-constexpr double kMaxParticles = 5.0e7;
 
 // Reads one JSON object, remembering which keys were consumed so unknown keys can be reported.
 class ObjectReader {
@@ -105,6 +102,23 @@ class ObjectReader {
   std::set<std::string> seen_;
 };
 
+// A count for a message: whole up to a billion, then three significant digits ("1.39e+23").
+std::string count_text(double x) {
+  if (x < 1e9) return std::to_string(std::llround(x));
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+// Particles in the larger of the UCT cylinder and the BTT disc at the FCC density. Computed from
+// the ratios to the radius (each at least 2, so never 0 x inf): huge sizes give +inf, never NaN.
+double particle_estimate(const SampleSpec& s) {
+  const double fcc_cell_share = 4.0 * std::sqrt(2.0);  // volume per particle / R^3
+  const double d = s.diameter_m / s.radius_m;
+  const double l = std::max(s.height_m, s.btt_thickness()) / s.radius_m;
+  return M_PI * 0.25 / fcc_cell_share * d * d * l;
+}
+
 SampleSpec parse_sample(ObjectReader& root) {
   SampleSpec s;
   const json* v = root.find("sample");
@@ -142,13 +156,12 @@ SampleSpec parse_sample(ObjectReader& root) {
     throw SpecError("sample.height", "must be at least 4 particle radii");
   if (s.btt_thickness() < cells)
     throw SpecError("sample.thickness", "must be at least 2 particle radii");
-  const double particle_volume = 4.0 * std::sqrt(2.0) * std::pow(s.radius_m, 3);  // FCC cell share
-  const double longest = std::max(s.height_m, s.btt_thickness());
-  const double estimate = M_PI * 0.25 * s.diameter_m * s.diameter_m * longest / particle_volume;
-  if (estimate > kMaxParticles) {
-    throw SpecError("sample.diameter",
-                    "specimen would hold about " + ObjectReader::fmt(std::round(estimate)) +
-                        " particles (limit " + ObjectReader::fmt(kMaxParticles) + ")");
+  const double estimate = particle_estimate(s);
+  if (!(estimate <= kMaxParticles)) {  // also refuses an estimate that is not a number
+    const std::string about =
+        std::isfinite(estimate) ? "about " + count_text(estimate) : "an unbounded number of";
+    throw SpecError("sample.diameter", "specimen would hold " + about + " particles (limit " +
+                                           count_text(kMaxParticles) + ")");
   }
   return s;
 }
@@ -182,9 +195,23 @@ MaterialSpec parse_material(ObjectReader& root) {
   return m;
 }
 
-BondSpec parse_bond(ObjectReader& root) {
+BondSpec parse_bond(ObjectReader& root, const std::optional<BondSpec>& given) {
   BondSpec b;
   const json* v = root.find("bond");
+  if (given) {
+    // The caller sets the strengths; a block the template has may name them only.
+    if (v) {
+      ObjectReader r(*v, "bond");
+      r.find("fr0");
+      r.find("fs0");
+      r.reject_unknown();
+    }
+    if (!(given->fr0_n > 0) || !std::isfinite(given->fr0_n))
+      throw SpecError("bond.fr0", "must be positive and finite");
+    if (!(given->fs0_n > 0) || !std::isfinite(given->fs0_n))
+      throw SpecError("bond.fs0", "must be positive and finite");
+    return *given;
+  }
   if (!v) throw SpecError("bond", "is required");
   ObjectReader r(*v, "bond");
   if (!r.find("fr0")) throw SpecError("bond.fr0", "is required");
@@ -252,7 +279,7 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
   // gets twice the compression tests' strain by default.
   if (test == TestKind::btt) l.max_strain = kBttMaxStrain;
   l.max_strain = r.in_range("max_strain", l.max_strain, 1e-9, 0.9, false);
-  l.max_steps = r.integer("max_steps", 1, 10'000'000'000LL);
+  l.max_steps = r.integer("max_steps", 1, kMaxSteps);
   l.platen_friction = r.in_range("platen_friction", l.platen_friction, 0.0, 10.0, false);
   if (const json* seat = r.find("seating_load")) {
     if (test == TestKind::elastic)
@@ -313,37 +340,49 @@ std::map<std::string, EffectValues> parse_effects(ObjectReader& root) {
   return effects;
 }
 
-OutputSpec parse_output(ObjectReader& root) {
+OutputSpec parse_output(ObjectReader& root, const SampleSpec& sample) {
   OutputSpec o;
   const json* v = root.find("output");
   if (!v) return o;
   ObjectReader r(*v, "output");
   o.vtk = r.boolean("vtk").value_or(o.vtk);
-  o.vtk_frames = r.integer("vtk_frames", 1, 10'000).value_or(o.vtk_frames);
-  o.curve_points = r.integer("curve_points", 10, 10'000'000).value_or(o.curve_points);
+  o.vtk_frames = r.integer("vtk_frames", 1, kMaxVtkFrames).value_or(o.vtk_frames);
+  o.curve_points = r.integer("curve_points", 10, kMaxCurvePoints).value_or(o.curve_points);
   o.progress_seconds = r.in_range("progress_seconds", o.progress_seconds, 0.0, 86400.0, false);
   r.reject_unknown();
+  const double particle_frames = double(o.vtk_frames) * particle_estimate(sample);
+  if (o.vtk && !(particle_frames <= kMaxVtkParticleFrames)) {
+    throw SpecError("output.vtk_frames",
+                    "frames x particles is about " + count_text(particle_frames) + " (limit " +
+                        count_text(kMaxVtkParticleFrames) + "): fewer frames, or a coarser sample");
+  }
   return o;
 }
 
-JobSpec parse_body(ObjectReader& r, TestKind test) {
+JobSpec parse_body(ObjectReader& r, TestKind test, const std::optional<BondSpec>& bond = {}) {
   JobSpec s;
   s.test = test;
   s.sample = parse_sample(r);
   s.material = parse_material(r);
-  s.bond = parse_bond(r);
+  s.bond = parse_bond(r, bond);
   s.contact = parse_contact(r);
   s.loading = parse_loading(r, test);
   s.damping = parse_damping(r);
-  s.output = parse_output(r);
+  s.output = parse_output(r, s.sample);
   s.effects = parse_effects(r);
   r.reject_unknown();
   // The checks that follow look at the spec a run will use: with the effects' changes.
   const JobSpec run = effective_spec(s);
+  const double limit = critical_time_step(run);
+  if (!(limit > 0.0) || !std::isfinite(limit)) {
+    // Extreme density, stiffness or radius (overflow or underflow): no step could be taken.
+    throw SpecError("material",
+                    "density, stiffness and particle radius give a critical time step of " +
+                        ObjectReader::fmt(limit) + " s: no usable step");
+  }
   if (run.loading.dt_s) {
     // An explicit step above the stability limit would blow up silently; refuse it up front.
-    const double limit = critical_time_step(run);
-    if (*run.loading.dt_s > limit) {
+    if (!(*run.loading.dt_s <= limit)) {
       throw SpecError("loading.dt",
                       "exceeds the stability limit " + ObjectReader::fmt(limit) + " s");
     }
@@ -404,12 +443,13 @@ JobSpec parse_job(const nlohmann::json& job) {
   return parse_body(r, *kind);
 }
 
-JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test) {
+JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test,
+                           const std::optional<BondSpec>& bond) {
   if (job_template.is_object() && job_template.contains("test")) {
     throw SpecError("job.test", "a template must not name the test; the campaign does");
   }
   ObjectReader r(job_template, "");
-  return parse_body(r, test);
+  return parse_body(r, test, bond);
 }
 
 nlohmann::json to_json(const JobSpec& s) {

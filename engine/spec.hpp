@@ -22,11 +22,20 @@ enum class TestKind { uct, btt, elastic, triaxial };
 // flattened: two parallel flats cut at the loading angle 2 alpha (Wang et al. 2004), flat platens.
 enum class BttGeometry { flat_platens, curved_jaws, flattened };
 
+// Per-job cost limits (docs/engine-interface.md, "Limits"): no single job may ask for more. The
+// job's wall time is bounded by whoever runs it (the service's --job-timeout).
+inline constexpr double kMaxParticles = 2.0e6;            // memory: about 2 KB per particle
+inline constexpr std::int64_t kMaxSteps = 100'000'000;    // loading.max_steps
+inline constexpr std::int64_t kMaxCurvePoints = 100'000;  // output.curve_points (rows stored)
+inline constexpr std::int64_t kMaxVtkFrames = 1'000;      // output.vtk_frames
+inline constexpr double kMaxVtkParticleFrames = 5.0e7;    // vtk_frames x particles (disk)
+
 // An invalid spec. `field` is the dotted path of the offending key ("loading.dt").
 struct SpecError : std::runtime_error {
   std::string field;
-  SpecError(std::string field_path, const std::string& message)
-      : std::runtime_error(field_path + ": " + message), field(std::move(field_path)) {}
+  std::string message;  // what() without the "field: " prefix (what() stops at a NUL in a key)
+  SpecError(std::string field_path, const std::string& text)
+      : std::runtime_error(field_path + ": " + text), field(std::move(field_path)), message(text) {}
 };
 
 struct SampleSpec {
@@ -140,7 +149,11 @@ struct JobSpec {
 JobSpec parse_job(const nlohmann::json& job);
 
 // Parses a job template that has no "test" key yet (the service adds it per job). Same checks.
-JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test);
+// With `bond`, the job's strengths are these (the campaign sets them): the template's own "bond"
+// block, if any, may only name fr0 and fs0, whose values are ignored. So a campaign validates its
+// template as it stands, without copying it to fill in a bond.
+JobSpec parse_job_template(const nlohmann::json& job_template, TestKind test,
+                           const std::optional<BondSpec>& bond = std::nullopt);
 
 // The canonical form: every field present with its default, so that equal jobs serialise equally.
 // It is the job as written (effects not applied), so parse_job(to_json(s)) == s. Throws

@@ -6,6 +6,7 @@
 
 #include <iostream>
 
+#include "engine/json_input.hpp"
 #include "orchestrator/campaign_status.hpp"
 #include "orchestrator/job_files.hpp"
 #include "orchestrator/job_identity.hpp"
@@ -90,7 +91,7 @@ void JobService::start() {
   for (const auto& c : store_->campaigns(1 << 30, 0)) {
     if (c.driver_status != std::optional<std::string>("running")) continue;
     if (const auto* kind = kinds_.find(c.kind); kind && kind->driver) {
-      start_driver(c.id, *kind, json::parse(c.request));
+      start_driver(c.id, *kind, parse_json_input(c.request));
     }
   }
 }
@@ -111,7 +112,7 @@ void JobService::stop() {
   started_ = false;
 }
 
-std::int64_t JobService::create_campaign(const json& request) {
+CampaignPlan JobService::plan_campaign(const json& request, const CampaignKind** kind_out) const {
   if (!request.is_object()) throw RequestError("(body)", "must be a JSON object");
   auto it = request.find("kind");
   if (it == request.end()) throw RequestError("kind", "is required");
@@ -123,7 +124,13 @@ std::int64_t JobService::create_campaign(const json& request) {
     throw RequestError("kind",
                        "unknown kind '" + it->get<std::string>() + "' (known: " + known + ")");
   }
-  CampaignPlan plan = kind->plan(request, config_.limits);
+  if (kind_out) *kind_out = kind;
+  return kind->plan(request, config_.limits);
+}
+
+std::int64_t JobService::create_campaign(const json& request) {
+  const CampaignKind* kind = nullptr;
+  CampaignPlan plan = plan_campaign(request, &kind);
   std::int64_t id = store_->create_campaign(kind->name, plan.name, request.dump(),
                                             static_cast<bool>(kind->driver), plan.jobs);
   pool_->wake();

@@ -57,6 +57,10 @@ class JobService {
   // Validates the whole request (throws RequestError naming the field) and stores the campaign
   // and its jobs in one transaction. Returns the campaign id.
   std::int64_t create_campaign(const nlohmann::json& request);
+  // The validation part of create_campaign: the kind and its plan, nothing stored. Throws
+  // RequestError naming the field.
+  CampaignPlan plan_campaign(const nlohmann::json& request,
+                             const CampaignKind** kind = nullptr) const;
 
   db::CancelOutcome cancel_campaign(std::int64_t campaign_id);
 

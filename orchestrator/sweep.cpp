@@ -55,8 +55,7 @@ std::vector<Point> listed_points(const json& points, std::size_t cap) {
 
 // The template's seed (from `first`, the first job), once `count` realisations are checked
 // against it.
-std::uint64_t base_seed(int count, const db::NewJob& first) {
-  const rockcal::JobSpec spec = rockcal::parse_job(json::parse(first.spec));
+std::uint64_t base_seed(int count, const rockcal::JobSpec& spec) {
   if (auto problem = realisations_problem(count, spec.sample.seed, rockcal::seed_matters(spec))) {
     throw RequestError("realisations", *problem);
   }
@@ -92,24 +91,24 @@ CampaignPlan plan_sweep(const json& request, const Limits& limits) {
         request.contains("grid") ? "grid" : "points",
         std::to_string(jobs) + " jobs exceed the cap of " + std::to_string(cap) + " per campaign");
   }
-  // Every job goes through the engine's validation before anything is stored. Realisation k of a
-  // point runs seed s + k, s the template's: its own job, so the cache knows it.
-  std::vector<std::uint64_t> seeds;
+  // The template is validated once per test as it stands (the request's JSON is never copied);
+  // each job is the parsed spec with its point's strengths, and every job goes through the
+  // engine's validation again before anything is stored. Realisation k of a point runs seed s + k,
+  // s the template's: its own job, so the cache knows it.
   for (const auto& test : tests) {
+    rockcal::JobSpec base;
+    try {
+      const rockcal::BondSpec first{points.front().first, points.front().second};
+      base = rockcal::parse_job_template(tmpl, *rockcal::test_kind_from_string(test), first);
+    } catch (const rockcal::SpecError& e) {
+      throw RequestError("job." + e.field, e.what());
+    }
+    const auto seeds = realisation_seeds(base_seed(realisations, base), realisations);
     for (auto [fr0, fs0] : points) {
-      json spec = tmpl;
-      spec["test"] = test;
-      if (!spec.contains("bond")) spec["bond"] = json::object();
-      if (spec["bond"].is_object()) {
-        spec["bond"]["fr0"] = fr0;
-        spec["bond"]["fs0"] = fs0;
-      }
-      plan.jobs.push_back(make_job(spec, "job."));
-      if (seeds.empty())
-        seeds = realisation_seeds(base_seed(realisations, plan.jobs[0]), realisations);
-      for (std::size_t k = 1; k < seeds.size(); ++k) {
-        spec["sample"]["seed"] = seeds[k];
-        plan.jobs.push_back(make_job(spec, "job."));
+      base.bond = {fr0, fs0};
+      for (std::uint64_t seed : seeds) {
+        base.sample.seed = seed;
+        plan.jobs.push_back(make_job(rockcal::to_json(base), "job."));
       }
     }
   }

@@ -10,6 +10,7 @@
 #include "engine/packing/cache.hpp"
 #include "engine/packing/fcc.hpp"
 #include "engine/packing/floaters.hpp"
+#include "engine/stop_request.hpp"
 #include "engine/units.hpp"
 
 namespace rockcal {
@@ -148,6 +149,7 @@ void widen_halo_for_bonds(Simulation& sim, double r_max) {
 }  // namespace
 
 Simulation make_specimen(const JobSpec& job, MPI_Comm comm) {
+  const SetupStage stage;  // a stop now ends the process at once (engine/stop_request.hpp)
   const JobSpec spec = effective_spec(job);  // a no-op when the driver already made it effective
   std::int64_t floaters = 0;
   const std::vector<Sphere> spheres = specimen_spheres(spec, &floaters);

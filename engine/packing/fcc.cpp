@@ -2,11 +2,17 @@
 
 #include <cmath>
 #include <functional>
+#include <stdexcept>
+#include <string>
 
 #include "engine/effects/draw.hpp"
 
 namespace rockcal {
 namespace {
+
+// Lattice sites one walk may visit: bounds its time and memory whatever the caller asks (the job
+// spec's particle limit keeps real specimens far below).
+constexpr double kMaxLatticeSites = 2.0e8;
 
 // Walks the lattice over every cell that can reach the box of half-extents `half` (whatever the
 // placement's angle) and keeps the centres `inside` accepts.
@@ -16,10 +22,16 @@ std::vector<Vec3> lattice_in(const Vec3& half, double radius, const LatticePlace
   const Vec3 basis[4] = {
       {0, 0, 0}, {0.5 * a, 0.5 * a, 0}, {0.5 * a, 0, 0.5 * a}, {0, 0.5 * a, 0.5 * a}};
   const double c = std::cos(place.angle_rad), s = std::sin(place.angle_rad);
-  // In the lattice's frame the rotated box fits in a square of half-side |half_xy|.
-  const double reach_xy = std::hypot(half.x(), half.y()) + a;
-  const int nxy = static_cast<int>(reach_xy / a) + 1;
-  const int nz = static_cast<int>((half.z() + a) / a) + 1;
+  // In the lattice's frame the rotated box fits in a square of half-side |half_xy|. Cell counts
+  // are +inf or NaN for absurd sizes: refused by the site test before any cast to int.
+  const double cells_xy = (std::hypot(half.x(), half.y()) + a) / a;
+  const double cells_z = (half.z() + a) / a;
+  const double sites = 4.0 * (2.0 * cells_xy + 3.0) * (2.0 * cells_xy + 3.0) * (2.0 * cells_z + 3.0);
+  if (!(radius > 0.0) || !(sites <= kMaxLatticeSites))
+    throw std::length_error("FCC lattice of " + std::to_string(sites) + " sites (limit " +
+                            std::to_string(kMaxLatticeSites) + ")");
+  const int nxy = static_cast<int>(cells_xy) + 1;
+  const int nz = static_cast<int>(cells_z) + 1;
   std::vector<Vec3> out;
   for (int k = -nz; k <= nz; ++k)
     for (int j = -nxy; j <= nxy; ++j)

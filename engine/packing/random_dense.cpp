@@ -7,6 +7,7 @@
 #include <functional>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 namespace rockcal {
 namespace {
@@ -285,6 +286,9 @@ class Jammer {
 // which the margin absorbs; every particle outside the shape is wasted work, so it stays small.
 constexpr double kExpectedSolidFraction = 0.62;
 constexpr double kStartSolidFraction = 0.3;
+// Particles one cloud may hold: bounds the time and memory of a packing whatever the caller asks
+// (the job spec's particle limit keeps real specimens far below).
+constexpr double kMaxCloudParticles = 2.0e7;
 
 PeriodicCloud random_cloud(const Vec3& bounding_box, const RandomPackingParams& p) {
   if (!(p.mean_radius_m > 0.0) || !(p.radius_ratio >= 1.0))
@@ -299,9 +303,11 @@ PeriodicCloud random_cloud(const Vec3& bounding_box, const RandomPackingParams& 
   c.box = bounding_box + Vec3::Constant(2.0 * r_max);
   // Three cells a side of at least 2 r_max plus the skin (see CellGrid).
   c.box = c.box.cwiseMax(Vec3::Constant(3.0 * (2.0 * r_max + 0.5 * p.mean_radius_m)));
-  const double box_volume = c.box.prod();
-  const auto n = static_cast<std::size_t>(
-      std::llround(kExpectedSolidFraction * box_volume / (4.0 / 3.0 * kPi * mean_r3)));
+  const double count = kExpectedSolidFraction * c.box.prod() / (4.0 / 3.0 * kPi * mean_r3);
+  if (!(count <= kMaxCloudParticles))  // also a count that is not a number
+    throw std::length_error("random packing of " + std::to_string(count) + " particles (limit " +
+                            std::to_string(kMaxCloudParticles) + ")");
+  const auto n = static_cast<std::size_t>(std::llround(count));
   std::mt19937_64 g(p.seed);
   c.x.resize(n);
   c.a.resize(n);

@@ -59,14 +59,13 @@ JobSpec validate_template(const json& job_template, const Range& fr0, const Rang
   if (job_template.contains("bond")) {
     throw CampaignError("job.bond", "is set by the calibration; leave it out of the template");
   }
-  json probe = job_template;
-  probe["bond"] = {{"fr0", std::sqrt(fr0.lo * fr0.hi)}, {"fs0", std::sqrt(fs0.lo * fs0.hi)}};
+  const BondSpec probe{std::sqrt(fr0.lo * fr0.hi), std::sqrt(fs0.lo * fs0.hi)};
   try {
-    parse_job_template(probe, TestKind::btt);
-    return parse_job_template(probe, TestKind::uct);
+    parse_job_template(job_template, TestKind::btt, probe);
+    return parse_job_template(job_template, TestKind::uct, probe);
   } catch (const SpecError& e) {
     const bool prefixed = e.field.rfind("job.", 0) == 0;
-    const std::string message = std::string(e.what()).substr(e.field.size() + 2);
+    const std::string message = e.message;
     throw CampaignError(prefixed ? e.field : "job." + e.field, message);
   }
 }
@@ -142,8 +141,9 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
     c.fs0_n = parse_log_range(bounds.require("fs0"), bounds.path_of("fs0"));
     bounds.reject_unknown();
   }
-  c.job_template = root.require("job");
-  const JobSpec model = validate_template(c.job_template, c.fr0_n, c.fs0_n);
+  const json& job_template = root.require("job");
+  const JobSpec model = validate_template(job_template, c.fr0_n, c.fs0_n);
+  c.job_template = job_template;  // copied once the engine has validated it
   c.model_specimen = {model.sample.diameter_m, model.sample.height_m, model.sample.btt_thickness()};
   c.sample_seed = model.sample.seed;
   c.targets = parse_targets(root, model, c.model_specimen);

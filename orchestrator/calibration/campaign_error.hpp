@@ -9,8 +9,9 @@ namespace rockcal::calibration {
 
 struct CampaignError : std::runtime_error {
   std::string field;
-  CampaignError(std::string field_path, const std::string& message)
-      : std::runtime_error(field_path + ": " + message), field(std::move(field_path)) {}
+  std::string message;  // what() without the "field: " prefix (what() stops at a NUL in a key)
+  CampaignError(std::string field_path, const std::string& text)
+      : std::runtime_error(field_path + ": " + text), field(std::move(field_path)), message(text) {}
 };
 
 }  // namespace rockcal::calibration

@@ -21,7 +21,7 @@ using nlohmann::json;
 // "dataset.observations[2].value"); SpecError and CampaignError both read "field: message".
 template <class Error>
 CampaignError under(const std::string& prefix, const Error& e) {
-  const std::string message = std::string(e.what()).substr(e.field.size() + 2);
+  const std::string message = e.message;
   if (prefix.empty() || e.field.empty()) return CampaignError(prefix + e.field, message);
   return CampaignError(prefix + "." + e.field, message);
 }
@@ -140,10 +140,8 @@ JobSpec parse_template(JsonFields& root) {
                           "is set by the diagnosis; leave it out of the template");
     }
   }
-  json probe = t;
-  probe["bond"] = {{"fr0", 64.0}, {"fs0", 64.0}};
   try {
-    return parse_job_template(probe, TestKind::uct);
+    return parse_job_template(t, TestKind::uct, BondSpec{64.0, 64.0});
   } catch (const SpecError& e) {
     throw under(e.field.rfind("job.", 0) == 0 ? "" : "job", e);
   }
@@ -230,7 +228,7 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
   c.name = root.string("name").value_or("");
   if (c.name.size() > 200) throw CampaignError("name", "must be at most 200 characters");
   const JobSpec model = parse_template(root);
-  c.job_template = request.at("job");
+  c.job_template = request.at("job");  // a copy of the template the engine has just validated
   c.sample_seed = model.sample.seed;
   if (const json* v = root.get("bounds")) {
     JsonFields bounds(*v, "bounds");

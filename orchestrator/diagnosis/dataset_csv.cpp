@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "engine/json_input.hpp"
 #include "orchestrator/diagnosis/dataset.hpp"
 
 namespace rockcal::diagnosis {
@@ -84,8 +85,8 @@ void apply_directive(json& root, const std::string& key, const std::string& valu
   if (root.contains(key)) throw DatasetError(key, where + ": given twice");
   if (key == "lab" || key == "model_scale") {
     try {
-      root[key] = json::parse(value);
-    } catch (const json::parse_error& e) {
+      root[key] = parse_json_input(value);
+    } catch (const JsonInputError& e) {
       throw DatasetError(key, where + ": not JSON (" + e.what() + ")");
     }
   } else {
@@ -176,7 +177,7 @@ Dataset parse_dataset_csv(const std::string& text) {
     const std::string prefix = "observations[";
     if (e.field.rfind(prefix, 0) != 0) throw;
     const std::size_t index = std::stoul(e.field.substr(prefix.size()));
-    const std::string message = std::string(e.what()).substr(e.field.size() + 2);
+    const std::string message = e.message;
     throw DatasetError(e.field,
                        message + " (line " + std::to_string(line_of_observation.at(index)) + ")");
   }

@@ -2,6 +2,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/json_input.hpp"
 #include "orchestrator/diagnosis/dataset.hpp"
 
 namespace rockcal::diagnosis {
@@ -20,12 +21,12 @@ Dataset read_dataset_file(const std::filesystem::path& file) {
   text << in.rdbuf();
   try {
     if (is_csv(file)) return parse_dataset_csv(text.str());
-    return parse_dataset_json(nlohmann::json::parse(text.str()));
-  } catch (const nlohmann::json::parse_error& e) {
+    return parse_dataset_json(parse_json_input(text.str()));
+  } catch (const JsonInputError& e) {
     throw std::runtime_error(file.string() + ": not JSON (" + e.what() + ")");
   } catch (const DatasetError& e) {
     // Keep the type and the field, so callers can still point at it; the message names the file.
-    const std::string message = std::string(e.what()).substr(e.field.size() + 2);
+    const std::string message = e.message;
     throw DatasetError(e.field, message + " [" + file.string() + "]");
   }
 }

@@ -40,7 +40,7 @@ JobSpec validate_template(const json& job_template) {
     parse_job_template(probe, TestKind::btt);
     return parse_job_template(probe, TestKind::uct);
   } catch (const SpecError& e) {
-    const std::string message = std::string(e.what()).substr(e.field.size() + 2);
+    const std::string message = e.message;
     throw CampaignError("job." + e.field, message);
   }
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <thread>
 
 #include "api/server.hpp"
@@ -20,7 +21,9 @@ struct ApiServerFixture : ::testing::Test {
   std::thread thread;
   int port = 0;
 
-  void start(std::optional<std::string> token = std::nullopt, std::size_t max_jobs = 100) {
+  // `configure` may change the server's settings (limits, allowed hosts) before it binds.
+  void start(std::optional<std::string> token = std::nullopt, std::size_t max_jobs = 100,
+             const std::function<void(api::ServerConfig&)>& configure = {}) {
     orch::ServiceConfig cfg;
     cfg.db_path = dir.path() / "api.db";
     cfg.workers = 2;
@@ -33,6 +36,7 @@ struct ApiServerFixture : ::testing::Test {
     sc.port = 0;
     sc.token = token;
     sc.max_body_bytes = 64 * 1024;
+    if (configure) configure(sc);
     server = std::make_unique<api::ApiServer>(*service, cfg.workers, sc);
     port = server->bind();
     service->start();

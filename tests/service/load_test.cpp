@@ -26,8 +26,8 @@ int load_seconds() {
 
 TEST(Load, FiftyConcurrentClientsGetNo5xxAndNoLockErrors) {
   TempDir dir;
-  ServerProcess server(dir.path(), {"--engine", engine_binary(), "--ranks-per-job", "0",
-                                    "--workers", "2", "--http-threads", "64"});
+  ServerProcess server(dir.path(),
+                       {"--engine", engine_binary(), "--ranks-per-job", "0", "--workers", "2"});
   server.start();
   const int clients = 50;
   const auto duration = std::chrono::seconds(load_seconds());

@@ -81,9 +81,10 @@ export function scatterPlot(s, lab, width) {
   const series = [{name: 'one packing seed', marker: 'circle',
     points: runs.map((r) => ({x: r.uct, y: r.btt, key: `seed${r.seed}`,
       label: `seed ${r.seed}: UCT ${num(r.uct)} N, BTT ${num(r.btt)} N`}))}];
-  // The best point's own realisations, when the search ran an ensemble per evaluation.
+  // The best point's own realisations, when the search ran an ensemble per evaluation (one
+  // realisation is the scatter's run of the template's seed, already plotted).
   const e = s.best && s.best.ensemble;
-  if (e && e.uct && e.btt && Array.isArray(e.uct.realisations)) {
+  if (e && e.uct && e.btt && Array.isArray(e.uct.realisations) && e.uct.realisations.length > 1) {
     const btt = new Map(e.btt.realisations.map((r) => [r.seed, r.peak_load_n]));
     const pairs = e.uct.realisations.filter((r) => Number.isFinite(r.peak_load_n) && Number.isFinite(btt.get(r.seed)));
     series.push({name: 'realisation of the search', marker: 'triangle', hollow: true,
