@@ -9,6 +9,7 @@
 #include "orchestrator/calibration/local_search.hpp"
 #include "orchestrator/calibration/ratio_scale.hpp"
 #include "orchestrator/calibration/start_design.hpp"
+#include "orchestrator/calibration/suggestion.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -81,6 +82,8 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   if (r.best->within_tolerance) {
     r.verdict = Verdict::feasible;
     r.verdict_reason = format("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
+    r.verdict_reason += r.consistent.unique ? "; the strengths are unique: " : "; NOT unique: ";
+    r.verdict_reason += r.consistent.why;
     return;
   }
   if (r.stop_reason == StopReason::cancelled) {
@@ -125,9 +128,6 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
     report.homogeneity.checks.push_back(
         measure_homogeneity(ledger.history()[0], ledger.history()[1], c.homogeneity_tolerance));
   }
-  report.history = ledger.history();
-  if (const EvaluationRecord* best = ledger.best()) report.best = *best;
-  report.ratio = ratio_range(report.history, ledger.targets());
   if (cancelled)
     report.stop_reason = StopReason::cancelled;
   else if (ledger.target_met())
@@ -137,13 +137,29 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
   else
     report.stop_reason = StopReason::converged;
 
-  if (!cancelled && report.best && !options.stop.stop_requested()) {
+  // After the search: the whole set that meets the targets, the observable that would pin it,
+  // and the best point on other packings.
+  auto after_search = [&](auto step) {
+    if (cancelled || options.stop.stop_requested()) return;
     try {
-      report.scatter = scatter_best(c, evaluator, *report.best);
+      step();
+    } catch (const SearchDone&) {
     } catch (const EvaluationCancelled&) {
+      cancelled = true;
       report.stop_reason = StopReason::cancelled;
     }
-  }
+  };
+  after_search([&] {
+    report.trace =
+        trace_valley(ledger, c, report.homogeneity.degree(), c.consistency_evaluations);
+  });
+  report.history = ledger.history();
+  if (const EvaluationRecord* best = ledger.best()) report.best = *best;
+  report.ratio = ratio_range(report.history, ledger.targets());
+  report.consistent = consistent_set(report.history, report.trace);
+  if (c.suggest)
+    after_search([&] { report.suggestion = suggest_observable(report.consistent, c, evaluator); });
+  if (report.best) after_search([&] { report.scatter = scatter_best(c, evaluator, *report.best); });
   judge(report, c);
   return report;
 }

@@ -2,14 +2,29 @@
 
 namespace rockcal::calibration {
 
-nlohmann::json job_for(const nlohmann::json& job_template, const EvaluationRequest& request,
-                       TestKind test, std::uint64_t seed) {
-  nlohmann::json job = job_template;
+namespace {
+
+nlohmann::json job_at(nlohmann::json job, TestKind test, const BondPoint& point,
+                      std::uint64_t seed) {
   job["test"] = to_string(test);
-  job["bond"] = {{"fr0", request.point.fr0_n}, {"fs0", request.point.fs0_n}};
+  job["bond"] = {{"fr0", point.fr0_n}, {"fs0", point.fs0_n}};
   job["sample"]["seed"] = seed;
   // Canonical form: equal requests give byte-equal jobs, so the job cache recognises them.
   return to_json(parse_job(job));
+}
+
+}  // namespace
+
+nlohmann::json job_for(const nlohmann::json& job_template, const EvaluationRequest& request,
+                       TestKind test, std::uint64_t seed) {
+  return job_at(job_template, test, request.point, seed);
+}
+
+nlohmann::json job_for(const nlohmann::json& job_template, const ProbeRequest& probe,
+                       std::uint64_t seed) {
+  nlohmann::json job = job_template;
+  job.merge_patch(probe.patch);
+  return job_at(std::move(job), probe.test, probe.point, seed);
 }
 
 namespace {

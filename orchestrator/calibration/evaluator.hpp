@@ -61,6 +61,17 @@ struct EvaluationCancelled : std::runtime_error {
   EvaluationCancelled() : std::runtime_error("calibration cancelled") {}
 };
 
+// A further test of a point beyond the two the targets use (a triaxial at a confinement, a disc of
+// another size): what the report's suggestion measures across the consistent set. `patch` is
+// merged into the job template (a JSON merge patch) before the test, strengths and seed are set.
+struct ProbeRequest {
+  BondPoint point;
+  std::uint64_t sample_seed;
+  int realisations = 1;
+  TestKind test = TestKind::uct;
+  nlohmann::json patch = nlohmann::json::object();
+};
+
 class Evaluator {
  public:
   virtual ~Evaluator() = default;
@@ -71,6 +82,13 @@ class Evaluator {
   // which is what lets a restarted campaign replay its history. May throw EvaluationCancelled.
   virtual std::vector<EvaluationOutcome> evaluate_batch(
       std::span<const EvaluationRequest> requests) = 0;
+  // Runs each probe's realisations concurrently: one ensemble per probe, in order. An evaluator
+  // that runs only the two target tests returns none, and the report suggests from what the
+  // search itself measured.
+  virtual std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> probes) {
+    (void)probes;
+    return {};
+  }
 };
 
 // The full job (test, bond strengths, seed filled in) that evaluates one test of a request on the
@@ -78,5 +96,8 @@ class Evaluator {
 // to its pool. `job_template` is the campaign's "job" block.
 nlohmann::json job_for(const nlohmann::json& job_template, const EvaluationRequest& request,
                        TestKind test, std::uint64_t seed);
+// The same for a probe: the template with the probe's patch merged in.
+nlohmann::json job_for(const nlohmann::json& job_template, const ProbeRequest& probe,
+                       std::uint64_t seed);
 
 }  // namespace rockcal::calibration

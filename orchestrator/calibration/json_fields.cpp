@@ -70,6 +70,13 @@ std::optional<std::string> JsonFields::string(const std::string& key) {
   return v->get<std::string>();
 }
 
+std::optional<bool> JsonFields::boolean(const std::string& key) {
+  const nlohmann::json* v = get(key);
+  if (!v) return std::nullopt;
+  if (!v->is_boolean()) throw CampaignError(path_of(key), "must be true or false");
+  return v->get<bool>();
+}
+
 void JsonFields::reject_unknown() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
     if (!read_.count(it.key())) throw CampaignError(path_of(it.key()), "unknown field");

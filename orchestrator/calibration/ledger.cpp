@@ -9,7 +9,16 @@ namespace rockcal::calibration {
 
 Ledger::Ledger(const CalibrationCampaign& campaign, Evaluator& evaluator, std::stop_token stop,
                RecordCallback on_record)
-    : campaign_(campaign), evaluator_(evaluator), stop_(stop), on_record_(std::move(on_record)) {}
+    : campaign_(campaign),
+      evaluator_(evaluator),
+      stop_(stop),
+      on_record_(std::move(on_record)),
+      budget_(campaign.max_evaluations) {}
+
+void Ledger::extend_beyond_target(int evaluations) {
+  budget_ = int(history_.size()) + std::max(0, evaluations);
+  stop_at_target_ = false;
+}
 
 std::vector<EvaluationRecord> Ledger::evaluate(const std::vector<BondPoint>& points,
                                                const std::string& phase) {
@@ -38,7 +47,7 @@ std::vector<EvaluationRecord> Ledger::evaluate(const std::vector<BondPoint>& poi
       if (on_record_) on_record_(history_.back());
     }
   }
-  if (truncated || target_met()) throw SearchDone{};
+  if (truncated || (stop_at_target_ && target_met())) throw SearchDone{};
   std::vector<EvaluationRecord> records;
   for (const BondPoint& p : clipped)
     records.push_back(history_[index_of_point_.at({p.fr0_n, p.fs0_n})]);
@@ -48,6 +57,15 @@ std::vector<EvaluationRecord> Ledger::evaluate(const std::vector<BondPoint>& poi
 EvaluationRecord Ledger::evaluate_one(const BondPoint& point, const std::string& phase) {
   return evaluate({point}, phase).front();
 }
+
+namespace {
+
+double relative_se(const std::optional<orch::Ensemble>& e) {
+  if (!e || !e->peak_load.se || !e->peak_load.mean || !(*e->peak_load.mean > 0)) return 0.0;
+  return *e->peak_load.se / *e->peak_load.mean;
+}
+
+}  // namespace
 
 EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome& outcome,
                                 const std::string& phase) {
@@ -65,8 +83,9 @@ EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome&
                       outcome.loads->btt_n > 0;
   if (usable) {
     r.loads = outcome.loads;
+    r.rel_se = {relative_se(outcome.uct), relative_se(outcome.btt)};
     r.misfit = misfit(log_errors(*r.loads, targets()), weights());
-    r.within_tolerance = within_tolerance(*r.loads, targets(), campaign_.tolerance);
+    r.within_tolerance = within_tolerance(*r.loads, targets(), campaign_.tolerance, r.rel_se);
   } else {
     if (outcome.loads) r.error = "non-positive or non-finite peak load";
     if (r.error.empty()) r.error = "evaluation failed";

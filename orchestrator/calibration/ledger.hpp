@@ -23,6 +23,7 @@ struct EvaluationRecord {
   BondPoint point{};               // model units, as run
   std::uint64_t sample_seed = 0;   // of the first realisation
   std::optional<PeakLoads> loads;  // ensemble means; absent when the evaluation failed
+  PeakLoads rel_se{0.0, 0.0};      // standard error / mean of each load (0 for one realisation)
   std::string error;
   std::optional<orch::Ensemble> uct;  // realisations and statistics, when the evaluator gave them
   std::optional<orch::Ensemble> btt;
@@ -51,7 +52,10 @@ class Ledger {
   const std::vector<EvaluationRecord>& history() const { return history_; }
   const EvaluationRecord* best() const;  // lowest misfit among successful evaluations
   bool target_met() const;
-  int remaining() const { return campaign_.max_evaluations - int(history_.size()); }
+  int remaining() const { return budget_ - int(history_.size()); }
+  // After the search: `evaluations` more, which run on past a point that meets the targets (the
+  // consistent-set trace looks for all such points, not the first).
+  void extend_beyond_target(int evaluations);
   Weights weights() const { return {campaign_.weight_uct, campaign_.weight_btt}; }
   const PeakLoads& targets() const { return campaign_.targets.model_loads_n; }
 
@@ -65,6 +69,8 @@ class Ledger {
   std::stop_token stop_;
   RecordCallback on_record_;
   std::vector<EvaluationRecord> history_;
+  int budget_;
+  bool stop_at_target_ = true;
   std::map<std::pair<double, double>, int> index_of_point_;
 };
 

@@ -20,8 +20,16 @@ class PoolEvaluator : public Evaluator {
   // Throws EvaluationCancelled when the campaign is cancelled or the server stops.
   std::vector<EvaluationOutcome> evaluate_batch(
       std::span<const EvaluationRequest> requests) override;
+  std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> probes) override;
 
  private:
+  struct Submitted {
+    std::int64_t job_id;
+    std::uint64_t seed;
+  };
+  // Waits for each group of jobs and makes it an ensemble.
+  std::vector<orch::Ensemble> collect(const std::vector<std::vector<Submitted>>& groups);
+
   orch::JobService& service_;
   std::int64_t campaign_id_;
   nlohmann::json job_template_;

@@ -37,7 +37,7 @@ class RatioSearch {
     const RatioCoords rc = ratio_coords(r.point);
     const LogErrors e = log_errors(*r.loads, ledger_.targets());
     const Weights w = ledger_.weights();
-    const double free_shift = -(w.uct * e.uct + w.btt * e.btt) / ((w.uct + w.btt) * degree_);
+    const double free_shift = scale_shift(e, w, degree_);
     const double shift = clamp_to(rc.m + free_shift, m_range(box_, rc.s)) - rc.m;
     const double du = e.uct + degree_ * shift;
     const double db = e.btt + degree_ * shift;

@@ -11,6 +11,7 @@
 #include "orchestrator/calibration/campaign.hpp"
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/ledger.hpp"
+#include "orchestrator/calibration/suggestion.hpp"
 
 namespace rockcal::calibration {
 
@@ -49,6 +50,9 @@ struct SeedScatter {
 };
 
 struct CalibrationReport {
+  ValleyTrace trace;                    // the consistent-set trace after the search
+  ConsistentSet consistent;             // every evaluated point that meets the targets
+  std::optional<Suggestion> suggestion;  // when the set is not one point
   StopReason stop_reason = StopReason::converged;
   Verdict verdict = Verdict::failed;
   std::string verdict_reason;

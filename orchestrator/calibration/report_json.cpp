@@ -61,6 +61,51 @@ json best_json(const EvaluationRecord& best, const CalibrationCampaign& c) {
   return j;
 }
 
+json mean_se_json(const std::optional<orch::Ensemble>& e, double mean) {
+  return {{"mean", mean},
+          {"se", e && e->peak_load.se ? json(*e->peak_load.se) : json(nullptr)},
+          {"n", e ? e->peak_load.n : 1}};
+}
+
+// The consistent set: spans, the points in it, and whether it is one point (with the reason).
+json consistent_json(const CalibrationReport& r) {
+  const ConsistentSet& set = r.consistent;
+  json points = json::array();
+  for (const EvaluationRecord& e : set.points) {
+    points.push_back({{"fr0", e.point.fr0_n},
+                      {"fs0", e.point.fs0_n},
+                      {"evaluation", e.index},
+                      {"uct", mean_se_json(e.uct, e.loads->uct_n)},
+                      {"btt", mean_se_json(e.btt, e.loads->btt_n)}});
+  }
+  auto range = [&](const Range& x) { return set.points.empty() ? json(nullptr) : json{x.lo, x.hi}; };
+  return {{"fr0", range(set.fr0)},
+          {"fs0", range(set.fs0)},
+          {"ratio", range(set.ratio)},
+          {"points", points},
+          {"why", set.why},
+          {"trace",
+           {{"toward_larger_ratio", to_string(r.trace.up)},
+            {"toward_smaller_ratio", to_string(r.trace.down)},
+            {"evaluations", r.trace.evaluations}}}};
+}
+
+json suggestion_json(const std::optional<Suggestion>& s) {
+  if (!s) return nullptr;
+  json values = json::array();
+  for (const ObservableValue& v : s->values) {
+    values.push_back({{"fr0", v.point.fr0_n},
+                      {"fs0", v.point.fs0_n},
+                      {"value", v.value},
+                      {"se", v.se ? json(*v.se) : json(nullptr)}});
+  }
+  json candidates = json::array();
+  for (const auto& [name, spread] : s->candidates)
+    candidates.push_back({{"observable", name}, {"spread", std::expm1(spread)}});
+  return {{"observable", s->observable}, {"unit", s->unit},          {"values", values},
+          {"spread", std::expm1(s->spread)}, {"why", s->why}, {"candidates", candidates}};
+}
+
 json targets_json(const CalibrationCampaign& c) {
   const PeakLoads& t = c.targets.model_loads_n;
   json j = {
@@ -170,7 +215,10 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"targets", targets_json(c)},
             {"best", r.best ? best_json(*r.best, c) : json(nullptr)},
             {"history", history_json(r.history)},
-            {"scatter", scatter_json(r.scatter)}};
+            {"scatter", scatter_json(r.scatter)},
+            {"consistent", consistent_json(r)},
+            {"unique", r.consistent.unique},
+            {"suggestion", suggestion_json(r.suggestion)}};
   if (r.ratio) {
     j["ratio"] = {
         {"target", r.ratio->target},

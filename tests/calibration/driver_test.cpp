@@ -24,7 +24,8 @@ Recovery calibrate(testing::Model model, BondPoint truth, const nlohmann::json& 
   evaluator.noise = noise;
   evaluator.failure_rate = failure_rate;
   CalibrationReport report = run_calibration(c, evaluator);
-  return {report, int(report.history.size())};
+  // The search's own evaluations: the consistent-set trace after it has a budget of its own.
+  return {report, int(report.history.size()) - report.trace.evaluations};
 }
 
 void expect_recovered(const Recovery& r, BondPoint truth, const PeakLoads& targets) {

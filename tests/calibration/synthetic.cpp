@@ -70,6 +70,31 @@ std::vector<EvaluationOutcome> ModelEvaluator::evaluate_batch(
   return out;
 }
 
+std::vector<orch::Ensemble> ModelEvaluator::probe_batch(std::span<const ProbeRequest> batch) {
+  std::vector<orch::Ensemble> out;
+  if (!probe_model) return out;
+  for (const ProbeRequest& r : batch) {
+    ++probes;
+    std::vector<orch::Realisation> runs;
+    for (std::uint64_t seed : orch::realisation_seeds(r.sample_seed, r.realisations)) {
+      runs.push_back({seed, 0, "succeeded",
+                      probe_model(r.point, r) * (1.0 + noise * hash_unit(r.point, seed, 3)), {},
+                      {}, ""});
+    }
+    out.push_back(orch::make_ensemble(std::move(runs)));
+  }
+  return out;
+}
+
+PeakLoads saturating(const BondPoint& p) {
+  return power_law({p.fr0_n, std::min(p.fs0_n, 2.0 * p.fr0_n)});
+}
+
+double saturating_probe(const BondPoint& p, const ProbeRequest& probe) {
+  if (probe.test == TestKind::triaxial) return power_law(p).uct_n;
+  return saturating(p).btt_n;
+}
+
 std::vector<EvaluationOutcome> CachingEvaluator::evaluate_batch(
     std::span<const EvaluationRequest> batch) {
   std::vector<EvaluationOutcome> out;

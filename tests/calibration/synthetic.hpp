@@ -28,6 +28,16 @@ PeakLoads non_homogeneous(const BondPoint& p);
 // A deterministic pseudo-random number in [-1, 1] for a point and a seed (so replays agree).
 double hash_unit(const BondPoint& p, std::uint64_t seed, std::uint64_t salt);
 
+// A probe's peak load as a closed form of the point (the suggestion's further tests).
+using ProbeModel = std::function<double(const BondPoint&, const ProbeRequest&)>;
+
+// Shear saturates: past F_s0 = 2 F_r0 the shear strength no longer governs either test, so both
+// loads depend on F_r0 alone and every F_s0 >= 2 F_r0 gives them (power_law below saturation).
+PeakLoads saturating(const BondPoint& p);
+// A triaxial peak that keeps feeling F_s0 past that saturation (confinement suppresses the tensile
+// mode); a BTT of another size follows power_law like the target's.
+double saturating_probe(const BondPoint& p, const ProbeRequest& probe);
+
 // Runs each request's realisations (seeds sample_seed, sample_seed + 1, ...) through the model.
 struct ModelEvaluator : Evaluator {
   Model model;
@@ -36,10 +46,15 @@ struct ModelEvaluator : Evaluator {
   std::atomic<int> requests{0};
   std::vector<EvaluationRequest> log;  // every request, in order
 
-  explicit ModelEvaluator(Model m) : model(std::move(m)) {}
+  ProbeModel probe_model;  // unset: probes are not supported (probe_batch returns none)
+  int probes = 0;          // probes run
+
+  explicit ModelEvaluator(Model m, ProbeModel p = nullptr)
+      : model(std::move(m)), probe_model(std::move(p)) {}
   EvaluationOutcome evaluate(const EvaluationRequest& r) const;
   std::vector<EvaluationOutcome> evaluate_batch(
       std::span<const EvaluationRequest> requests) override;
+  std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> requests) override;
 };
 
 // A job cache in front of another evaluator: answers known requests without running them, counts
