@@ -1,6 +1,8 @@
 #include "api/client.hpp"
 
 #include <httplib.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +15,7 @@
 
 #include "api/client_http.hpp"
 #include "api/server.hpp"
+#include "api/status_text.hpp"
 
 namespace rockcal::api {
 
@@ -51,16 +54,14 @@ std::string path_of(std::int64_t id, const std::string& rest = "") {
   return "/api/v1/campaigns/" + std::to_string(id) + rest;
 }
 
-std::string duration_text(double seconds) {
-  long s = std::lround(seconds);
-  std::ostringstream out;
-  if (s >= 3600) out << s / 3600 << "h";
-  if (s >= 60) out << (s / 60) % 60 << "m";
-  out << s % 60 << "s";
-  return out.str();
-}
-
 }  // namespace
+
+std::string padded(std::string text, std::size_t width) {
+  std::size_t columns = 0;
+  for (unsigned char ch : text) columns += (ch & 0xC0) != 0x80;
+  if (columns < width) text.append(width - columns, ' ');
+  return text;
+}
 
 std::string status_line(const json& c) {
   const json& p = c["progress"];
@@ -83,6 +84,14 @@ namespace {
 
 bool finished(const std::string& state) {
   return state == "succeeded" || state == "failed" || state == "cancelled";
+}
+
+// `line` cut to the terminal's width: a redrawn line that wraps cannot be erased by \r.
+std::string fitted(const std::string& line, int fd) {
+  winsize w{};
+  if (ioctl(fd, TIOCGWINSZ, &w) != 0) return line;
+  const std::size_t width = w.ws_col > 1 ? w.ws_col - 1 : 0;
+  return width > 0 && line.size() > width ? line.substr(0, width) : line;
 }
 
 }  // namespace
@@ -113,28 +122,36 @@ int client_submit(const ClientOptions& o, const std::string& file) {
   return 0;
 }
 
-int client_status(const ClientOptions& o, std::int64_t id, bool wait) {
+int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_json) {
   Http http(o);
-  bool tty = isatty(1);
+  // With --json, stdout carries the campaign object alone; a --wait shows its progress on stderr.
+  std::ostream& progress = as_json ? std::cerr : std::cout;
+  const int progress_fd = as_json ? STDERR_FILENO : STDOUT_FILENO;
+  const bool tty = isatty(progress_fd);
+  LinePacer pacer(std::chrono::seconds(5));
+  bool drawn = false;  // a \r-redrawn line is on the terminal
   while (true) {
     auto r = http.client.Get(path_of(id), http.headers);
     if (!r || r->status != 200) return report(r);
     json c = json::parse(r->body);
-    std::string line = status_line(c);
-    bool done = finished(c["state"].get<std::string>());
-    if (!wait || done || !tty) {
-      if (wait && !done) {
-        std::cout << line << std::endl;
+    const bool done = finished(c["state"].get<std::string>());
+    if (!wait || done) {
+      if (drawn) progress << "\r\033[K" << std::flush;
+      if (as_json) {
+        std::cout << c.dump(2) << std::endl;
       } else {
-        std::cout << (tty && wait ? "\r\033[K" : "") << line << std::endl;
-        // A driver's report (a calibration's best point, errors, history) is what the user came
-        // for.
-        if (c.contains("summary") && !c["summary"].is_null())
-          std::cout << c["summary"].dump(2) << std::endl;
-        return c["state"] == "succeeded" || !wait ? 0 : 1;
+        std::cout << progress_line(c) << "\n";
+        if (done) std::cout << "\n" << summary_text(c);
+        std::cout << std::flush;
       }
-    } else {
-      std::cout << "\r\033[K" << line << std::flush;
+      return c["state"] == "succeeded" || !wait ? 0 : 1;
+    }
+    const std::string line = progress_line(c);
+    if (tty) {
+      progress << "\r\033[K" << fitted(line, progress_fd) << std::flush;
+      drawn = true;
+    } else if (pacer.due(line, LinePacer::Clock::now())) {
+      progress << line << std::endl;
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
@@ -153,14 +170,6 @@ std::string mean_se(const json& stats) {
     std::snprintf(buffer, sizeof buffer, "%.6g", stats["mean"].get<double>());
   }
   return buffer;
-}
-
-// `text` padded to `width` characters (UTF-8: "±" is two bytes, one column).
-std::string padded(std::string text, std::size_t width) {
-  std::size_t columns = 0;
-  for (unsigned char ch : text) columns += (ch & 0xC0) != 0x80;
-  if (columns < width) text.append(width - columns, ' ');
-  return text;
 }
 
 std::string first_line(const std::string& text) {

@@ -14,7 +14,10 @@ struct ClientOptions {
 };
 
 int client_submit(const ClientOptions& o, const std::string& file);
-int client_status(const ClientOptions& o, std::int64_t campaign_id, bool wait);
+// Prints the campaign's progress line (with `wait`: redrawn on a terminal, a paced log otherwise,
+// until it ends) and, once it has ended, its summary (status_text.hpp); `as_json` prints the
+// campaign object instead (progress lines, if waiting, on stderr).
+int client_status(const ClientOptions& o, std::int64_t campaign_id, bool wait, bool as_json);
 int client_results(const ClientOptions& o, std::int64_t campaign_id, bool csv);
 int client_cancel(const ClientOptions& o, std::int64_t campaign_id);
 int client_list(const ClientOptions& o);

@@ -1,5 +1,5 @@
 // What the client commands share: an HTTP client for `--server` with the bearer token, the error
-// report of a failed request, and a campaign's one-line status.
+// report of a failed request, a campaign's one-line status, and column padding for tables.
 #pragma once
 
 #include <httplib.h>
@@ -20,6 +20,9 @@ struct Http {
 
 // Prints the server's error (or the transport error) and returns the exit code to use.
 int report(const httplib::Result& r);
+
+// `text` padded to `width` columns (UTF-8: "±" is two bytes, one column).
+std::string padded(std::string text, std::size_t width);
 
 // "campaign 3 running [####....] 45% 12/27 done, 2 running, ..." for GET /campaigns/{id}.
 std::string status_line(const nlohmann::json& campaign);

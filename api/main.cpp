@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   ClientOptions client;
   std::string file;
   std::int64_t id = 0;
-  bool csv = false, wait = false;
+  bool csv = false, wait = false, as_json = false;
   auto add_common = [&](CLI::App* sub) {
     sub->add_option("--server", client.server, "server URL")->capture_default_str();
     sub->add_option("--token-file", client.token_file, "bearer token (or $ROCKCAL_TOKEN)");
@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
   auto* status = app.add_subcommand("status", "show a campaign's progress");
   status->add_option("id", id)->required();
   status->add_flag("--wait", wait, "redraw until the campaign has finished");
+  status->add_flag("--json", as_json, "print the campaign object (and its summary) as JSON");
   auto* results = app.add_subcommand("results", "print a campaign's results");
   results->add_option("id", id)->required();
   results->add_flag("--csv", csv, "CSV instead of a table");
@@ -140,7 +141,7 @@ int main(int argc, char** argv) {
   try {
     if (*s) return run_serve(serve, argv[0]);
     if (*submit) return client_submit(client, file);
-    if (*status) return client_status(client, id, wait);
+    if (*status) return client_status(client, id, wait, as_json);
     if (*results) return client_results(client, id, csv);
     if (*cancel) return client_cancel(client, id);
     if (*list) return client_list(client);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's first Quick start command: install what is missing, build, and run the main job: the
 # seed paper's lab case as an automatic (F_r0, F_s0) calibration, through the real service on an
-# embedded SQLite file. Prints the progress and the calibration report.
+# embedded SQLite file. Prints the progress and the calibration's summary table (the whole report
+# as JSON: `rockcal status ID --json`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/install-deps.sh
@@ -20,3 +21,4 @@ url="http://127.0.0.1:$(cat "$out/port")"
 id=$(build/api/rockcal submit examples/calibrate_seed_lab.json --server "$url")
 echo "calibration campaign $id on $url (database $out/rockcal.db)"
 build/api/rockcal status "$id" --wait --server "$url"
+echo "(the whole report as JSON: rockcal status $id --json, with rockcal serve --db $out/rockcal.db running)"

@@ -1,8 +1,12 @@
 #include "orchestrator/calibration/calibration_kind.hpp"
 
+#include <algorithm>
+#include <chrono>
+
 #include "orchestrator/calibration/campaign.hpp"
 #include "orchestrator/calibration/driver.hpp"
 #include "orchestrator/calibration/pool_evaluator.hpp"
+#include "orchestrator/job_service.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::calibration {
@@ -14,6 +18,54 @@ CalibrationCampaign parse_request(const nlohmann::json& request) {
   } catch (const CampaignError& e) {
     throw orch::RequestError(e.field, e.what());
   }
+}
+
+// How fast this driver's evaluations go, for a client's ETA. Evaluations the job cache answered
+// at once (the replay of a restarted driver, points run before) count against the budget but not
+// in the pace: they would make every later evaluation look nearly free.
+class Pace {
+ public:
+  explicit Pace(db::Store& store) : store_(store), start_(Clock::now()), last_(start_) {}
+
+  void add(const EvaluationRecord& r) {
+    if (answered_by_cache(r)) return;
+    ++timed_;
+    last_ = Clock::now();
+  }
+
+  nlohmann::json to_json() const {
+    const double timed_seconds = seconds(last_ - start_);
+    return {{"wall_seconds", seconds(Clock::now() - start_)},
+            {"evaluations_timed", timed_},
+            {"seconds_per_evaluation",
+             timed_ > 0 ? nlohmann::json(timed_seconds / timed_) : nlohmann::json(nullptr)}};
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+  bool answered_by_cache(const EvaluationRecord& r) const {
+    if (!r.uct || !r.btt) return false;
+    for (const orch::Ensemble* e : {&*r.uct, &*r.btt}) {
+      for (const orch::Realisation& run : e->realisations) {
+        const auto job = run.job_id > 0 ? store_.job(run.job_id) : std::nullopt;
+        if (!job || !job->cached) return false;
+      }
+    }
+    return true;
+  }
+
+  db::Store& store_;
+  Clock::time_point start_;
+  Clock::time_point last_;  // when the latest timed evaluation ended
+  int timed_ = 0;
+};
+
+// The packings the best point is re-run on once the search has ended (its own seed is not).
+int scatter_runs(const CalibrationCampaign& c) {
+  return int(std::count_if(c.scatter_seeds.begin(), c.scatter_seeds.end(),
+                           [&](std::uint64_t s) { return s != c.sample_seed; }));
 }
 
 }  // namespace
@@ -30,15 +82,26 @@ orch::CampaignKind calibration_kind() {
   kind.driver = [](orch::DriverContext& ctx) {
     const CalibrationCampaign c = parse_request(ctx.request);
     PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, ctx.stop);
-    // While it runs, the campaign's summary is the history so far; the report replaces it at the
-    // end.
+    Pace pace(ctx.service.store());
+    // While it runs, the campaign's summary is the history so far, with the budget and the pace
+    // a client needs for its progress line (from the start, so the budget shows before the first
+    // evaluation ends); the report replaces it at the end.
     std::vector<EvaluationRecord> history;
+    auto publish = [&] {
+      nlohmann::json live = progress_json(history, c);
+      live["scatter_runs"] = scatter_runs(c);
+      live["pace"] = pace.to_json();
+      ctx.service.store().set_driver_status(ctx.campaign_id, "running", live.dump());
+    };
+    publish();
     auto on_evaluation = [&](const EvaluationRecord& record) {
       history.push_back(record);
-      ctx.service.store().set_driver_status(ctx.campaign_id, "running",
-                                            progress_json(history, c).dump());
+      pace.add(record);
+      publish();
     };
-    return to_json(run_calibration(c, evaluator, {ctx.stop, on_evaluation}), c);
+    nlohmann::json report = to_json(run_calibration(c, evaluator, {ctx.stop, on_evaluation}), c);
+    report["pace"] = pace.to_json();
+    return report;
   };
   return kind;
 }

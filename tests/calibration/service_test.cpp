@@ -1,6 +1,7 @@
 // The calibration kind inside the real service (JobService, SQLite store, local executor), with a
-// formula engine: the campaign runs to a feasible report, bad campaigns are refused naming the
-// field, and a server stopped mid-calibration resumes without re-running finished evaluations.
+// formula engine: the campaign runs to a feasible report (which `rockcal status` shows as a table),
+// bad campaigns are refused naming the field, a running one shows its budget and pace, and a
+// server stopped mid-calibration resumes without re-running finished evaluations.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <map>
 #include <thread>
 
+#include "api/status_text.hpp"
 #include "orchestrator/calibration/calibration_kind.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
@@ -119,6 +121,18 @@ TEST_F(ServiceCalibration, RunsToAFeasibleReport) {
   // Every evaluation is two ordinary jobs of the campaign, each run once.
   EXPECT_EQ(service_->store().counts(id).total(), 2 * report["evaluations"].get<int>());
   EXPECT_EQ(int(runs().size()), 2 * report["evaluations"].get<int>());
+  // Every evaluation ran jobs (none came from the cache), so all of them set the pace.
+  EXPECT_EQ(report["pace"]["evaluations_timed"], report["evaluations"]);
+  EXPECT_GT(report["pace"]["wall_seconds"].get<double>(), 0.0);
+  // `rockcal status` shows this report as a table, not as its JSON.
+  const std::string text = api::calibration_text(report);
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "verdict: feasible - both peak loads within 2% of their targets");
+  EXPECT_NE(text.find("\n  UCT "), std::string::npos) << text;
+  EXPECT_NE(text.find("\n  BTT "), std::string::npos) << text;
+  EXPECT_NE(text.find("\nevaluations: " + report["evaluations"].dump() + " of 40, stopped: "),
+            std::string::npos)
+      << text;
 }
 
 TEST_F(ServiceCalibration, BadCampaignIsRefusedNamingTheField) {
@@ -146,6 +160,23 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   ASSERT_TRUE(progress.is_object());
   EXPECT_TRUE(progress["stop_reason"].is_null());
   EXPECT_GE(progress["history"].size(), 6u);
+  // ... and what a client's progress line needs: the budget, and the pace once evaluations ran.
+  EXPECT_EQ(progress["max_evaluations"], 40);
+  EXPECT_EQ(progress["scatter_runs"], 0);
+  EXPECT_GT(progress["pace"]["seconds_per_evaluation"].get<double>(), 0.0);
+  const json campaign = {{"id", id},
+                         {"kind", "calibration"},
+                         {"state", "running"},
+                         {"progress", {{"running", 2}}},
+                         {"summary", progress}};
+  const std::string line = api::progress_line(campaign);
+  EXPECT_EQ(line.rfind("campaign " + std::to_string(id) + " running: " +
+                           progress["evaluations"].dump() + " of 40 evaluations done, best misfit ",
+                       0),
+            0u)
+      << line;
+  EXPECT_NE(line.find(", ETA "), std::string::npos) << line;
+  EXPECT_EQ(line.find("ETA 0s"), std::string::npos) << line;
   service_->stop();  // a shutdown: the driver stays "running" and resumes at the next start
   service_.reset();
   const std::size_t before = runs().size();

@@ -1,0 +1,63 @@
+// The summary `rockcal status` prints when a campaign has ended, by kind, and the pacing of its
+// progress lines in a log.
+#include "api/status_text.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "api/client.hpp"
+
+namespace rockcal::api {
+namespace {
+
+using nlohmann::json;
+
+// A campaign without a driver report (a sweep): what its jobs did, and where the numbers are.
+std::string jobs_text(const json& c) {
+  const json& p = c["progress"];
+  std::ostringstream out;
+  out << c["kind"].get<std::string>() << " " << c["id"] << " " << c["state"].get<std::string>()
+      << ": " << p["total"] << " jobs, " << p["succeeded"] << " succeeded";
+  if (p["cached"].get<std::int64_t>() > 0) out << " (" << p["cached"] << " from the cache)";
+  out << ", " << p["failed"] << " failed";
+  if (p["cancelled"].get<std::int64_t>() > 0) out << ", " << p["cancelled"] << " cancelled";
+  out << "\nresults: rockcal results " << c["id"] << " (--csv for one row per job)\n";
+  return out.str();
+}
+
+}  // namespace
+
+std::string summary_text(const json& c) {
+  const json& s = c.contains("summary") ? c["summary"] : json();
+  const std::string kind = c["kind"].get<std::string>();
+  const std::string header = kind + " " + c["id"].dump() + " \"" + c["name"].get<std::string>() +
+                             "\" " + c["state"].get<std::string>() + "\n";
+  if (s.is_object() && s.contains("error") && s["error"].is_string()) {
+    return header + "the driver failed: " + s["error"].get<std::string>() + "\n";
+  }
+  if (kind == "calibration" && s.is_object() && s.contains("verdict")) {
+    return header + calibration_text(s);
+  }
+  if (kind == "diagnosis" && s.is_object() && s.contains("verdict")) {
+    return header + diagnosis_text(s);
+  }
+  return jobs_text(c);
+}
+
+std::string duration_text(double seconds) {
+  long s = std::lround(seconds);
+  std::ostringstream out;
+  if (s >= 3600) out << s / 3600 << "h";
+  if (s >= 60) out << (s / 60) % 60 << "m";
+  out << s % 60 << "s";
+  return out.str();
+}
+
+bool LinePacer::due(const std::string& line, Clock::time_point now) {
+  if (line == last_ || (printed_at_ && now - *printed_at_ < interval_)) return false;
+  last_ = line;
+  printed_at_ = now;
+  return true;
+}
+
+}  // namespace rockcal::api

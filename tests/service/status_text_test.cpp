@@ -1,0 +1,180 @@
+// What `rockcal status` shows a reader: a calibration's progress line (evaluations of the budget,
+// best misfit and point, running jobs, an ETA from the measured pace, never "ETA 0s" while
+// running), the summary table that replaces the report's JSON at the end, the sweep's summary,
+// and the pacing of progress lines in a log.
+#include <gtest/gtest.h>
+
+#include "api/status_text.hpp"
+
+namespace rockcal::api {
+namespace {
+
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+// A running calibration as GET /api/v1/campaigns/{id} returns it (calibration_kind.cpp's live
+// summary): 3 evaluations of 40 done, the second the best, 2 seed re-runs still to come.
+json running_calibration(json seconds_per_evaluation) {
+  return json::parse(R"({
+    "id": 7, "kind": "calibration", "name": "lab", "state": "running",
+    "progress": {"total": 8, "queued": 0, "running": 2, "succeeded": 6, "failed": 0,
+                 "cancelled": 0, "cached": 0, "fraction": 0.75, "eta_seconds": 0},
+    "summary": {"kind": "calibration", "stop_reason": null, "evaluations": 3,
+                "max_evaluations": 40, "scatter_runs": 2, "realisations": 1,
+                "history": [
+                  {"index": 0, "ok": true, "fr0": 10, "fs0": 20, "misfit": 0.5},
+                  {"index": 1, "ok": true, "fr0": 41.25, "fs0": 88.5, "misfit": 0.01234},
+                  {"index": 2, "ok": false, "fr0": 900, "fs0": 900, "misfit": 0.001}],
+                "pace": {"wall_seconds": 100, "evaluations_timed": 3,
+                         "seconds_per_evaluation": null}}})")
+      .patch(json::array({{{"op", "replace"},
+                           {"path", "/summary/pace/seconds_per_evaluation"},
+                           {"value", seconds_per_evaluation}}}));
+}
+
+TEST(CalibrationProgress, EvaluationsOfTheBudgetBestMisfitRunningJobsAndEta) {
+  // 37 evaluations left in the budget plus 2 re-runs, at 10 s each: 390 s. The failed evaluation's
+  // penalty is no best.
+  EXPECT_EQ(progress_line(running_calibration(10.0)),
+            "campaign 7 running: 3 of 40 evaluations done (+2 seed re-runs), best misfit 0.0123 "
+            "at F_r0 = 41.25, F_s0 = 88.5, 2 jobs running, ETA 6m30s (full budget)");
+}
+
+TEST(CalibrationProgress, EtaUnknownUntilAnEvaluationHasRun) {
+  json c = running_calibration(nullptr);
+  c["summary"]["evaluations"] = 0;
+  c["summary"]["history"] = json::array();
+  EXPECT_EQ(progress_line(c),
+            "campaign 7 running: 0 of 40 evaluations done (+2 seed re-runs), 2 jobs running, "
+            "ETA unknown");
+}
+
+TEST(CalibrationProgress, NeverEtaZeroWhileEvaluationsRemain) {
+  json c = running_calibration(0.01);  // cached replays: a pace of 10 ms
+  c["summary"]["evaluations"] = 39;
+  c["summary"]["scatter_runs"] = 0;
+  EXPECT_EQ(progress_line(c).substr(progress_line(c).find(", ETA")), ", ETA 1s (full budget)");
+  // Budget spent and no re-runs left: the driver is writing its report.
+  c["summary"]["evaluations"] = 40;
+  const std::string line = progress_line(c);
+  EXPECT_EQ(line.substr(line.rfind(", ")), ", finishing");
+}
+
+TEST(CalibrationProgress, OtherKindsKeepTheJobsLine) {
+  json c = running_calibration(10.0);
+  c["kind"] = "sweep";
+  c.erase("summary");
+  c["progress"]["eta_seconds"] = 30;
+  EXPECT_EQ(progress_line(c),
+            "campaign 7 running [#######################.......] 75% 6/8 done, 2 running, 0 "
+            "queued, ETA 30s");
+}
+
+// A finished calibration's report (report_json.cpp) with lab units, ensembles of 3 and issue 17's
+// consistent set, unique flag and suggestion.
+json lab_report() {
+  return json::parse(R"({
+    "kind": "calibration", "name": "lab", "stop_reason": "tolerance_met",
+    "verdict": "feasible", "verdict_reason": "both peak loads within 2% of their targets",
+    "evaluations": 23, "failed_evaluations": 1, "max_evaluations": 40, "realisations": 3,
+    "best": {"fr0": 41.25, "fs0": 88.5, "misfit": 0.000125, "evaluation": 17,
+             "uct": {"peak_load": 2020, "target": 2000, "relative_error": 0.01, "se": 8, "n": 3},
+             "btt": {"peak_load": 297, "target": 300, "relative_error": -0.01, "se": 1.5, "n": 3},
+             "lab": {"fr0": 4125, "fs0": 8850,
+                     "uct": {"peak_load": 202000, "target": 200000, "relative_error": 0.01},
+                     "btt": {"peak_load": 29700, "target": 30000, "relative_error": -0.01}}},
+    "scatter": {"runs": [], "uct": null, "btt": null},
+    "consistent": {"fr0": [39, 44], "fs0": [80, 95], "ratio": [1.9, 2.3],
+                   "points": [{"fr0": 40}, {"fr0": 42}, {"fr0": 43}]},
+    "unique": false,
+    "suggestion": {"observable": "triaxial peak at 5 MPa", "values": [5e6, 10e6],
+                   "why": "separates F_s0 from F_r0 along the valley"},
+    "pace": {"wall_seconds": 754, "evaluations_timed": 23, "seconds_per_evaluation": 32.8}})");
+}
+
+TEST(CalibrationSummary, VerdictStrengthsLoadsAgainstTargetsConsistentSetAndBudget) {
+  json c = {{"id", 7},
+            {"kind", "calibration"},
+            {"name", "lab"},
+            {"state", "succeeded"},
+            {"summary", lab_report()}};
+  EXPECT_EQ(summary_text(c),
+            "calibration 7 \"lab\" succeeded\n"
+            "verdict: feasible - both peak loads within 2% of their targets\n"
+            "best bond strengths  model units   lab units (N)\n"
+            "  F_r0                     41.25            4125\n"
+            "  F_s0                      88.5            8850\n"
+            "load   target (N)   simulated (N)       error\n"
+            "  UCT      200000   202000 ± 800        +1.00% ± 0.40%  (mean of 3)\n"
+            "  BTT       30000   29700 ± 150         -1.00% ± 0.50%  (mean of 3)\n"
+            "  best misfit 0.000125 at evaluation 17\n"
+            "consistent with the targets: F_r0 [39, 44], F_s0 [80, 95], ratio [1.9, 2.3] (3 "
+            "points)\n"
+            "unique: no\n"
+            "suggestion: measure triaxial peak at 5 MPa (5e+06, 1e+07): separates F_s0 from F_r0 "
+            "along the valley\n"
+            "evaluations: 23 of 40 (1 failed), 3 packings each, stopped: tolerance_met, wall time "
+            "12m34s\n");
+}
+
+TEST(CalibrationSummary, ModelUnitsSingleRunsAndNoConsistentSetAreShownWithoutThem) {
+  json s = lab_report();
+  s["best"].erase("lab");
+  for (const char* t : {"uct", "btt"}) {
+    s["best"][t]["se"] = nullptr;
+    s["best"][t]["n"] = 1;
+  }
+  s["scatter"]["uct"] = {{"mean", 2000}, {"stddev", 50}, {"cv", 0.025}, {"runs", 3}};
+  s["scatter"]["btt"] = {{"mean", 300}, {"stddev", 3}, {"cv", 0.01}, {"runs", 3}};
+  for (const char* k : {"consistent", "unique", "suggestion", "pace"}) s.erase(k);
+  s["failed_evaluations"] = 0;
+  s["realisations"] = 1;
+  EXPECT_EQ(calibration_text(s),
+            "verdict: feasible - both peak loads within 2% of their targets\n"
+            "best bond strengths  model units\n"
+            "  F_r0                     41.25\n"
+            "  F_s0                      88.5\n"
+            "load       target   simulated           error\n"
+            "  UCT        2000   2020                +1.00%\n"
+            "  BTT         300   297                 -1.00%\n"
+            "  seed scatter of the best point: UCT cv 2.50% over 3 packings, BTT cv 1.00% over 3 "
+            "packings\n"
+            "  best misfit 0.000125 at evaluation 17\n"
+            "evaluations: 23 of 40, stopped: tolerance_met\n");
+}
+
+TEST(CalibrationSummary, NoSuccessfulEvaluationSaysSoWithoutATable) {
+  json s = {{"verdict", "failed"},       {"verdict_reason", "no evaluation succeeded"},
+            {"best", nullptr},           {"evaluations", 4},
+            {"failed_evaluations", 4},   {"max_evaluations", 40},
+            {"stop_reason", "converged"}};
+  EXPECT_EQ(calibration_text(s),
+            "verdict: failed - no evaluation succeeded\n"
+            "evaluations: 4 of 40 (4 failed), stopped: converged\n");
+}
+
+TEST(SweepSummary, JobCountsAndWhereTheResultsAre) {
+  json c = running_calibration(10.0);
+  c["kind"] = "sweep";
+  c["state"] = "failed";
+  c["progress"] = {{"total", 8},  {"queued", 0},    {"running", 0}, {"succeeded", 7},
+                   {"failed", 1}, {"cancelled", 0}, {"cached", 2}};
+  c.erase("summary");
+  EXPECT_EQ(summary_text(c),
+            "sweep 7 failed: 8 jobs, 7 succeeded (2 from the cache), 1 failed\n"
+            "results: rockcal results 7 (--csv for one row per job)\n");
+}
+
+TEST(LinePacer, OneLinePerChangeAtMostEveryInterval) {
+  LinePacer pacer(5s);
+  const auto t0 = LinePacer::Clock::time_point{} + 1h;
+  EXPECT_TRUE(pacer.due("a", t0));
+  EXPECT_FALSE(pacer.due("a", t0 + 10s)) << "unchanged";
+  EXPECT_FALSE(pacer.due("b", t0 + 4s)) << "changed, but too soon";
+  EXPECT_TRUE(pacer.due("b", t0 + 5s));
+  EXPECT_FALSE(pacer.due("b", t0 + 60s));
+  EXPECT_TRUE(pacer.due("c", t0 + 60s));
+}
+
+}  // namespace
+}  // namespace rockcal::api
