@@ -46,11 +46,16 @@ const json& best_so_far(const json& summary) {
 // Seconds for the evaluations still possible: the search's remaining budget plus the seed
 // re-runs of the best point, at the measured pace. Null until one evaluation has run (the pace is
 // unknown) and once nothing is left.
+// The whole budget: the search's and the consistent-set trace's after it.
+int budget_of(const json& summary) {
+  const json& trace = at(summary, "consistency_evaluations");
+  return at(summary, "max_evaluations").get<int>() + (trace.is_number() ? trace.get<int>() : 0);
+}
+
 std::optional<double> eta_seconds(const json& summary) {
   const json& per = at(at(summary, "pace"), "seconds_per_evaluation");
   if (!per.is_number()) return std::nullopt;
-  const int left = std::max(0, at(summary, "max_evaluations").get<int>() -
-                                   at(summary, "evaluations").get<int>()) +
+  const int left = std::max(0, budget_of(summary) - at(summary, "evaluations").get<int>()) +
                    at(summary, "scatter_runs").get<int>();
   if (left == 0) return std::nullopt;
   // At least a second: a running campaign never shows "ETA 0s".
@@ -68,7 +73,7 @@ std::string calibration_line(const json& c) {
   const std::string state = c["state"].get<std::string>();
   std::ostringstream out;
   out << "campaign " << c["id"] << " " << state << ": " << s["evaluations"] << " of "
-      << s["max_evaluations"] << " evaluations done";
+      << budget_of(s) << " evaluations done";
   if (s["scatter_runs"].get<int>() > 0) out << " (+" << s["scatter_runs"] << " seed re-runs)";
   const json& best = best_so_far(s);
   if (best.is_object()) {

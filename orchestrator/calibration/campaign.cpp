@@ -166,8 +166,8 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
       root.positive("homogeneity_tolerance").value_or(c.homogeneity_tolerance);
   c.scatter_seeds = parse_seeds(root);
   parse_realisations(root, model, c);
-  c.consistency_evaluations = int(
-      root.integer("consistency_evaluations", 0, 1'000).value_or(c.consistency_evaluations));
+  c.consistency_evaluations =
+      int(root.integer("consistency_evaluations", 0, 1'000).value_or(c.consistency_evaluations));
   c.suggest = root.boolean("suggest").value_or(c.suggest);
   root.reject_unknown();
   return c;

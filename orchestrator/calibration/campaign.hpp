@@ -44,8 +44,8 @@ struct CalibrationCampaign {
   std::uint64_t random_seed = 1;             // Latin hypercube and nlopt::srand
   double homogeneity_tolerance = 0.1;        // accepted |exponent_uct - exponent_btt|
   std::vector<std::uint64_t> scatter_seeds;  // extra packing seeds for the best point
-  int consistency_evaluations = 24;  // the consistent-set trace after the search (0: none)
-  bool suggest = true;               // measure the observable that would pin a non-unique set
+  int consistency_evaluations = 24;          // the consistent-set trace after the search (0: none)
+  bool suggest = true;  // measure the observable that would pin a non-unique set
 };
 
 // Parses and validates the whole campaign (the job template through the engine's validation for

@@ -12,8 +12,8 @@ namespace {
 
 // The scale on ratio `s` that best fits both loads, predicted from an evaluated point.
 double fitted_m(const EvaluationRecord& r, const Ledger& ledger, double degree) {
-  return ratio_coords(r.point).m + scale_shift(log_errors(*r.loads, ledger.targets()),
-                                               ledger.weights(), degree);
+  return ratio_coords(r.point).m +
+         scale_shift(log_errors(*r.loads, ledger.targets()), ledger.weights(), degree);
 }
 
 enum class Try { member, missed, budget, failed };
@@ -163,7 +163,8 @@ Branches other_branches(Ledger& ledger, const CalibrationCampaign& c, double deg
   Branches out;
   out.complete = true;
   const std::vector<EvaluationRecord> known = successful();
-  // The best point's own branch: the ratios its trace found consistent, and a scan cell either side.
+  // The best point's own branch: the ratios its trace found consistent, and a scan cell either
+  // side.
   Range own{ratio_coords(best.point).s, ratio_coords(best.point).s};
   for (const EvaluationRecord& r : known) {
     if (!r.within_tolerance) continue;
@@ -270,9 +271,10 @@ ConsistentSet consistent_set(const std::vector<EvaluationRecord>& history,
                       relative_half_width(set.fs0) <= kUniqueHalfWidth;
   if (trace.branches > 1) {
     set.why = format("%.0f separate ratios F_s0/F_r0 meet both targets", trace.branches) +
-              format(" (the set spans F_r0 %.4g-%.4g N, F_s0 %.4g-%.4g N): the two loads do not "
-                     "pin both strengths",
-                     set.fr0.lo, set.fr0.hi, set.fs0.lo, set.fs0.hi);
+              format(
+                  " (the set spans F_r0 %.4g-%.4g N, F_s0 %.4g-%.4g N): the two loads do not "
+                  "pin both strengths",
+                  set.fr0.lo, set.fr0.hi, set.fs0.lo, set.fs0.hi);
   } else if (!narrow) {
     set.why = format(
         "the consistent points span F_r0 %.4g-%.4g N and F_s0 %.4g-%.4g N: the two loads do not "
@@ -296,11 +298,16 @@ ConsistentSet consistent_set(const std::vector<EvaluationRecord>& history,
 
 const char* to_string(TraceEnd end) {
   switch (end) {
-    case TraceEnd::not_traced: return "not traced";
-    case TraceEnd::missed: return "missed the targets";
-    case TraceEnd::bounds: return "reached the bounds";
-    case TraceEnd::budget: return "out of budget";
-    case TraceEnd::failed: return "an evaluation failed";
+    case TraceEnd::not_traced:
+      return "not traced";
+    case TraceEnd::missed:
+      return "missed the targets";
+    case TraceEnd::bounds:
+      return "reached the bounds";
+    case TraceEnd::budget:
+      return "out of budget";
+    case TraceEnd::failed:
+      return "an evaluation failed";
   }
   return "?";
 }

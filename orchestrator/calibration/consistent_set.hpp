@@ -28,7 +28,7 @@ enum class TraceEnd { not_traced, missed, bounds, budget, failed };
 struct ValleyTrace {
   TraceEnd up = TraceEnd::not_traced;    // toward larger F_s0/F_r0
   TraceEnd down = TraceEnd::not_traced;  // toward smaller
-  int branches = 0;     // separate ratios found to meet the targets (0: not traced)
+  int branches = 0;      // separate ratios found to meet the targets (0: not traced)
   bool scanned = false;  // the other ratios within the bounds were scanned for further branches
   int evaluations = 0;
 };
@@ -40,7 +40,7 @@ ValleyTrace trace_valley(Ledger& ledger, const CalibrationCampaign& campaign, do
                          int budget);
 
 struct ConsistentSet {
-  std::vector<EvaluationRecord> points;  // evaluated and within tolerance + standard error
+  std::vector<EvaluationRecord> points;     // evaluated and within tolerance + standard error
   Range fr0{0, 0}, fs0{0, 0}, ratio{0, 0};  // spans of the points (model units; ratio fs0/fr0)
   bool unique = false;
   std::string why;  // the reason for `unique`, a sentence

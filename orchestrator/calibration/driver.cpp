@@ -82,8 +82,9 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   if (r.best->within_tolerance) {
     r.verdict = Verdict::feasible;
     r.verdict_reason = format("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
-    r.verdict_reason += r.consistent.unique ? "; the strengths are unique: " : "; NOT unique: ";
-    r.verdict_reason += r.consistent.why;
+    // The reason for uniqueness is in the consistent set; a non-unique answer says why here too.
+    r.verdict_reason +=
+        r.consistent.unique ? "; the strengths are unique" : "; NOT unique: " + r.consistent.why;
     return;
   }
   if (r.stop_reason == StopReason::cancelled) {
@@ -150,8 +151,7 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
     }
   };
   after_search([&] {
-    report.trace =
-        trace_valley(ledger, c, report.homogeneity.degree(), c.consistency_evaluations);
+    report.trace = trace_valley(ledger, c, report.homogeneity.degree(), c.consistency_evaluations);
   });
   report.history = ledger.history();
   if (const EvaluationRecord* best = ledger.best()) report.best = *best;

@@ -18,7 +18,8 @@ double required_positive(JsonFields& f, const std::string& key) {
 Specimen parse_lab_specimen(JsonFields& lab) {
   JsonFields s(lab.require("specimen"), lab.path_of("specimen"));
   Specimen specimen{required_positive(s, "diameter"), required_positive(s, "height"), 0.0};
-  // A Brazilian disc of t = D/2 unless stated (examples/datasets/seed_paper/README.md; ISRM proportion).
+  // A Brazilian disc of t = D/2 unless stated (examples/datasets/seed_paper/README.md; ISRM
+  // proportion).
   specimen.thickness_m = s.positive("thickness").value_or(0.5 * specimen.diameter_m);
   s.reject_unknown();
   return specimen;

@@ -50,8 +50,8 @@ struct SeedScatter {
 };
 
 struct CalibrationReport {
-  ValleyTrace trace;                    // the consistent-set trace after the search
-  ConsistentSet consistent;             // every evaluated point that meets the targets
+  ValleyTrace trace;                     // the consistent-set trace after the search
+  ConsistentSet consistent;              // every evaluated point that meets the targets
   std::optional<Suggestion> suggestion;  // when the set is not one point
   StopReason stop_reason = StopReason::converged;
   Verdict verdict = Verdict::failed;

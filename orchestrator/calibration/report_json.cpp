@@ -78,7 +78,9 @@ json consistent_json(const CalibrationReport& r) {
                       {"uct", mean_se_json(e.uct, e.loads->uct_n)},
                       {"btt", mean_se_json(e.btt, e.loads->btt_n)}});
   }
-  auto range = [&](const Range& x) { return set.points.empty() ? json(nullptr) : json{x.lo, x.hi}; };
+  auto range = [&](const Range& x) {
+    return set.points.empty() ? json(nullptr) : json{x.lo, x.hi};
+  };
   return {{"fr0", range(set.fr0)},
           {"fs0", range(set.fs0)},
           {"ratio", range(set.ratio)},
@@ -102,8 +104,8 @@ json suggestion_json(const std::optional<Suggestion>& s) {
   json candidates = json::array();
   for (const auto& [name, spread] : s->candidates)
     candidates.push_back({{"observable", name}, {"spread", std::expm1(spread)}});
-  return {{"observable", s->observable}, {"unit", s->unit},          {"values", values},
-          {"spread", std::expm1(s->spread)}, {"why", s->why}, {"candidates", candidates}};
+  return {{"observable", s->observable},     {"unit", s->unit}, {"values", values},
+          {"spread", std::expm1(s->spread)}, {"why", s->why},   {"candidates", candidates}};
 }
 
 json targets_json(const CalibrationCampaign& c) {
@@ -212,6 +214,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"evaluations", r.history.size()},
             {"failed_evaluations", failed},
             {"max_evaluations", c.max_evaluations},
+            {"consistency_evaluations", c.consistency_evaluations},
             {"targets", targets_json(c)},
             {"best", r.best ? best_json(*r.best, c) : json(nullptr)},
             {"history", history_json(r.history)},
@@ -238,6 +241,7 @@ json progress_json(const std::vector<EvaluationRecord>& history, const Calibrati
           {"stop_reason", nullptr},
           {"evaluations", history.size()},
           {"max_evaluations", c.max_evaluations},
+          {"consistency_evaluations", c.consistency_evaluations},
           {"realisations", c.realisations},
           {"targets", targets_json(c)},
           {"history", history_json(history)}};

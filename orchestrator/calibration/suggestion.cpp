@@ -53,25 +53,36 @@ std::optional<Suggestion> suggest_observable(const ConsistentSet& set, const Cal
     if (modulus.values.size() == 2) candidates.push_back(std::move(modulus));
   }
   const Specimen& sp = c.model_specimen;
-  const double confinement = kTriaxialConfinement * uct_strength_pa(c.targets.model_loads_n.uct_n, sp);
+  const double confinement =
+      kTriaxialConfinement * uct_strength_pa(c.targets.model_loads_n.uct_n, sp);
   const double disc = kBttSizeFactor * sp.diameter_m;
   std::vector<ProbeRequest> probes;
   std::vector<Candidate> probed = {
       {format("a triaxial peak load at a confinement of %.3g Pa (%.3g x the target UCS)",
               confinement, kTriaxialConfinement),
-       "N", {}},
+       "N",
+       {}},
       {format("the BTT peak load of a disc of %.3g x the diameter (%.4g, model units)",
               kBttSizeFactor, disc),
-       "N", {}}};
+       "N",
+       {}}};
   for (const EvaluationRecord* e : ends) {
-    probes.push_back({e->point, c.sample_seed, c.realisations, TestKind::triaxial,
+    probes.push_back({e->point,
+                      c.sample_seed,
+                      c.realisations,
+                      TestKind::triaxial,
                       {{"loading", {{"confining_pressure", confinement}}}}});
-    probes.push_back({e->point, c.sample_seed, c.realisations, TestKind::btt,
-                      {{"sample", {{"diameter", disc}, {"thickness", kBttSizeFactor * sp.thickness_m}}}}});
+    probes.push_back(
+        {e->point,
+         c.sample_seed,
+         c.realisations,
+         TestKind::btt,
+         {{"sample", {{"diameter", disc}, {"thickness", kBttSizeFactor * sp.thickness_m}}}}});
   }
   const std::vector<orch::Ensemble> measured = evaluator.probe_batch(probes);
   for (std::size_t i = 0; i < measured.size() && i < probes.size(); ++i) {
-    if (auto v = value_of(probes[i].point, measured[i].peak_load)) probed[i % 2].values.push_back(*v);
+    if (auto v = value_of(probes[i].point, measured[i].peak_load))
+      probed[i % 2].values.push_back(*v);
   }
   for (Candidate& p : probed) {
     if (p.values.size() == 2) candidates.push_back(std::move(p));
@@ -91,7 +102,8 @@ std::optional<Suggestion> suggest_observable(const ConsistentSet& set, const Cal
       "of the observables measured at the consistent set's two ends (F_s0/F_r0 %.3g and %.3g), it "
       "differs most",
       ratio(*lo), ratio(*hi));
-  s.why += format(": by %.3g%%; a lab value of it picks the member of the set", 100 * std::expm1(s.spread));
+  s.why += format(": by %.3g%%; a lab value of it picks the member of the set",
+                  100 * std::expm1(s.spread));
   return s;
 }
 

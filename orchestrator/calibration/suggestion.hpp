@@ -20,13 +20,13 @@ inline constexpr double kBttSizeFactor = 1.5;
 
 struct ObservableValue {
   BondPoint point;
-  double value = 0.0;         // mean over the realisations
-  std::optional<double> se;   // its standard error, with two realisations or more
+  double value = 0.0;        // mean over the realisations
+  std::optional<double> se;  // its standard error, with two realisations or more
 };
 
 struct Suggestion {
-  std::string observable;  // what to measure in the lab, with its conditions
-  std::string unit;        // of the values (model units)
+  std::string observable;               // what to measure in the lab, with its conditions
+  std::string unit;                     // of the values (model units)
   std::vector<ObservableValue> values;  // at the set's ends, smallest F_s0/F_r0 first
   double spread = 0.0;                  // |ln(last / first)|
   std::string why;

@@ -126,8 +126,9 @@ TEST_F(ServiceCalibration, RunsToAFeasibleReport) {
   EXPECT_GT(report["pace"]["wall_seconds"].get<double>(), 0.0);
   // `rockcal status` shows this report as a table, not as its JSON.
   const std::string text = api::calibration_text(report);
-  EXPECT_EQ(text.substr(0, text.find('\n')),
-            "verdict: feasible - both peak loads within 2% of their targets");
+  EXPECT_EQ(
+      text.substr(0, text.find('\n')),
+      "verdict: feasible - both peak loads within 2% of their targets; the strengths are unique");
   EXPECT_NE(text.find("\n  UCT "), std::string::npos) << text;
   EXPECT_NE(text.find("\n  BTT "), std::string::npos) << text;
   EXPECT_NE(text.find("\nevaluations: " + report["evaluations"].dump() + " of 40, stopped: "),
@@ -170,10 +171,11 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
                          {"progress", {{"running", 2}}},
                          {"summary", progress}};
   const std::string line = api::progress_line(campaign);
-  EXPECT_EQ(line.rfind("campaign " + std::to_string(id) + " running: " +
-                           progress["evaluations"].dump() + " of 40 evaluations done, best misfit ",
-                       0),
-            0u)
+  EXPECT_EQ(
+      line.rfind("campaign " + std::to_string(id) + " running: " + progress["evaluations"].dump() +
+                     " of 64 evaluations done, best misfit ",  // 40 + 24 for the trace
+                 0),
+      0u)
       << line;
   EXPECT_NE(line.find(", ETA "), std::string::npos) << line;
   EXPECT_EQ(line.find("ETA 0s"), std::string::npos) << line;

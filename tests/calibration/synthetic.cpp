@@ -77,9 +77,13 @@ std::vector<orch::Ensemble> ModelEvaluator::probe_batch(std::span<const ProbeReq
     ++probes;
     std::vector<orch::Realisation> runs;
     for (std::uint64_t seed : orch::realisation_seeds(r.sample_seed, r.realisations)) {
-      runs.push_back({seed, 0, "succeeded",
-                      probe_model(r.point, r) * (1.0 + noise * hash_unit(r.point, seed, 3)), {},
-                      {}, ""});
+      runs.push_back({seed,
+                      0,
+                      "succeeded",
+                      probe_model(r.point, r) * (1.0 + noise * hash_unit(r.point, seed, 3)),
+                      {},
+                      {},
+                      ""});
     }
     out.push_back(orch::make_ensemble(std::move(runs)));
   }

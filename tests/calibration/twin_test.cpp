@@ -98,11 +98,12 @@ TEST_F(Twin, TwoLoadsThatDoNotPinTheStrengthsAreReportedNotUnique) {
   const CalibrationCampaign c = parse_calibration_campaign(campaign_json);
   const CalibrationReport r = run_calibration(c, evaluator_);
   const json report = to_json(r, c);
-  std::printf("twin tension-only: %zu evaluations, best (%g, %g), consistent F_r0 %s F_s0 %s, unique %d: %s\n",
-              r.history.size(), r.best ? r.best->point.fr0_n : 0.0,
-              r.best ? r.best->point.fs0_n : 0.0, report["consistent"]["fr0"].dump().c_str(),
-              report["consistent"]["fs0"].dump().c_str(), int(r.consistent.unique),
-              r.consistent.why.c_str());
+  std::printf(
+      "twin tension-only: %zu evaluations, best (%g, %g), consistent F_r0 %s F_s0 %s, unique %d: "
+      "%s\n",
+      r.history.size(), r.best ? r.best->point.fr0_n : 0.0, r.best ? r.best->point.fs0_n : 0.0,
+      report["consistent"]["fr0"].dump().c_str(), report["consistent"]["fs0"].dump().c_str(),
+      int(r.consistent.unique), r.consistent.why.c_str());
   std::printf("twin tension-only: trace %s\n", report["consistent"]["trace"].dump().c_str());
   ASSERT_TRUE(r.best.has_value());
   EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
