@@ -62,6 +62,10 @@ def run(engine, digest, out, spec):
     key = hashlib.sha256((digest + text).encode()).hexdigest()[:16]
     d = os.path.join(out, "runs", key)
     result = os.path.join(d, "result.json")
+    refused = os.path.join(d, "refused.txt")
+    if os.path.exists(refused):  # the engine refused the specimen (exit 1): a finding, not a crash
+        with open(refused) as f:
+            return {"error": f.read().strip()}
     if not os.path.exists(result):
         os.makedirs(d, exist_ok=True)
         with open(os.path.join(d, "job.json"), "w") as f:
@@ -71,7 +75,14 @@ def run(engine, digest, out, spec):
                                  stdout=subprocess.DEVNULL, stderr=err)
             # CPU time, not wall time: the figure that stays true on a loaded machine.
             _, status, usage = os.wait4(p.pid, 0)
-        if os.waitstatus_to_exitcode(status) != 0:
+        code = os.waitstatus_to_exitcode(status)
+        if code == 1:
+            with open(os.path.join(d, "stderr.log")) as f:
+                lines = [l for l in f.read().splitlines() if l.strip()]
+            with open(refused, "w") as f:
+                f.write((lines[-1] if lines else "exit 1") + "\n")
+            return run(engine, digest, out, spec)
+        if code != 0:
             raise RuntimeError(f"{d}: exit {os.waitstatus_to_exitcode(status)} (see stderr.log)")
         with open(os.path.join(d, "cpu_seconds"), "w") as f:
             f.write(f"{usage.ru_utime + usage.ru_stime}\n")
@@ -83,6 +94,10 @@ def run(engine, digest, out, spec):
 
 
 def row(spec, geometry, d_over_r, step, r):
+    if "error" in r:  # no specimen at all: counted with the runs without a peak
+        r = {"particles": 0, "peak_reached": False, "no_peak_reason": r["error"],
+             "peak_load": float("nan"), "strength": float("nan"), "wall_seconds": 0.0,
+             "cpu_seconds": 0.0, "broken_bonds_at_peak": 0}
     btt = r.get("btt", {})
     first = btt.get("first_interior_breaks", {})
     return {
