@@ -16,6 +16,9 @@ std::string derive_state(const db::StateCounts& c, const db::CampaignRow& campai
     return started || driver_running ? "running" : "queued";
   }
   if (campaign.cancel_requested) return "cancelled";
+  // A driver (calibration, diagnosis) takes a failed job as a data point (a run without a peak is
+  // one): its own end decides, and the failed jobs stay counted in the progress.
+  if (driver && *driver == "done") return "succeeded";
   if (c.failed > 0 || (driver && *driver == "failed")) return "failed";
   if (c.cancelled > 0) return "cancelled";
   return "succeeded";

@@ -73,7 +73,23 @@ SeedScatter scatter_best(const CalibrationCampaign& c, Evaluator& evaluator,
   return seed_scatter(std::move(runs));
 }
 
+// One packing's loads pin nothing finer than the packings' spread: when the best point's seed
+// scatter is wider than the tolerance, the set found on one packing is not the material's.
+void blur_by_scatter(CalibrationReport& r, const CalibrationCampaign& c) {
+  const SeedScatter& s = r.scatter;
+  if (!r.consistent.unique || !s.uct || !s.btt || s.uct->runs < 2 || s.btt->runs < 2) return;
+  const double cv_uct = s.uct->stddev_n / s.uct->mean_n, cv_btt = s.btt->stddev_n / s.btt->mean_n;
+  if (std::max(cv_uct, cv_btt) <= c.tolerance) return;
+  r.consistent.unique = false;
+  r.consistent.why = format(
+      "the best point's packing-seed scatter (UCT cv %.3g%%, BTT cv %.3g%%) is wider than the "
+      "tolerance: the loads of one packing do not pin the strengths; run every evaluation as an "
+      "ensemble (\"realisations\") so that the tolerance counts its standard error",
+      100 * cv_uct, 100 * cv_btt);
+}
+
 void judge(CalibrationReport& r, const CalibrationCampaign& c) {
+  blur_by_scatter(r, c);
   if (!r.best) {
     r.verdict = Verdict::failed;
     r.verdict_reason = "no evaluation succeeded";

@@ -77,6 +77,37 @@ TEST(ConsistentSet, AWellPosedTwinIsUniqueWithItsStrengthsRecovered) {
   }
 }
 
+// A search on one packing: when the best point's loads spread over packings by more than the
+// tolerance, its single-packing set is not the material's, whatever the trace found. Packing seed k
+// scales both loads by 1 + 0.05 (k - 1): the search's seed 1 is the formula itself.
+struct SeedScaled : Evaluator {
+  std::vector<EvaluationOutcome> evaluate_batch(std::span<const EvaluationRequest> rs) override {
+    std::vector<EvaluationOutcome> out;
+    for (const EvaluationRequest& r : rs) {
+      const double f = 1.0 + 0.05 * double(r.sample_seed - 1);
+      const PeakLoads l = testing::power_law(r.point);
+      out.push_back({PeakLoads{l.uct_n * f, l.btt_n * f}, "", std::nullopt, std::nullopt});
+    }
+    return out;
+  }
+};
+
+TEST(ConsistentSet, ASeedScatterWiderThanTheToleranceIsNotUnique) {
+  const BondPoint truth{40, 90};
+  const CalibrationCampaign c =
+      testing::campaign(testing::power_law(truth), {{"seeds", {2, 3, 4}}});
+  SeedScaled evaluator;
+  const CalibrationReport r = run_calibration(c, evaluator);
+  ASSERT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
+  ASSERT_TRUE(r.scatter.uct && r.scatter.btt);
+  EXPECT_NEAR(r.scatter.uct->stddev_n / r.scatter.uct->mean_n, 0.06, 1e-3);  // 1, 1.05, 1.1, 1.15
+  EXPECT_FALSE(r.consistent.unique);
+  EXPECT_EQ(
+      r.consistent.why.rfind("the best point's packing-seed scatter (UCT cv 6%, BTT cv 6%)", 0), 0u)
+      << r.consistent.why;
+  EXPECT_NE(r.verdict_reason.find("NOT unique"), std::string::npos);
+}
+
 TEST(ConsistentSet, AnUntracedSetIsNotCalledUnique) {
   const BondPoint truth{40, 90};
   const CalibrationCampaign c =

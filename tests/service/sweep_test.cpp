@@ -40,7 +40,8 @@ TEST(Sweep, OneJobPerPointAndTest) {
   json spec = json::parse(plan.jobs[3].spec);
   EXPECT_EQ(spec["bond"]["fr0"], 80.0);
   EXPECT_EQ(spec["bond"]["fs0"], 90.0);
-  EXPECT_EQ(spec["sample"]["diameter"], test::sweep_request({"uct"}, {1}, {1})["job"]["sample"]["diameter"]);
+  EXPECT_EQ(spec["sample"]["diameter"],
+            test::sweep_request({"uct"}, {1}, {1})["job"]["sample"]["diameter"]);
 }
 
 TEST(Sweep, ExplicitPoints) {
@@ -141,6 +142,13 @@ TEST(CampaignState, DerivedFromJobCounts) {
   db::CampaignRow driven;
   driven.driver_status = "running";
   EXPECT_EQ(derive_state({}, driven), "running");
+  driven.driver_status = "done";
+  n = {};
+  n.succeeded = 80;
+  n.failed = 3;  // runs without a peak, which the calibration took as failed evaluations
+  EXPECT_EQ(derive_state(n, driven), "succeeded");
+  driven.driver_status = "failed";
+  EXPECT_EQ(derive_state(n, driven), "failed");
 }
 
 }  // namespace
