@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "orchestrator/calibration/campaign.hpp"
 #include "orchestrator/calibration/driver.hpp"
@@ -25,20 +26,26 @@ CalibrationCampaign parse_request(const nlohmann::json& request) {
 // in the pace: they would make every later evaluation look nearly free.
 class Pace {
  public:
-  explicit Pace(db::Store& store) : store_(store), start_(Clock::now()), last_(start_) {}
+  explicit Pace(db::Store& store) : store_(store), start_(Clock::now()) {}
 
   void add(const EvaluationRecord& r) {
     if (answered_by_cache(r)) return;
-    ++timed_;
-    last_ = Clock::now();
+    times_.push_back(Clock::now());
   }
 
+  // Per evaluation over the latest kWindow timed ones: the start batch runs its points side by
+  // side, the search after it one by one, so the pace of the start would promise too much.
   nlohmann::json to_json() const {
-    const double timed_seconds = seconds(last_ - start_);
+    nlohmann::json per = nullptr;
+    const int n = int(times_.size());
+    if (n > kWindow) {
+      per = seconds(times_.back() - times_[n - 1 - kWindow]) / kWindow;
+    } else if (n > 0) {
+      per = seconds(times_.back() - start_) / n;
+    }
     return {{"wall_seconds", seconds(Clock::now() - start_)},
-            {"evaluations_timed", timed_},
-            {"seconds_per_evaluation",
-             timed_ > 0 ? nlohmann::json(timed_seconds / timed_) : nlohmann::json(nullptr)}};
+            {"evaluations_timed", n},
+            {"seconds_per_evaluation", per}};
   }
 
  private:
@@ -56,10 +63,10 @@ class Pace {
     return true;
   }
 
+  static constexpr int kWindow = 8;
   db::Store& store_;
   Clock::time_point start_;
-  Clock::time_point last_;  // when the latest timed evaluation ended
-  int timed_ = 0;
+  std::vector<Clock::time_point> times_;  // when each timed evaluation ended
 };
 
 // The packings the best point is re-run on once the search has ended (its own seed is not).

@@ -128,6 +128,29 @@ void parse_realisations(JsonFields& root, const JobSpec& model, CalibrationCampa
 
 }  // namespace
 
+// "fidelity": {"fine": {merge patch of "job"}, "corrections": n}. The fine template is validated
+// for both tests like the job itself.
+void parse_fidelity(JsonFields& root, CalibrationCampaign& c) {
+  const nlohmann::json* f = root.get("fidelity");
+  if (!f) return;
+  if (!f->is_object()) throw CampaignError("fidelity", "must be an object");
+  JsonFields fields(*f, "fidelity");
+  const nlohmann::json& fine = fields.require("fine");
+  if (!fine.is_object() || fine.empty())
+    throw CampaignError("fidelity.fine", "must be a non-empty object (a patch of \"job\")");
+  nlohmann::json tmpl = c.job_template;
+  tmpl.merge_patch(fine);
+  try {
+    validate_template(tmpl, c.fr0_n, c.fs0_n);
+  } catch (const CampaignError& e) {
+    throw CampaignError("fidelity.fine", std::string("the fine job: ") + e.what());
+  }
+  c.fine_patch = fine;
+  c.fine_corrections =
+      int(fields.integer("corrections", 1, 20).value_or(c.fine_corrections));
+  fields.reject_unknown();
+}
+
 CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   JsonFields root(campaign, "");
   CalibrationCampaign c;
@@ -169,6 +192,7 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.consistency_evaluations =
       int(root.integer("consistency_evaluations", 0, 1'000).value_or(c.consistency_evaluations));
   c.suggest = root.boolean("suggest").value_or(c.suggest);
+  parse_fidelity(root, c);
   root.reject_unknown();
   return c;
 }

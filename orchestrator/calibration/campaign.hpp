@@ -46,6 +46,10 @@ struct CalibrationCampaign {
   std::vector<std::uint64_t> scatter_seeds;  // extra packing seeds for the best point
   int consistency_evaluations = 24;          // the consistent-set trace after the search (0: none)
   bool suggest = true;  // measure the observable that would pin a non-unique set
+  // Multi-fidelity (fidelity.hpp): a merge patch of the job template that makes the fine specimen
+  // (null: the search's specimen is the answer), and the fine evaluations allowed.
+  nlohmann::json fine_patch = nullptr;
+  int fine_corrections = 3;
 };
 
 // Parses and validates the whole campaign (the job template through the engine's validation for

@@ -88,6 +88,35 @@ void blur_by_scatter(CalibrationReport& r, const CalibrationCampaign& c) {
       100 * cv_uct, 100 * cv_btt);
 }
 
+// With a fine specimen the answer is the fine one: the coarse search only led there.
+bool judge_fine(CalibrationReport& r, const CalibrationCampaign& c) {
+  if (c.fine_patch.is_null() || !r.best || !r.best->within_tolerance) return false;
+  const FidelityResult* f = r.fidelity ? &*r.fidelity : nullptr;
+  if (f && f->met) {
+    r.verdict = Verdict::feasible;
+    r.verdict_reason = format(
+        "both peak loads within %.3g%% of their targets on the fine specimen after %.0f fine "
+        "evaluations (the consistent set and its uniqueness are the coarse search's)",
+        100 * c.tolerance, double(f->steps.size()));
+    return true;
+  }
+  r.verdict = r.stop_reason == StopReason::cancelled ? Verdict::incomplete : Verdict::compromise;
+  if (!f || f->steps.empty()) {
+    r.verdict_reason = "the coarse search met the targets but the fine specimen was not run";
+  } else if (!f->steps.back().fine) {
+    r.verdict_reason = "the coarse search met the targets; a fine run failed: " + f->steps.back().error;
+  } else {
+    const PeakLoads& l = *f->steps.back().fine;
+    const PeakLoads& t = c.targets.model_loads_n;
+    r.verdict_reason = format(
+        "the coarse search met the targets; after %.0f fine corrections the fine specimen's loads "
+        "miss them by UCT %+.3g%%",
+        double(f->steps.size()), 100 * (l.uct_n / t.uct_n - 1));
+    r.verdict_reason += format(", BTT %+.3g%%", 100 * (l.btt_n / t.btt_n - 1));
+  }
+  return true;
+}
+
 void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   blur_by_scatter(r, c);
   if (!r.best) {
@@ -95,6 +124,7 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
     r.verdict_reason = "no evaluation succeeded";
     return;
   }
+  if (judge_fine(r, c)) return;
   if (r.best->within_tolerance) {
     r.verdict = Verdict::feasible;
     r.verdict_reason = format("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
@@ -173,6 +203,11 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
   if (const EvaluationRecord* best = ledger.best()) report.best = *best;
   report.ratio = ratio_range(report.history, ledger.targets());
   report.consistent = consistent_set(report.history, report.trace);
+  if (report.best && report.best->within_tolerance)
+    after_search([&] {
+      report.fidelity = correct_on_fine(report.history, *report.best, c,
+                                        report.homogeneity.degree(), evaluator);
+    });
   if (c.suggest)
     after_search([&] { report.suggestion = suggest_observable(report.consistent, c, evaluator); });
   if (report.best) after_search([&] { report.scatter = scatter_best(c, evaluator, *report.best); });

@@ -221,7 +221,10 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"scatter", scatter_json(r.scatter)},
             {"consistent", consistent_json(r)},
             {"unique", r.consistent.unique},
-            {"suggestion", suggestion_json(r.suggestion)}};
+            {"suggestion", suggestion_json(r.suggestion)},
+            {"fidelity", r.fidelity ? to_json(*r.fidelity, c) : json(nullptr)}};
+  // Which specimen each search evaluation ran on: the template's, coarse when a fine one follows.
+  for (json& row : j["history"]) row["resolution"] = c.fine_patch.is_null() ? "template" : "coarse";
   if (r.ratio) {
     j["ratio"] = {
         {"target", r.ratio->target},
