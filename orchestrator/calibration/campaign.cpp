@@ -128,11 +128,12 @@ void parse_realisations(JsonFields& root, const JobSpec& model, CalibrationCampa
 
 }  // namespace
 
-// "fidelity": {"fine": {merge patch of "job"}, "corrections": n}. The fine template is validated
-// for both tests like the job itself.
-void parse_fidelity(JsonFields& root, CalibrationCampaign& c) {
+// "fidelity": {"fine": {merge patch of "job"}, "corrections": n, "strength_scale": s}. The fine
+// template is validated for both tests like the job itself; returns its spec, the model the lab
+// targets are mapped to (the answer is the fine specimen's).
+std::optional<JobSpec> parse_fidelity(JsonFields& root, CalibrationCampaign& c) {
   const nlohmann::json* f = root.get("fidelity");
-  if (!f) return;
+  if (!f) return std::nullopt;
   if (!f->is_object()) throw CampaignError("fidelity", "must be an object");
   JsonFields fields(*f, "fidelity");
   const nlohmann::json& fine = fields.require("fine");
@@ -140,15 +141,18 @@ void parse_fidelity(JsonFields& root, CalibrationCampaign& c) {
     throw CampaignError("fidelity.fine", "must be a non-empty object (a patch of \"job\")");
   nlohmann::json tmpl = c.job_template;
   tmpl.merge_patch(fine);
+  JobSpec spec;
   try {
-    validate_template(tmpl, c.fr0_n, c.fs0_n);
+    spec = validate_template(tmpl, c.fr0_n, c.fs0_n);
   } catch (const CampaignError& e) {
     throw CampaignError("fidelity.fine", std::string("the fine job: ") + e.what());
   }
   c.fine_patch = fine;
   c.fine_corrections =
       int(fields.integer("corrections", 1, 20).value_or(c.fine_corrections));
+  c.fine_strength_scale = fields.positive("strength_scale").value_or(1.0);
   fields.reject_unknown();
+  return spec;
 }
 
 CalibrationCampaign parse_calibration_campaign(const json& campaign) {
@@ -169,7 +173,11 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.job_template = job_template;  // copied once the engine has validated it
   c.model_specimen = {model.sample.diameter_m, model.sample.height_m, model.sample.btt_thickness()};
   c.sample_seed = model.sample.seed;
-  c.targets = parse_targets(root, model, c.model_specimen);
+  // Lab targets map to the fine specimen's model when there is one: its loads are the answer.
+  const std::optional<JobSpec> fine = parse_fidelity(root, c);
+  c.targets = fine ? parse_targets(root, *fine, {fine->sample.diameter_m, fine->sample.height_m,
+                                                 fine->sample.btt_thickness()})
+                   : parse_targets(root, model, c.model_specimen);
   c.max_evaluations = int(root.integer("max_evaluations", 4, 10'000).value_or(c.max_evaluations));
   c.tolerance = root.positive("tolerance").value_or(c.tolerance);
   if (c.tolerance >= 1.0) throw CampaignError("tolerance", "must be below 1 (a relative error)");
@@ -192,7 +200,6 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.consistency_evaluations =
       int(root.integer("consistency_evaluations", 0, 1'000).value_or(c.consistency_evaluations));
   c.suggest = root.boolean("suggest").value_or(c.suggest);
-  parse_fidelity(root, c);
   root.reject_unknown();
   return c;
 }

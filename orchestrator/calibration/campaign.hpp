@@ -50,6 +50,9 @@ struct CalibrationCampaign {
   // (null: the search's specimen is the answer), and the fine evaluations allowed.
   nlohmann::json fine_patch = nullptr;
   int fine_corrections = 3;
+  // F on the fine specimen = F of the search x this: (R_fine / R_coarse)^2 when the fine specimen
+  // has smaller grains at the same stress scale (bond forces scale with the bond's area).
+  double fine_strength_scale = 1.0;
 };
 
 // Parses and validates the whole campaign (the job template through the engine's validation for

@@ -62,11 +62,14 @@ std::optional<FidelityResult> correct_on_fine(const std::vector<EvaluationRecord
   const PeakLoads& t = c.targets.model_loads_n;
   BondPoint point = best.point;
   for (int k = 0; k < c.fine_corrections; ++k) {
+    // Newton works in the search's strengths; the fine specimen runs them scaled.
+    const BondPoint fine_point{point.fr0_n * c.fine_strength_scale,
+                               point.fs0_n * c.fine_strength_scale};
     const ProbeRequest probes[2] = {
-        {point, c.sample_seed, c.realisations, TestKind::uct, c.fine_patch},
-        {point, c.sample_seed, c.realisations, TestKind::btt, c.fine_patch}};
+        {fine_point, c.sample_seed, c.realisations, TestKind::uct, c.fine_patch},
+        {fine_point, c.sample_seed, c.realisations, TestKind::btt, c.fine_patch}};
     const std::vector<orch::Ensemble> e = evaluator.probe_batch(probes);
-    FidelityStep step{point, std::nullopt, {0.0, 0.0}, "", false};
+    FidelityStep step{fine_point, std::nullopt, {0.0, 0.0}, "", false};
     if (e.size() < 2 || !e[0].peak_load.mean || !e[1].peak_load.mean) {
       step.error = e.size() < 2 ? "the evaluator runs no fine specimen"
                                 : "a fine run ended without a peak load";
@@ -119,6 +122,7 @@ nlohmann::json to_json(const FidelityResult& r, const CalibrationCampaign& c) {
     steps.push_back(j);
   }
   return {{"fine", c.fine_patch},
+          {"strength_scale", c.fine_strength_scale},
           {"steps", steps},
           {"met", r.met},
           {"jacobian", r.jacobian},

@@ -18,7 +18,7 @@
 namespace rockcal::calibration {
 
 struct FidelityStep {
-  BondPoint point;
+  BondPoint point;  // the fine specimen's strengths (the search's x fine_strength_scale)
   std::optional<PeakLoads> fine;  // absent when a fine run failed
   PeakLoads rel_se{0.0, 0.0};
   std::string error;
