@@ -175,6 +175,27 @@ std::string scatter_text(const json& scatter) {
   return parts.empty() ? "" : "  seed scatter of the best point: " + parts + "\n";
 }
 
+// The fine specimen's steps of a multi-fidelity campaign: the answer is the last of them, the
+// "best bond strengths" above are the coarse search's.
+std::string fidelity_text(const json& f) {
+  if (!f.is_object() || !f["steps"].is_array() || f["steps"].empty()) return "";
+  std::ostringstream out;
+  out << "fine specimen (" << f["steps"].size() << " corrections, "
+      << (f["met"].get<bool>() ? "met" : "not met")
+      << "; the strengths above are the coarse search's):\n";
+  for (const json& st : f["steps"]) {
+    out << "  F_r0 = " << num(st["fr0"]) << ", F_s0 = " << num(st["fs0"]);
+    if (st.contains("uct")) {
+      out << ": UCT " << num(100 * st["uct"]["relative_error"].get<double>(), "%+.2f") << "%, BTT "
+          << num(100 * st["btt"]["relative_error"].get<double>(), "%+.2f") << "%";
+    } else {
+      out << ": " << st["error"].get<std::string>();
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
 }  // namespace
 
 std::string calibration_text(const json& s) {
@@ -207,6 +228,7 @@ std::string calibration_text(const json& s) {
         << value_text(at(best, "evaluation")) << "\n";
   }
   out << consistency_text(s);
+  out << fidelity_text(at(s, "fidelity"));
   out << "evaluations: " << value_text(at(s, "evaluations")) << " of "
       << value_text(at(s, "max_evaluations"));
   if (at(s, "failed_evaluations").is_number() && s["failed_evaluations"].get<int>() > 0) {

@@ -143,6 +143,30 @@ TEST(CalibrationSummary, ModelUnitsSingleRunsAndNoConsistentSetAreShownWithoutTh
             "evaluations: 23 of 40, stopped: tolerance_met\n");
 }
 
+// A multi-fidelity campaign's answer is its last fine step: the table lists them after the coarse
+// search's best point.
+TEST(CalibrationSummary, FineStepsFollowTheCoarseSearch) {
+  json s = lab_report();
+  for (const char* k : {"consistent", "unique", "suggestion", "pace"}) s.erase(k);
+  s["fidelity"] = {
+      {"met", false},
+      {"steps",
+       {{{"fr0", 32.86},
+         {"fs0", 50.58},
+         {"uct", {{"relative_error", 0.1362}}},
+         {"btt", {{"relative_error", 0.0798}}},
+         {"error", ""}},
+        {{"fr0", 31.5}, {"fs0", 44.69}, {"error", "a fine run ended without a peak load"}}}}};
+  const std::string text = calibration_text(s);
+  EXPECT_NE(text.find("fine specimen (2 corrections, not met; the strengths above are the coarse "
+                      "search's):\n"
+                      "  F_r0 = 32.86, F_s0 = 50.58: UCT +13.62%, BTT +7.98%\n"
+                      "  F_r0 = 31.5, F_s0 = 44.69: a fine run ended without a peak load\n"
+                      "evaluations: "),
+            std::string::npos)
+      << text;
+}
+
 TEST(CalibrationSummary, NoSuccessfulEvaluationSaysSoWithoutATable) {
   json s = {{"verdict", "failed"},       {"verdict_reason", "no evaluation succeeded"},
             {"best", nullptr},           {"evaluations", 4},
