@@ -110,8 +110,11 @@ def main():
     for p in points(a.uct):
         if p not in points(a.btt):
             continue
-        s_u = results[("uct", p, "seed", a.seed_cut)]["strength"]
-        s_b = results[("btt", p, "seed", a.seed_cut)]["strength"]
+        seed_u, seed_b = results[("uct", p, "seed", a.seed_cut)], results[("btt", p, "seed", a.seed_cut)]
+        if not (seed_u["peak_reached"] and seed_b["peak_reached"]):
+            print(f"\nUCS/BTS at {p[0]:g}/{p[1]:g}: no ratio (a seed set-up run has no peak)")
+            continue
+        s_u, s_b = seed_u["strength"], seed_b["strength"]
         u, su, *_ = ensemble("uct", p, "strength")
         b, sb, *_ = ensemble("btt", p, "strength")
         ratio = u / b
