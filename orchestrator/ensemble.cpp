@@ -38,6 +38,10 @@ std::optional<std::string> realisations_problem(int count, std::uint64_t base_se
   return std::nullopt;
 }
 
+double relative_se(const SampleStats& s) {
+  return s.se && s.mean && *s.mean > 0 ? *s.se / *s.mean : 0.0;
+}
+
 SampleStats sample_stats(const std::vector<double>& values) {
   SampleStats s;
   s.n = int(values.size());

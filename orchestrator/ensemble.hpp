@@ -39,6 +39,9 @@ struct SampleStats {
   std::optional<double> se;
 };
 SampleStats sample_stats(const std::vector<double>& values);
+// se / mean of the ensemble's peak load: 0 without a standard error (fewer than two values) or a
+// positive mean.
+double relative_se(const SampleStats& peak_load);
 
 // One realisation as it stands: values only when its run succeeded; `error` says why a run that
 // ended has none (a failed job's reason, e.g. "no peak: ...").

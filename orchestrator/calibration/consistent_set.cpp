@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "orchestrator/calibration/search_space.hpp"
+#include "orchestrator/calibration/sentence.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -205,12 +206,6 @@ Branches other_branches(Ledger& ledger, const CalibrationCampaign& c, double deg
   return out;
 }
 
-std::string format(const char* pattern, double a, double b = 0, double c = 0, double d = 0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, pattern, a, b, c, d);
-  return buffer;
-}
-
 double relative_half_width(const Range& r) {
   return (r.hi - r.lo) / (r.hi + r.lo);
 }
@@ -270,13 +265,13 @@ ConsistentSet consistent_set(const std::vector<EvaluationRecord>& history,
   const bool narrow = relative_half_width(set.fr0) <= kUniqueHalfWidth &&
                       relative_half_width(set.fs0) <= kUniqueHalfWidth;
   if (trace.branches > 1) {
-    set.why = format("%.0f separate ratios F_s0/F_r0 meet both targets", trace.branches) +
-              format(
+    set.why = sentence("%.0f separate ratios F_s0/F_r0 meet both targets", trace.branches) +
+              sentence(
                   " (the set spans F_r0 %.4g-%.4g N, F_s0 %.4g-%.4g N): the two loads do not "
                   "pin both strengths",
                   set.fr0.lo, set.fr0.hi, set.fs0.lo, set.fs0.hi);
   } else if (!narrow) {
-    set.why = format(
+    set.why = sentence(
         "the consistent points span F_r0 %.4g-%.4g N and F_s0 %.4g-%.4g N: the two loads do not "
         "pin both strengths",
         set.fr0.lo, set.fr0.hi, set.fs0.lo, set.fs0.hi);
@@ -287,7 +282,7 @@ ConsistentSet consistent_set(const std::vector<EvaluationRecord>& history,
               "), so other consistent strengths may exist";
   } else {
     set.unique = true;
-    set.why = format(
+    set.why = sentence(
         "the consistent points lie within %.3g%% in each strength, a step of F_s0/F_r0 by a factor "
         "%.3g either way misses the targets at the fitted scale (or leaves the bounds), and no "
         "other ratio within the bounds meets them",

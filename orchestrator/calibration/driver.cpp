@@ -8,17 +8,12 @@
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/local_search.hpp"
 #include "orchestrator/calibration/ratio_scale.hpp"
+#include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/calibration/start_design.hpp"
 #include "orchestrator/calibration/suggestion.hpp"
 
 namespace rockcal::calibration {
 namespace {
-
-std::string format(const char* pattern, double a, double b = 0, double c = 0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
-  return buffer;
-}
 
 bool ratio_out_of_reach(const Ledger& ledger) {
   const auto range = ratio_range(ledger.history(), ledger.targets());
@@ -81,7 +76,7 @@ void blur_by_scatter(CalibrationReport& r, const CalibrationCampaign& c) {
   const double cv_uct = s.uct->stddev_n / s.uct->mean_n, cv_btt = s.btt->stddev_n / s.btt->mean_n;
   if (std::max(cv_uct, cv_btt) <= c.tolerance) return;
   r.consistent.unique = false;
-  r.consistent.why = format(
+  r.consistent.why = sentence(
       "the best point's packing-seed scatter (UCT cv %.3g%%, BTT cv %.3g%%) is wider than the "
       "tolerance: the loads of one packing do not pin the strengths; run every evaluation as an "
       "ensemble (\"realisations\") so that the tolerance counts its standard error",
@@ -94,7 +89,7 @@ bool judge_fine(CalibrationReport& r, const CalibrationCampaign& c) {
   const FidelityResult* f = r.fidelity ? &*r.fidelity : nullptr;
   if (f && f->met) {
     r.verdict = Verdict::feasible;
-    r.verdict_reason = format(
+    r.verdict_reason = sentence(
         "both peak loads within %.3g%% of their targets on the fine specimen after %.0f fine "
         "evaluations (the consistent set and its uniqueness are the coarse search's)",
         100 * c.tolerance, double(f->steps.size()));
@@ -104,15 +99,16 @@ bool judge_fine(CalibrationReport& r, const CalibrationCampaign& c) {
   if (!f || f->steps.empty()) {
     r.verdict_reason = "the coarse search met the targets but the fine specimen was not run";
   } else if (!f->steps.back().fine) {
-    r.verdict_reason = "the coarse search met the targets; a fine run failed: " + f->steps.back().error;
+    r.verdict_reason =
+        "the coarse search met the targets; a fine run failed: " + f->steps.back().error;
   } else {
     const PeakLoads& l = *f->steps.back().fine;
     const PeakLoads& t = c.targets.model_loads_n;
-    r.verdict_reason = format(
+    r.verdict_reason = sentence(
         "the coarse search met the targets; after %.0f fine corrections the fine specimen's loads "
         "miss them by UCT %+.3g%%",
         double(f->steps.size()), 100 * (l.uct_n / t.uct_n - 1));
-    r.verdict_reason += format(", BTT %+.3g%%", 100 * (l.btt_n / t.btt_n - 1));
+    r.verdict_reason += sentence(", BTT %+.3g%%", 100 * (l.btt_n / t.btt_n - 1));
   }
   return true;
 }
@@ -127,7 +123,8 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   if (judge_fine(r, c)) return;
   if (r.best->within_tolerance) {
     r.verdict = Verdict::feasible;
-    r.verdict_reason = format("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
+    r.verdict_reason =
+        sentence("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
     // The reason for uniqueness is in the consistent set; a non-unique answer says why here too.
     r.verdict_reason +=
         r.consistent.unique ? "; the strengths are unique" : "; NOT unique: " + r.consistent.why;
@@ -140,16 +137,16 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   }
   r.verdict = Verdict::compromise;
   if (r.ratio && !r.ratio->target_inside) {
-    r.verdict_reason = format(
+    r.verdict_reason = sentence(
         "the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] the model reached: "
         "both loads cannot be met; best is the weighted log-misfit compromise",
         r.ratio->target, r.ratio->min, r.ratio->max);
   } else if (r.stop_reason == StopReason::budget_exhausted) {
     r.verdict_reason =
-        format("the budget of %.0f evaluations ran out before both loads were within %.3g%%",
-               c.max_evaluations, 100 * c.tolerance);
+        sentence("the budget of %.0f evaluations ran out before both loads were within %.3g%%",
+                 c.max_evaluations, 100 * c.tolerance);
   } else {
-    r.verdict_reason = format(
+    r.verdict_reason = sentence(
         "the optimiser converged without both loads within %.3g%% (noise, or "
         "the targets are barely reachable)",
         100 * c.tolerance);
@@ -205,8 +202,8 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
   report.consistent = consistent_set(report.history, report.trace);
   if (report.best && report.best->within_tolerance)
     after_search([&] {
-      report.fidelity = correct_on_fine(report.history, *report.best, c,
-                                        report.homogeneity.degree(), evaluator);
+      report.fidelity =
+          correct_on_fine(report.history, *report.best, c, report.homogeneity.degree(), evaluator);
     });
   if (c.suggest)
     after_search([&] { report.suggestion = suggest_observable(report.consistent, c, evaluator); });

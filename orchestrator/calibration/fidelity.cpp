@@ -12,12 +12,6 @@ namespace {
 // Coarse evaluations within this distance (in ln F_r0, ln F_s0) of the best point fit the Jacobian.
 constexpr double kNeighbourhood = 0.7;
 
-double relative_se(const orch::Ensemble& e) {
-  return e.peak_load.se && e.peak_load.mean && *e.peak_load.mean > 0
-             ? *e.peak_load.se / *e.peak_load.mean
-             : 0.0;
-}
-
 // d ln(load) / d (ln F_r0, ln F_s0) of the coarse model near `best`, by least squares on the
 // evaluations around it; nullopt when they do not span two directions.
 std::optional<Eigen::Matrix2d> coarse_jacobian(const std::vector<EvaluationRecord>& coarse,
@@ -38,7 +32,7 @@ std::optional<Eigen::Matrix2d> coarse_jacobian(const std::vector<EvaluationRecor
   }
   if (used < 4) return std::nullopt;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(ata);
-  const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
+  const Eigen::Vector3d ev = eig.eigenvalues();      // ascending
   if (!(ev(0) > 1e-6 * ev(2))) return std::nullopt;  // the points lie on a line
   const Eigen::Matrix<double, 3, 2> coef = ata.ldlt().solve(aty);
   Eigen::Matrix2d j;
@@ -77,11 +71,11 @@ std::optional<FidelityResult> correct_on_fine(const std::vector<EvaluationRecord
       break;
     }
     step.fine = PeakLoads{*e[0].peak_load.mean, *e[1].peak_load.mean};
-    step.rel_se = {relative_se(e[0]), relative_se(e[1])};
+    step.rel_se = {orch::relative_se(e[0].peak_load), orch::relative_se(e[1].peak_load)};
     step.within_tolerance = within_tolerance(*step.fine, t, c.tolerance, step.rel_se);
     if (k == 0)
-      out.factors = PeakLoads{step.fine->uct_n / best.loads->uct_n,
-                              step.fine->btt_n / best.loads->btt_n};
+      out.factors =
+          PeakLoads{step.fine->uct_n / best.loads->uct_n, step.fine->btt_n / best.loads->btt_n};
     out.steps.push_back(step);
     if (step.within_tolerance) {
       out.met = true;
@@ -121,13 +115,14 @@ nlohmann::json to_json(const FidelityResult& r, const CalibrationCampaign& c) {
     }
     steps.push_back(j);
   }
-  return {{"fine", c.fine_patch},
-          {"strength_scale", c.fine_strength_scale},
-          {"steps", steps},
-          {"met", r.met},
-          {"jacobian", r.jacobian},
-          {"factors", r.factors ? nlohmann::json{{"uct", r.factors->uct_n}, {"btt", r.factors->btt_n}}
-                                : nlohmann::json(nullptr)}};
+  return {
+      {"fine", c.fine_patch},
+      {"strength_scale", c.fine_strength_scale},
+      {"steps", steps},
+      {"met", r.met},
+      {"jacobian", r.jacobian},
+      {"factors", r.factors ? nlohmann::json{{"uct", r.factors->uct_n}, {"btt", r.factors->btt_n}}
+                            : nlohmann::json(nullptr)}};
 }
 
 }  // namespace rockcal::calibration

@@ -58,15 +58,6 @@ EvaluationRecord Ledger::evaluate_one(const BondPoint& point, const std::string&
   return evaluate({point}, phase).front();
 }
 
-namespace {
-
-double relative_se(const std::optional<orch::Ensemble>& e) {
-  if (!e || !e->peak_load.se || !e->peak_load.mean || !(*e->peak_load.mean > 0)) return 0.0;
-  return *e->peak_load.se / *e->peak_load.mean;
-}
-
-}  // namespace
-
 EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome& outcome,
                                 const std::string& phase) {
   EvaluationRecord r;
@@ -83,7 +74,8 @@ EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome&
                       outcome.loads->btt_n > 0;
   if (usable) {
     r.loads = outcome.loads;
-    r.rel_se = {relative_se(outcome.uct), relative_se(outcome.btt)};
+    r.rel_se = {outcome.uct ? orch::relative_se(outcome.uct->peak_load) : 0.0,
+                outcome.btt ? orch::relative_se(outcome.btt->peak_load) : 0.0};
     r.misfit = misfit(log_errors(*r.loads, targets()), weights());
     r.within_tolerance = within_tolerance(*r.loads, targets(), campaign_.tolerance, r.rel_se);
   } else {

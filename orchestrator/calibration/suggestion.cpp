@@ -4,16 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/calibration/specimen.hpp"
 
 namespace rockcal::calibration {
 namespace {
-
-std::string format(const char* pattern, double a, double b = 0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, pattern, a, b);
-  return buffer;
-}
 
 struct Candidate {
   std::string observable;
@@ -58,12 +53,12 @@ std::optional<Suggestion> suggest_observable(const ConsistentSet& set, const Cal
   const double disc = kBttSizeFactor * sp.diameter_m;
   std::vector<ProbeRequest> probes;
   std::vector<Candidate> probed = {
-      {format("a triaxial peak load at a confinement of %.3g Pa (%.3g x the target UCS)",
-              confinement, kTriaxialConfinement),
+      {sentence("a triaxial peak load at a confinement of %.3g Pa (%.3g x the target UCS)",
+                confinement, kTriaxialConfinement),
        "N",
        {}},
-      {format("the BTT peak load of a disc of %.3g x the diameter (%.4g, model units)",
-              kBttSizeFactor, disc),
+      {sentence("the BTT peak load of a disc of %.3g x the diameter (%.4g, model units)",
+                kBttSizeFactor, disc),
        "N",
        {}}};
   for (const EvaluationRecord* e : ends) {
@@ -98,12 +93,12 @@ std::optional<Suggestion> suggest_observable(const ConsistentSet& set, const Cal
   s.unit = top.unit;
   s.values = top.values;
   s.spread = spread(top);
-  s.why = format(
+  s.why = sentence(
       "of the observables measured at the consistent set's two ends (F_s0/F_r0 %.3g and %.3g), it "
       "differs most",
       ratio(*lo), ratio(*hi));
-  s.why += format(": by %.3g%%; a lab value of it picks the member of the set",
-                  100 * std::expm1(s.spread));
+  s.why += sentence(": by %.3g%%; a lab value of it picks the member of the set",
+                    100 * std::expm1(s.spread));
   return s;
 }
 
