@@ -154,16 +154,23 @@ ExitStatus LocalExecutor::cancel(const std::string& handle) {
 bool LocalExecutor::stop_orphan(const std::optional<std::string>& handle,
                                 const std::filesystem::path& job_dir) {
   std::string engine_name = std::filesystem::path(config_.engine).filename().string();
-  std::set<pid_t> groups;
-  if (handle) groups.insert(parse_handle(*handle));
-  // Every run of the job names its job.json on the command line (absolute path).
-  for (pid_t g : groups_mentioning((job_dir / "job.json").string())) groups.insert(g);
-  bool stopped = false;
-  for (pid_t pgid : groups) {
-    // The recorded number may since belong to an unrelated group: only stop engine runs.
-    if (group_runs_engine(pgid, engine_name)) stopped |= terminate_group(pgid, config_.grace);
-  }
-  return stopped;
+  auto search = [&] {
+    std::set<pid_t> groups;
+    if (handle) groups.insert(parse_handle(*handle));
+    // Every run of the job names its job.json on the command line (absolute path).
+    for (pid_t g : groups_mentioning((job_dir / "job.json").string())) groups.insert(g);
+    bool stopped = false;
+    for (pid_t pgid : groups) {
+      // The recorded number may since belong to an unrelated group: only stop engine runs.
+      if (group_runs_engine(pgid, engine_name)) stopped |= terminate_group(pgid, config_.grace);
+    }
+    return stopped;
+  };
+  // A process in the middle of an exec (mpirun starting ranks, env starting a shell) reads as an
+  // empty command line, so a search that stops nothing looks once more a moment later.
+  if (search()) return true;
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  return search();
 }
 
 }  // namespace rockcal::orch

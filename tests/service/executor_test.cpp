@@ -81,7 +81,7 @@ TEST_F(ExecutorTest, StopsOrphansOnlyWhenTheGroupRunsTheEngine) {
                          {"run", (job_dir / "job.json").string(), "--out", job_dir.string()}});
     EXPECT_TRUE(test::poll_until(
         [&] { return group_runs_engine(std::stoi(handle), "fake-rockcal-dem.sh"); }, 5s));
-    return handle;
+    return handle;  // possibly still between env and bash: the search must see it all the same
   };
   // By the recorded handle.
   auto a = hanging_job(dir.path() / "a");

@@ -115,19 +115,26 @@ TEST_F(JobServiceTest, CancelStopsRunningJobsAndDropsQueuedOnes) {
 // does not count (it runs alone: RUN_SERIAL); the exit, the result read and the commit take
 // 30-40 ms, polling every 100 ms would add about 50 ms more.
 TEST_F(JobServiceTest, AloneAShortJobIsRecordedSoonAfterItEnds) {
+  // The pool looks at a job 1 ms after its launch and then at intervals growing by 1.5x (up to
+  // poll_interval), so a job is noticed within about half its own run time, plus the engine's exit
+  // after it wrote its result. Measured against each job's run time, so that a loaded machine
+  // (slower jobs) does not fail it; a pool that looked once a second would.
   start(1);
   auto id = service->create_campaign(
       points_request({{31, 1}, {37, 1}, {41, 1}, {43, 1}, {47, 1}, {53, 1}, {59, 1}}));
   ASSERT_TRUE(test::poll_until([&] { return finished(id); }, 60s));
-  std::vector<double> noticed_s;
+  std::vector<double> excess_s;
   for (const auto& row : service->store().campaign_results(id)) {
     ASSERT_EQ(row.job.state, "succeeded");
     ASSERT_TRUE(row.result);
+    ASSERT_TRUE(row.job.started_at && row.job.finished_at);
     double ended = json::parse(row.result->result).at("ended_at").get<double>();
-    noticed_s.push_back(*row.job.finished_at - ended);
+    double run_s = ended - *row.job.started_at;
+    excess_s.push_back((*row.job.finished_at - ended) - 0.5 * run_s);
   }
-  std::sort(noticed_s.begin(), noticed_s.end());
-  EXPECT_LT(noticed_s[noticed_s.size() / 2], 0.07) << "median of " << noticed_s.size() << " jobs";
+  std::sort(excess_s.begin(), excess_s.end());
+  EXPECT_LT(excess_s[excess_s.size() / 2], 0.03)
+      << "median over " << excess_s.size() << " jobs of (noticed after end - half the run time)";
 }
 
 TEST_F(JobServiceTest, DriversSubmitJobsAndWaitForResults) {
