@@ -127,7 +127,9 @@ std::string load_row(const char* name, const json& shown, const json& model) {
 
 std::string range_text(const json& range) {
   if (!range.is_array() || range.size() != 2) return "-";
-  return "[" + num(range[0]) + ", " + num(range[1]) + "]";
+  // Built by appending: GCC 12 warns falsely (-Wrestrict) on "[" + std::string.
+  std::string text = "[";
+  return text.append(num(range[0])).append(", ").append(num(range[1])).append("]");
 }
 
 std::string value_text(const json& v) {
@@ -241,6 +243,8 @@ std::string calibration_text(const json& s) {
   const json& wall = at(at(s, "pace"), "wall_seconds");
   if (wall.is_number()) out << ", wall time " << duration_text(wall.get<double>());
   out << "\n";
+  const json& why = at(at(s, "ensemble"), "why");
+  if (why.is_string()) out << "ensemble: " << why.get<std::string>() << "\n";
   return out.str();
 }
 

@@ -110,16 +110,27 @@ void parse_weights(JsonFields& root, CalibrationCampaign& c) {
 // other seeds is the older way to the same uncertainty; the two together would mix ensemble means
 // with single runs, so a campaign asks for one of them.
 void parse_realisations(JsonFields& root, const JobSpec& model, CalibrationCampaign& c) {
-  try {
-    c.realisations = orch::realisation_count(root.get("realisations"));
-  } catch (const std::invalid_argument& e) {
-    throw CampaignError("realisations", e.what());
+  const nlohmann::json* value = root.get("realisations");
+  c.auto_realisations = value && value->is_string() && *value == "auto";
+  if (c.auto_realisations) {
+    c.max_realisations = int(
+        root.integer("max_realisations", 2, orch::kMaxRealisations).value_or(c.max_realisations));
+  } else {
+    if (root.get("max_realisations")) {
+      throw CampaignError("max_realisations", "only with \"realisations\": \"auto\"");
+    }
+    try {
+      c.realisations = orch::realisation_count(value);
+    } catch (const std::invalid_argument& e) {
+      throw CampaignError("realisations", std::string(e.what()) + ", or \"auto\"");
+    }
   }
-  if (auto problem =
-          orch::realisations_problem(c.realisations, c.sample_seed, seed_matters(model))) {
+  const int largest =
+      c.auto_realisations ? std::max(c.max_realisations, kPilotRealisations) : c.realisations;
+  if (auto problem = orch::realisations_problem(largest, c.sample_seed, seed_matters(model))) {
     throw CampaignError("realisations", *problem);
   }
-  if (c.realisations > 1 && !c.scatter_seeds.empty()) {
+  if ((c.auto_realisations || c.realisations > 1) && !c.scatter_seeds.empty()) {
     throw CampaignError("realisations",
                         "give \"realisations\" (every evaluation an ensemble) or \"seeds\" (the "
                         "best point re-run on other packings), not both");
@@ -148,8 +159,7 @@ std::optional<JobSpec> parse_fidelity(JsonFields& root, CalibrationCampaign& c) 
     throw CampaignError("fidelity.fine", std::string("the fine job: ") + e.what());
   }
   c.fine_patch = fine;
-  c.fine_corrections =
-      int(fields.integer("corrections", 1, 20).value_or(c.fine_corrections));
+  c.fine_corrections = int(fields.integer("corrections", 1, 20).value_or(c.fine_corrections));
   c.fine_strength_scale = fields.positive("strength_scale").value_or(1.0);
   fields.reject_unknown();
   return spec;
@@ -175,8 +185,9 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.sample_seed = model.sample.seed;
   // Lab targets map to the fine specimen's model when there is one: its loads are the answer.
   const std::optional<JobSpec> fine = parse_fidelity(root, c);
-  c.targets = fine ? parse_targets(root, *fine, {fine->sample.diameter_m, fine->sample.height_m,
-                                                 fine->sample.btt_thickness()})
+  c.targets = fine ? parse_targets(root, *fine,
+                                   {fine->sample.diameter_m, fine->sample.height_m,
+                                    fine->sample.btt_thickness()})
                    : parse_targets(root, model, c.model_specimen);
   c.max_evaluations = int(root.integer("max_evaluations", 4, 10'000).value_or(c.max_evaluations));
   c.tolerance = root.positive("tolerance").value_or(c.tolerance);

@@ -31,6 +31,9 @@ struct CalibrationCampaign {
   Specimen model_specimen;        // the template's sample, for strengths in model units
   std::uint64_t sample_seed = 1;  // the template's packing seed, used by the search
   int realisations = 1;  // packings per evaluation: seeds sample_seed, sample_seed + 1, ...
+  // "realisations": "auto" (ensemble_size.hpp): the size comes from a pilot's scatter, at most this.
+  bool auto_realisations = false;
+  int max_realisations = 8;
   Targets targets;
   Range fr0_n{1, 1000};
   Range fs0_n{1, 1000};
@@ -54,6 +57,9 @@ struct CalibrationCampaign {
   // has smaller grains at the same stress scale (bond forces scale with the bond's area).
   double fine_strength_scale = 1.0;
 };
+
+// The pilot ensemble that measures the scatter for "realisations": "auto".
+inline constexpr int kPilotRealisations = 3;
 
 // Parses and validates the whole campaign (the job template through the engine's validation for
 // both tests). Throws CampaignError naming the first offending field.

@@ -5,6 +5,7 @@
 
 #include <nlopt.hpp>
 
+#include "orchestrator/calibration/ensemble_size.hpp"
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/local_search.hpp"
 #include "orchestrator/calibration/ratio_scale.hpp"
@@ -66,6 +67,13 @@ SeedScatter scatter_best(const CalibrationCampaign& c, Evaluator& evaluator,
     runs.push_back({requests[i].sample_seed, outcomes[i].loads, outcomes[i].error});
   }
   return seed_scatter(std::move(runs));
+}
+
+// The best point's re-runs on other packings, as the scatter an ensemble would have to average.
+std::optional<ScatterEstimate> scatter_as_estimate(const SeedScatter& s, double tolerance) {
+  if (!s.uct || !s.btt || s.uct->runs < 2 || s.btt->runs < 2) return std::nullopt;
+  return scatter_estimate(s.uct->stddev_n / s.uct->mean_n, s.btt->stddev_n / s.btt->mean_n,
+                          std::min(s.uct->runs, s.btt->runs), tolerance);
 }
 
 // One packing's loads pin nothing finer than the packings' spread: when the best point's seed
@@ -155,14 +163,21 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
 
 }  // namespace
 
-CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evaluator,
+CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
                                   const RunOptions& options) {
-  nlopt::srand(c.random_seed);  // NLopt's generator is per thread: seed it in the optimising one
-  Ledger ledger(c, evaluator, options.stop, options.on_evaluation);
+  nlopt::srand(campaign.random_seed);  // per thread: seed it in the optimising one
   CalibrationReport report;
   bool cancelled = false;
   try {
-    search(ledger, c, report);
+    report.ensemble = choose_ensemble_size(campaign, evaluator);
+  } catch (const EvaluationCancelled&) {
+    cancelled = true;
+  }
+  CalibrationCampaign c = campaign;  // as run: with the ensemble size chosen
+  c.realisations = report.ensemble.realisations;
+  Ledger ledger(c, evaluator, options.stop, options.on_evaluation);
+  try {
+    if (!cancelled) search(ledger, c, report);
   } catch (const SearchDone&) {
   } catch (const EvaluationCancelled&) {
     cancelled = true;
@@ -208,6 +223,8 @@ CalibrationReport run_calibration(const CalibrationCampaign& c, Evaluator& evalu
   if (c.suggest)
     after_search([&] { report.suggestion = suggest_observable(report.consistent, c, evaluator); });
   if (report.best) after_search([&] { report.scatter = scatter_best(c, evaluator, *report.best); });
+  review_ensemble_size(report.ensemble, report.best ? &*report.best : nullptr,
+                       scatter_as_estimate(report.scatter, c.tolerance), c.tolerance);
   judge(report, c);
   return report;
 }

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "orchestrator/calibration/campaign.hpp"
+#include "orchestrator/calibration/ensemble_size.hpp"
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/fidelity.hpp"
 #include "orchestrator/calibration/ledger.hpp"
@@ -64,6 +65,7 @@ struct CalibrationReport {
   std::vector<EvaluationRecord> history;
   std::optional<RatioRange> ratio;  // absent without a successful evaluation
   SeedScatter scatter;
+  EnsembleSize ensemble;  // packings per evaluation: how many, why, what the scatter calls for
 };
 
 std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& history,

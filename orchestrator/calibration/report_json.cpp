@@ -179,6 +179,24 @@ json scatter_json(const SeedScatter& s) {
   return {{"runs", runs}, {"uct", stats_json(s.uct)}, {"btt", stats_json(s.btt)}};
 }
 
+json estimate_json(const ScatterEstimate& e) {
+  return {{"cv_uct", e.cv_uct ? json(*e.cv_uct) : json(nullptr)},
+          {"cv_btt", e.cv_btt ? json(*e.cv_btt) : json(nullptr)},
+          {"runs", e.runs},
+          {"needed", e.needed ? json(*e.needed) : json(nullptr)}};
+}
+
+json ensemble_json(const EnsembleSize& e, const CalibrationCampaign& c) {
+  return {{"chosen", e.automatic ? "auto" : "fixed"},
+          {"realisations", e.realisations},
+          {"max_realisations", e.automatic ? json(c.max_realisations) : json(nullptr)},
+          {"capped", e.capped},
+          {"target_relative_se", c.tolerance / 2},
+          {"pilot", e.automatic ? estimate_json(e.pilot) : json(nullptr)},
+          {"at_best", estimate_json(e.at_best)},
+          {"why", e.why}};
+}
+
 json check_json(const Homogeneity& h) {
   return {{"measured", h.measured},
           {"base", {{"fr0", h.base.fr0_n}, {"fs0", h.base.fs0_n}}},
@@ -192,6 +210,14 @@ json homogeneity_json(const HomogeneityChecks& h) {
   json checks = json::array();
   for (const Homogeneity& c : h.checks) checks.push_back(check_json(c));
   return {{"holds", h.holds()}, {"degree", h.degree()}, {"checks", checks}};
+}
+
+// While "auto" has not chosen yet there is no size to show; after, the latest evaluation's.
+json realisations_so_far(const std::vector<EvaluationRecord>& history,
+                         const CalibrationCampaign& c) {
+  if (!c.auto_realisations) return c.realisations;
+  if (history.empty() || !history.back().uct) return "auto";
+  return history.back().uct->realisations.size();
 }
 
 }  // namespace
@@ -210,7 +236,8 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
               {"algorithm", c.algorithm}}},
             {"homogeneity", homogeneity_json(r.homogeneity)},
             {"tolerance", c.tolerance},
-            {"realisations", c.realisations},
+            {"realisations", r.ensemble.realisations},
+            {"ensemble", ensemble_json(r.ensemble, c)},
             {"evaluations", r.history.size()},
             {"failed_evaluations", failed},
             {"max_evaluations", c.max_evaluations},
@@ -245,7 +272,7 @@ json progress_json(const std::vector<EvaluationRecord>& history, const Calibrati
           {"evaluations", history.size()},
           {"max_evaluations", c.max_evaluations},
           {"consistency_evaluations", c.consistency_evaluations},
-          {"realisations", c.realisations},
+          {"realisations", realisations_so_far(history, c)},
           {"targets", targets_json(c)},
           {"history", history_json(history)}};
 }

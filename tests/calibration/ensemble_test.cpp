@@ -1,11 +1,13 @@
 // Calibration with ensembles: "realisations" is validated like every field, every evaluation runs
 // that many seeds, its loads are the ensemble means (failed realisations left out and counted), and
-// the report carries each evaluation's mean, standard error and n.
+// the report carries each evaluation's mean, standard error and n; "auto" sizes the ensemble from
+// a pilot's scatter and the report says what size the scatter called for.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/ensemble_size.hpp"
 #include "synthetic.hpp"
 
 namespace rockcal::calibration {
@@ -36,9 +38,10 @@ TEST(CalibrationRealisations, AreValidatedNamingTheField) {
   EXPECT_EQ(testing::campaign({1000, 100}).realisations, 1);
   EXPECT_EQ(testing::campaign({1000, 100}, with({{"realisations", 5}})).realisations, 5);
   for (const json& bad : {json(0), json(101), json(1.5), json("2"), json::array({2})}) {
-    EXPECT_EQ(refusal(with({{"realisations", bad}})),
-              std::make_pair(std::string("realisations"),
-                             std::string("realisations: must be an integer in [1, 100]")))
+    EXPECT_EQ(
+        refusal(with({{"realisations", bad}})),
+        std::make_pair(std::string("realisations"),
+                       std::string("realisations: must be an integer in [1, 100], or \"auto\"")))
         << bad.dump();
   }
   EXPECT_EQ(
@@ -54,6 +57,102 @@ TEST(CalibrationRealisations, AreValidatedNamingTheField) {
                                        "ensemble) or \"seeds\" (the best point re-run on other "
                                        "packings), not both")));
   EXPECT_EQ(refusal(with({{"realisations", 1}, {"seeds", {4, 5}}})).first, "(accepted)");
+  EXPECT_EQ(refusal(with({{"realisations", "auto"}, {"seeds", {4, 5}}})).first, "realisations");
+  EXPECT_EQ(refusal(with({{"max_realisations", 4}})),
+            std::make_pair(std::string("max_realisations"),
+                           std::string("max_realisations: only with \"realisations\": \"auto\"")));
+  EXPECT_EQ(refusal(with({{"realisations", "auto"}, {"max_realisations", 1}})),
+            std::make_pair(std::string("max_realisations"),
+                           std::string("max_realisations: must be in [2, 100]")));
+  EXPECT_EQ(
+      refusal({{"realisations", "auto"}, {"job", {{"sample", {{"lattice", "aligned"}}}}}}).first,
+      "realisations")
+      << "an ensemble of one repeated specimen measures no scatter";
+  const CalibrationCampaign a =
+      testing::campaign({1000, 100}, with({{"realisations", "auto"}, {"max_realisations", 6}}));
+  EXPECT_TRUE(a.auto_realisations);
+  EXPECT_EQ(a.max_realisations, 6);
+}
+
+TEST(CalibrationEnsembleSize, IsTheLeastThatBringsTheStandardErrorToHalfTheTolerance) {
+  EXPECT_EQ(realisations_for(0.01, 0.02), 1);  // se = cv = tolerance / 2 with one run
+  EXPECT_EQ(realisations_for(0.0101, 0.02), 2);
+  EXPECT_EQ(realisations_for(0.05, 0.02), 25);  // 0.05 / sqrt(25) = 0.01
+  EXPECT_EQ(realisations_for(0.396, 0.02), 1569)
+      << "what the scatter calls for, even beyond what a campaign may run (the report says it)";
+}
+
+// The pilot's scatter, recomputed from the pilot's own outcome.
+std::pair<double, double> pilot_cvs(const testing::ModelEvaluator& model,
+                                    const CalibrationCampaign& c) {
+  const EvaluationRequest& pilot = model.log.front();
+  std::vector<double> uct, btt;
+  for (std::uint64_t seed = c.sample_seed; seed < c.sample_seed + 3; ++seed) {
+    const EvaluationOutcome one = model.evaluate({pilot.point, seed, 1});
+    uct.push_back(one.loads->uct_n);
+    btt.push_back(one.loads->btt_n);
+  }
+  const orch::SampleStats u = orch::sample_stats(uct), b = orch::sample_stats(btt);
+  return {*u.sd / *u.mean, *b.sd / *b.mean};
+}
+
+TEST(CalibrationEnsembleSize, AutoRunsAPilotAndEveryEvaluationAtTheSizeItCallsFor) {
+  const BondPoint truth{40, 90};
+  CalibrationCampaign c = testing::campaign(testing::power_law(truth),
+                                            with({{"realisations", "auto"}, {"tolerance", 0.05}}));
+  testing::ModelEvaluator evaluator(testing::power_law);
+  evaluator.noise = 0.05;  // uniform: cv about 2.9%
+  const CalibrationReport r = run_calibration(c, evaluator);
+  ASSERT_GE(evaluator.log.size(), 2u);
+  EXPECT_EQ(evaluator.log.front().realisations, kPilotRealisations);
+  const auto [cv_uct, cv_btt] = pilot_cvs(evaluator, c);
+  const int n = r.ensemble.realisations;
+  EXPECT_EQ(n, std::max(realisations_for(cv_uct, 0.05), realisations_for(cv_btt, 0.05)));
+  // The least size that does it: one fewer would leave a larger standard error.
+  const double cv = std::max(cv_uct, cv_btt);
+  EXPECT_LE(cv / std::sqrt(double(n)), 0.025);
+  EXPECT_GT(cv / std::sqrt(double(n - 1)), 0.025);
+  EXPECT_GT(n, 1);
+  for (std::size_t i = 1; i < evaluator.log.size(); ++i) {
+    EXPECT_EQ(evaluator.log[i].realisations, n) << "request " << i;
+  }
+  EXPECT_FALSE(r.ensemble.capped);
+  EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
+  const json j = to_json(r, c);
+  EXPECT_EQ(j["realisations"], n);
+  EXPECT_EQ(j["ensemble"]["chosen"], "auto");
+  EXPECT_EQ(j["ensemble"]["pilot"]["needed"], n);
+  EXPECT_DOUBLE_EQ(j["ensemble"]["pilot"]["cv_uct"].get<double>(), cv_uct);
+  EXPECT_EQ(j["ensemble"]["at_best"]["runs"], n);
+  EXPECT_NE(j["ensemble"]["why"].get<std::string>().find("chosen from a pilot of 3"),
+            std::string::npos)
+      << j["ensemble"]["why"];
+}
+
+TEST(CalibrationEnsembleSize, ACappedEnsembleSaysWhatTheScatterCalledFor) {
+  CalibrationCampaign c = testing::campaign(
+      testing::power_law({40, 90}), with({{"realisations", "auto"}, {"max_realisations", 4}}));
+  c.max_evaluations = 6;
+  c.consistency_evaluations = 0;
+  testing::ModelEvaluator evaluator(testing::power_law);
+  evaluator.noise = 0.4;  // cv about 23%: hundreds of runs for 1%
+  const CalibrationReport r = run_calibration(c, evaluator);
+  EXPECT_EQ(r.ensemble.realisations, 4);
+  EXPECT_TRUE(r.ensemble.capped);
+  ASSERT_TRUE(r.ensemble.pilot.needed);
+  EXPECT_GT(*r.ensemble.pilot.needed, 4);
+  EXPECT_NE(r.ensemble.why.find("beyond max_realisations"), std::string::npos) << r.ensemble.why;
+  EXPECT_NE(r.ensemble.why.find("more than were run"), std::string::npos) << r.ensemble.why;
+}
+
+TEST(CalibrationEnsembleSize, OnePackingPerEvaluationIsSaidToMeasureNoScatter) {
+  const CalibrationCampaign c = testing::campaign(testing::power_law({40, 90}));
+  testing::ModelEvaluator evaluator(testing::power_law);
+  const CalibrationReport r = run_calibration(c, evaluator);
+  EXPECT_FALSE(r.ensemble.automatic);
+  EXPECT_EQ(r.ensemble.realisations, 1);
+  EXPECT_EQ(evaluator.log.front().realisations, 1) << "no pilot when the size is fixed";
+  EXPECT_NE(r.ensemble.why.find("no scatter was measured"), std::string::npos) << r.ensemble.why;
 }
 
 TEST(CalibrationRealisations, EveryEvaluationIsAnEnsembleAndItsMeanIsWhatIsMatched) {
