@@ -1,6 +1,7 @@
 #include "orchestrator/calibration/driver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <nlopt.hpp>
@@ -91,6 +92,24 @@ void blur_by_scatter(CalibrationReport& r, const CalibrationCampaign& c) {
       100 * cv_uct, 100 * cv_btt);
 }
 
+// "Within tolerance" counts each mean's standard error: say so when the loads need it.
+std::string within_text(const EvaluationRecord& best, const CalibrationCampaign& c) {
+  const PeakLoads& l = *best.loads;
+  const PeakLoads& t = c.targets.model_loads_n;
+  const double e_uct = l.uct_n / t.uct_n - 1, e_btt = l.btt_n / t.btt_n - 1;
+  if (std::max(std::abs(e_uct), std::abs(e_btt)) <= c.tolerance) {
+    return sentence("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
+  }
+  return sentence(
+             "both peak loads within %.3g%% of their targets plus each ensemble mean's "
+             "standard error (UCT %+.3g%% +- %.3g%%",
+             100 * c.tolerance, 100 * e_uct, 100 * best.rel_se.uct_n) +
+         sentence(
+             ", BTT %+.3g%% +- %.3g%%): within the packings' scatter, not within the "
+             "tolerance",
+             100 * e_btt, 100 * best.rel_se.btt_n);
+}
+
 // With a fine specimen the answer is the fine one: the coarse search only led there.
 bool judge_fine(CalibrationReport& r, const CalibrationCampaign& c) {
   if (c.fine_patch.is_null() || !r.best || !r.best->within_tolerance) return false;
@@ -131,8 +150,7 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   if (judge_fine(r, c)) return;
   if (r.best->within_tolerance) {
     r.verdict = Verdict::feasible;
-    r.verdict_reason =
-        sentence("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
+    r.verdict_reason = within_text(*r.best, c);
     // The reason for uniqueness is in the consistent set; a non-unique answer says why here too.
     r.verdict_reason +=
         r.consistent.unique ? "; the strengths are unique" : "; NOT unique: " + r.consistent.why;
