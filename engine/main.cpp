@@ -11,7 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "engine/json_input.hpp"
+#include "engine/job_file.hpp"
 #include "engine/run_job.hpp"
 #include "engine/spec.hpp"
 #include "engine/stop_request.hpp"
@@ -30,31 +30,20 @@ extern "C" void on_signal(int) {
   rockcal::process_stop_requested.store(true);
 }
 
-// Everything printed is valid JSON whatever bytes the job file held: an error message may quote
-// them (a parse error shows the bytes it stopped at), and invalid UTF-8 becomes U+FFFD.
-std::string json_text(const nlohmann::json& j) {
-  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-
 // Reads and validates a job file. Prints {"error", "field"} and returns nullopt when invalid.
 std::optional<rockcal::JobSpec> load_job(const std::string& path, bool report) {
-  nlohmann::json error;
-  try {
-    std::ifstream in(path);
-    if (!in) throw rockcal::SpecError("(file)", "cannot open " + path);
-    nlohmann::json j;
-    try {
-      j = rockcal::parse_json_input(in);
-    } catch (const rockcal::JsonInputError& e) {
-      throw rockcal::SpecError("(root)", e.what());
-    }
-    return rockcal::parse_job(j);
-  } catch (const rockcal::SpecError& e) {
-    error = {{"error", e.what()}, {"field", e.field}};
+  std::ifstream in(path);
+  rockcal::JobFile job;
+  if (in) {
+    job = rockcal::read_job(in);
+  } else {
+    const rockcal::SpecError e("(file)", "cannot open " + path);
+    job.error = {{"error", e.what()}, {"field", e.field}};
   }
+  if (job.spec) return job.spec;
   if (report) {
-    std::cout << json_text(error) << std::endl;
-    std::cerr << "rockcal-dem: invalid job: " << error["error"].get<std::string>() << std::endl;
+    std::cout << rockcal::json_text(job.error) << std::endl;
+    std::cerr << "rockcal-dem: invalid job: " << job.error["error"].get<std::string>() << std::endl;
   }
   return std::nullopt;
 }
@@ -105,14 +94,15 @@ int main(int argc, char** argv) {
     code = kExitInvalid;
   } else if (validate->parsed()) {
     if (rank == 0)
-      std::cout << json_text({{"valid", true}, {"spec", rockcal::to_json(*spec)}}) << std::endl;
+      std::cout << rockcal::json_text({{"valid", true}, {"spec", rockcal::to_json(*spec)}})
+                << std::endl;
   } else {
     std::signal(SIGTERM, on_signal);
     std::signal(SIGINT, on_signal);
     try {
       const nlohmann::json result =
           rockcal::run_job(*spec, out_dir, &rockcal::process_stop_requested, rank == 0, world);
-      if (rank == 0) std::cout << json_text(result) << std::endl;
+      if (rank == 0) std::cout << rockcal::json_text(result) << std::endl;
       if (result["stop_reason"] == "cancelled") code = kExitStopped;
     } catch (const std::exception& e) {
       std::cerr << "rockcal-dem: run failed on rank " << rank << ": " << e.what() << std::endl;
