@@ -41,6 +41,19 @@ std::optional<Eigen::Matrix2d> coarse_jacobian(const std::vector<EvaluationRecor
   return j;
 }
 
+// Broyden's update: the least change of J that reproduces the measured secant df = J dx. Kept
+// only when the result can still be inverted (a step along which the loads did not move would
+// make it singular).
+void secant_update(Eigen::Matrix2d& j, const Eigen::Vector2d& dx, const Eigen::Vector2d& df,
+                   int& updates) {
+  const double dx2 = dx.squaredNorm();
+  if (!(dx2 > 1e-12)) return;
+  const Eigen::Matrix2d next = j + (df - j * dx) * dx.transpose() / dx2;
+  if (!(std::abs(next.determinant()) >= 1e-6)) return;
+  j = next;
+  ++updates;
+}
+
 }  // namespace
 
 std::optional<FidelityResult> correct_on_fine(const std::vector<EvaluationRecord>& coarse,
@@ -50,11 +63,12 @@ std::optional<FidelityResult> correct_on_fine(const std::vector<EvaluationRecord
   if (c.fine_patch.is_null() || !best.loads) return std::nullopt;
   FidelityResult out;
   int used = 0;
-  const std::optional<Eigen::Matrix2d> jac = coarse_jacobian(coarse, best, used);
+  std::optional<Eigen::Matrix2d> jac = coarse_jacobian(coarse, best, used);
   out.jacobian = jac ? "fitted to " + std::to_string(used) + " coarse evaluations"
                      : "scale only (the coarse evaluations near the best point span one direction)";
   const PeakLoads& t = c.targets.model_loads_n;
   BondPoint point = best.point;
+  std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> last;  // (ln x, ln fine loads)
   for (int k = 0; k < c.fine_corrections; ++k) {
     // Newton works in the search's strengths; the fine specimen runs them scaled.
     const BondPoint fine_point{point.fr0_n * c.fine_strength_scale,
@@ -81,6 +95,10 @@ std::optional<FidelityResult> correct_on_fine(const std::vector<EvaluationRecord
       out.met = true;
       break;
     }
+    const Eigen::Vector2d x(std::log(point.fr0_n), std::log(point.fs0_n));
+    const Eigen::Vector2d f(std::log(step.fine->uct_n), std::log(step.fine->btt_n));
+    if (jac && last) secant_update(*jac, x - last->first, f - last->second, out.secant_updates);
+    last = {x, f};
     const LogErrors err = log_errors(*step.fine, t);
     Eigen::Vector2d dx;
     if (jac) {
@@ -121,6 +139,7 @@ nlohmann::json to_json(const FidelityResult& r, const CalibrationCampaign& c) {
       {"steps", steps},
       {"met", r.met},
       {"jacobian", r.jacobian},
+      {"secant_updates", r.secant_updates},
       {"factors", r.factors ? nlohmann::json{{"uct", r.factors->uct_n}, {"btt", r.factors->btt_n}}
                             : nlohmann::json(nullptr)}};
 }

@@ -1,10 +1,14 @@
 // Multi-fidelity: search on a coarse specimen, correct on the fine one. A search needs tens of
 // evaluations; at the lab's resolution (D/R near 49) each costs minutes. But a change of resolution
 // moves both peak loads by roughly common factors (measured, not assumed: docs/calibration.md), so
-// the coarse model's local response in log space is a good Jacobian for the fine one. Each
+// the coarse model's local response in log space is a first Jacobian for the fine one. Each
 // correction runs the fine tests at the current point (the campaign's realisations), and takes a
 // Newton step ln x += J^-1 (ln target - ln fine loads) with J fitted to the coarse evaluations near
 // the best point (least squares; the homogeneous scale step when they do not span two directions).
+// The fine model's sensitivities need not be the coarse one's (the seed lab case's fine steps
+// swung +14%, -4%, +4% on a UCT whose cuts agree to 0.3%), so after every fine step J takes the
+// secant the two latest fine evaluations measured (Broyden's update): the fine runs correct the
+// Jacobian they are stepped with.
 #pragma once
 
 #include <optional>
@@ -30,6 +34,7 @@ struct FidelityResult {
   std::optional<PeakLoads> factors;  // fine / coarse loads at the coarse best point
   bool met = false;                  // the last step meets the targets at the fine resolution
   std::string jacobian;              // "fitted" (from n coarse points) or "scale only"
+  int secant_updates = 0;            // Broyden updates of the fitted Jacobian from fine steps
 };
 
 // Up to `campaign.fine_corrections` fine evaluations from the coarse best point. Nothing when the
