@@ -5,10 +5,10 @@
 // correction runs the fine tests at the current point (the campaign's realisations), and takes a
 // Newton step ln x += J^-1 (ln target - ln fine loads) with J fitted to the coarse evaluations near
 // the best point (least squares; the homogeneous scale step when they do not span two directions).
-// The fine model's sensitivities need not be the coarse one's (the seed lab case's fine steps
-// swung +14%, -4%, +4% on a UCT whose cuts agree to 0.3%), so after every fine step J takes the
-// secant the two latest fine evaluations measured (Broyden's update): the fine runs correct the
-// Jacobian they are stepped with.
+// The fine model's sensitivities need not be the coarse one's (docs/calibration.md: the seed lab
+// case's fine steps swung about the answer by more than the fine specimen's cut scatter), so after
+// every fine step J takes the secant the two latest fine evaluations measured (Broyden's update):
+// the fine runs correct the Jacobian they are stepped with.
 #pragma once
 
 #include <optional>

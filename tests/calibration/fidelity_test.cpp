@@ -65,7 +65,7 @@ TEST(Fidelity, TheFineSpecimenMeetsTheTargetsAfterAFewCorrections) {
 // A fine specimen twice as sensitive as the coarse one (ln L_fine = 2 ln L_coarse + const, 1.3x
 // and 1.15x the coarse loads at (40, 90)): a Newton step with the coarse Jacobian overshoots by
 // exactly its own size, so without the secant update the fine steps swing about the answer for
-// ever (the seed lab case's +14%, -4%, +4% looked like this).
+// ever.
 double steeper_fine_probe(const BondPoint& p, const ProbeRequest& probe) {
   const PeakLoads l = testing::power_law(p), at = testing::power_law({40, 90});
   if (probe.test == TestKind::uct) return kFineUct * l.uct_n * l.uct_n / at.uct_n;
