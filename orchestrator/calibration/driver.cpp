@@ -80,9 +80,9 @@ std::optional<ScatterEstimate> scatter_as_estimate(const SeedScatter& s, double 
 // One packing's loads pin nothing finer than the packings' spread: when the best point's seed
 // scatter is wider than the tolerance, the set found on one packing is not the material's.
 void blur_by_scatter(CalibrationReport& r, const CalibrationCampaign& c) {
-  const SeedScatter& s = r.scatter;
-  if (!r.consistent.unique || !s.uct || !s.btt || s.uct->runs < 2 || s.btt->runs < 2) return;
-  const double cv_uct = s.uct->stddev_n / s.uct->mean_n, cv_btt = s.btt->stddev_n / s.btt->mean_n;
+  const std::optional<ScatterEstimate> s = scatter_as_estimate(r.scatter, c.tolerance);
+  if (!r.consistent.unique || !s) return;
+  const double cv_uct = *s->cv_uct, cv_btt = *s->cv_btt;
   if (std::max(cv_uct, cv_btt) <= c.tolerance) return;
   r.consistent.unique = false;
   r.consistent.why = sentence(
@@ -96,7 +96,7 @@ void blur_by_scatter(CalibrationReport& r, const CalibrationCampaign& c) {
 std::string within_text(const EvaluationRecord& best, const CalibrationCampaign& c) {
   const PeakLoads& l = *best.loads;
   const PeakLoads& t = c.targets.model_loads_n;
-  const double e_uct = l.uct_n / t.uct_n - 1, e_btt = l.btt_n / t.btt_n - 1;
+  const double e_uct = relative_error(l.uct_n, t.uct_n), e_btt = relative_error(l.btt_n, t.btt_n);
   if (std::max(std::abs(e_uct), std::abs(e_btt)) <= c.tolerance) {
     return sentence("both peak loads within %.3g%% of their targets", 100 * c.tolerance);
   }
@@ -134,8 +134,8 @@ bool judge_fine(CalibrationReport& r, const CalibrationCampaign& c) {
     r.verdict_reason = sentence(
         "the coarse search met the targets; after %.0f fine corrections the fine specimen's loads "
         "miss them by UCT %+.3g%%",
-        double(f->steps.size()), 100 * (l.uct_n / t.uct_n - 1));
-    r.verdict_reason += sentence(", BTT %+.3g%%", 100 * (l.btt_n / t.btt_n - 1));
+        double(f->steps.size()), 100 * relative_error(l.uct_n, t.uct_n));
+    r.verdict_reason += sentence(", BTT %+.3g%%", 100 * relative_error(l.btt_n, t.btt_n));
   }
   return true;
 }
