@@ -66,8 +66,10 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
   const std::size_t n = p.size();
   // History carried over by ids: springs of the old list, plus what migrants brought along.
   std::vector<SpringRecord> history = incoming;
-  for (const ContactPair& c : pairs)
-    if (!c.spring.isZero(0.0)) history.push_back({p_id_cache_[c.i], p_id_cache_[c.j], c.spring});
+  for (const ContactPair& c : pairs) {
+    const SpringRecord r{p_id_cache_[c.i], p_id_cache_[c.j], c.spring, c.roll};
+    if (!r.empty()) history.push_back(r);
+  }
   std::sort(history.begin(), history.end(), id_less);
   pairs.clear();
   ref_pos.assign(p.pos.begin(), p.pos.begin() + static_cast<std::ptrdiff_t>(p.n_owned));
@@ -148,11 +150,15 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
     for (std::int32_t b : row) {
       const auto ia = static_cast<std::int32_t>(a);
       const bool a_first = p.id[a] < p.id[b];
-      ContactPair cp{a_first ? ia : b, a_first ? b : ia, adj.lookup(ia, b), Vec3::Zero()};
-      const SpringRecord key{p.id[cp.i], p.id[cp.j], Vec3::Zero()};
+      ContactPair cp{a_first ? ia : b, a_first ? b : ia, adj.lookup(ia, b), Vec3::Zero(),
+                     Vec3::Zero()};
+      const SpringRecord key{p.id[cp.i], p.id[cp.j], Vec3::Zero(), Vec3::Zero()};
       auto it = std::lower_bound(history.begin(), history.end(), key, id_less);
       if (it != history.end() && it->id_lo == key.id_lo && it->id_hi == key.id_hi)
+      {
         cp.spring = it->spring;
+        cp.roll = it->roll;
+      }
       pairs.push_back(cp);
     }
   }
@@ -172,8 +178,10 @@ void NeighbourList::mark_broken(std::int32_t a, std::int32_t b) {
 void NeighbourList::history_of(const Particles& p, std::int32_t local,
                                std::vector<SpringRecord>& out) const {
   for (const ContactPair& c : pairs)
-    if ((c.i == local || c.j == local) && !c.spring.isZero(0.0))
-      out.push_back({p.id[c.i], p.id[c.j], c.spring});
+    if (c.i == local || c.j == local) {
+      const SpringRecord r{p.id[c.i], p.id[c.j], c.spring, c.roll};
+      if (!r.empty()) out.push_back(r);
+    }
 }
 
 }  // namespace rockcal

@@ -17,13 +17,15 @@ struct ContactPair {
       j;          // local indices, i the particle with the lower id (same operands on every rank)
   PairBond bond;  // an intact bond excludes the pair from contact forces
   Vec3 spring;    // tangential spring displacement (history), m
+  Vec3 roll;      // rolling spring: relative rotation in the tangent plane (history), rad
 };
 
-// Tangential history of one pair, keyed by ids: it survives rebuilds and travels with migrating
+// Tangential and rolling history of one pair, keyed by ids: it survives rebuilds and travels with migrating
 // particles.
 struct SpringRecord {
   std::int64_t id_lo, id_hi;
-  Vec3 spring;
+  Vec3 spring, roll;
+  bool empty() const { return spring.isZero(0.0) && roll.isZero(0.0); }
 };
 
 struct NeighbourList {

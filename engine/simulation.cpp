@@ -14,6 +14,8 @@ namespace {
 
 // Bond records for migration: ids, geometry, stiffness, strength and whether it is intact.
 constexpr int kBondDoubles = 16;
+// Contact history records: ids, tangential spring, rolling spring.
+constexpr int kSpringDoubles = 8;
 
 void pack_bond(const Bond& b, bool intact, std::vector<double>& out) {
   out.insert(out.end(), {double(b.id_i), double(b.id_j), b.r0, b.n0.x(), b.n0.y(), b.n0.z(), b.w_i,
@@ -61,7 +63,8 @@ std::vector<double> pack_outbox(const Simulation& sim, const std::vector<std::in
   for (std::int32_t k : leaving) sim.neighbours.history_of(p, k, history);
   for (const SpringRecord& s : history)
     springs.insert(springs.end(),
-                   {double(s.id_lo), double(s.id_hi), s.spring.x(), s.spring.y(), s.spring.z()});
+                   {double(s.id_lo), double(s.id_hi), s.spring.x(), s.spring.y(), s.spring.z(),
+                    s.roll.x(), s.roll.y(), s.roll.z()});
   std::vector<double> out = {double(leaving.size()), double(n_bonds), double(history.size())};
   out.insert(out.end(), parts.begin(), parts.end());
   out.insert(out.end(), bonds.begin(), bonds.end());
@@ -116,9 +119,10 @@ void Simulation::redistribute() {
         const Bond b = unpack_bond(r, &intact);
         if (known.insert(key(b.id_i, b.id_j)).second) (intact ? bonds : broken).push_back(b);
       }
-      for (std::size_t m = 0; m < n_s; ++m, r += 5)
+      for (std::size_t m = 0; m < n_s; ++m, r += kSpringDoubles)
         incoming_springs.push_back({static_cast<std::int64_t>(r[0]),
-                                    static_cast<std::int64_t>(r[1]), Vec3(r[2], r[3], r[4])});
+                                    static_cast<std::int64_t>(r[1]), Vec3(r[2], r[3], r[4]),
+                                    Vec3(r[5], r[6], r[7])});
     }
 
     // 2. Ghosts: owned particles within the halo of a border are mirrored on that side.
@@ -232,12 +236,13 @@ double auto_time_step(const Simulation& sim, double safety) {
   for (const Wall& w : sim.walls) wall_k = std::max(wall_k, w.kn_n_m + w.ks_n_m);
   // Unbonded contacts may form anywhere: no particle is allowed below a contact's stiffness.
   const double contact_k = sim.contact.kn_n_m + sim.contact.ks_n_m;
+  const double contact_k_rot_per_r2 = sim.contact.ks_n_m + rolling_stiffness_per_r2(sim.contact);
   double dt = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < p.n_owned; ++k) {
     const double lever = p.radius[k];
     const double kt = std::max(k_trans[k], contact_k) + wall_k;
     const double kr =
-        std::max(k_rot[k], sim.contact.ks_n_m * lever * lever) + wall_k * lever * lever;
+        std::max(k_rot[k], contact_k_rot_per_r2 * lever * lever) + wall_k * lever * lever;
     dt = std::min(dt, critical_time_step(p.mass[k], p.inertia[k], kt, kr));
   }
   reduce_min(sim.domain, &dt, 1);

@@ -71,6 +71,9 @@ struct MaterialSpec {
 struct BondSpec {
   double fr0_n = 64.0;  // tensile strength
   double fs0_n = 64.0;  // shear strength
+  // Bonds join pairs whose centres lie within reach x (R_i + R_j): 1 bonds touching neighbours
+  // only. Not a job field: the interaction_range effect sets it.
+  double reach = 1.0;
   bool operator==(const BondSpec&) const = default;
 };
 

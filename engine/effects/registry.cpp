@@ -17,6 +17,8 @@ EffectDef flaws_effect();
 EffectDef rate_effect();
 EffectDef compression_coupling_effect();
 EffectDef post_break_friction_effect();
+EffectDef interaction_range_effect();
+EffectDef rolling_resistance_effect();
 
 const std::vector<EffectDef>& effect_registry() {
   static const std::vector<EffectDef> all = {
@@ -27,6 +29,8 @@ const std::vector<EffectDef>& effect_registry() {
       rate_effect(),
       compression_coupling_effect(),
       post_break_friction_effect(),
+      interaction_range_effect(),
+      rolling_resistance_effect(),
   };
   return all;
 }

@@ -23,7 +23,9 @@ constexpr double kRandomBondTolerance = 0.025;
 namespace {
 
 double bond_tolerance(const JobSpec& spec) {
-  return spec.sample.packing == "random" ? kRandomBondTolerance : kLatticeBondTolerance;
+  const double touching =
+      spec.sample.packing == "random" ? kRandomBondTolerance : kLatticeBondTolerance;
+  return std::max(touching, spec.bond.reach - 1.0);
 }
 
 // The particles of the specimen before bonding, floaters removed.
@@ -123,8 +125,9 @@ void count_specimen(const Simulation& sim, TestResult& r) {
 namespace {
 
 // Ghosts must cover the contact reach (2R + skin) and the longest a bond gets before it breaks.
-double halo_for(double r_max, double skin, double longest_stretch) {
-  return 2.0 * r_max + skin + std::max(0.5 * r_max, longest_stretch);
+// `longest_bond`: the longest rest length a bond may have (2 r_max for touching neighbours).
+double halo_for(double r_max, double longest_bond, double skin, double longest_stretch) {
+  return std::max(2.0 * r_max, longest_bond) + skin + std::max(0.5 * r_max, longest_stretch);
 }
 
 // Effects may have made some bonds stronger than the job's F_r0 (heterogeneity), so that they
@@ -132,10 +135,13 @@ double halo_for(double r_max, double skin, double longest_stretch) {
 void widen_halo_for_bonds(Simulation& sim, double r_max) {
   Domain& d = sim.domain;
   if (!d.parallel()) return;
-  double stretch = 0.0;
-  for (const Bond& b : sim.bonds) stretch = std::max(stretch, 2.0 * b.fr0 / b.kr);
-  reduce_max(d, &stretch, 1);
-  const double halo = halo_for(r_max, sim.neighbours.skin, stretch);
+  double reach[2] = {0.0, 0.0};  // longest stretch, longest bond
+  for (const Bond& b : sim.bonds) {
+    reach[0] = std::max(reach[0], 2.0 * b.fr0 / b.kr);
+    reach[1] = std::max(reach[1], b.r0);
+  }
+  reduce_max(d, reach, 2);
+  const double halo = halo_for(r_max, reach[1], sim.neighbours.skin, reach[0]);
   if (halo <= d.halo) return;
   double too_thin = std::isfinite(d.z_lo) && std::isfinite(d.z_hi) && d.z_hi - d.z_lo < halo;
   reduce_max(d, &too_thin, 1);
@@ -171,7 +177,8 @@ Simulation make_specimen(const JobSpec& job, MPI_Comm comm) {
     std::transform(spheres.begin(), spheres.end(), z.begin(),
                    [](const Sphere& s) { return s.centre.z(); });
     sim.domain = make_domain(
-        comm, std::move(z), halo_for(r_max, sim.neighbours.skin, 2.0 * spec.bond.fr0_n / k.kr_n_m));
+        comm, std::move(z), halo_for(r_max, 2.0 * r_max * (1.0 + bond_tolerance(spec)), sim.neighbours.skin,
+                          2.0 * spec.bond.fr0_n / k.kr_n_m));
   }
 
   // This rank's slab plus its halo, with global ids; bonds are found among them.

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <tuple>
 #include <utility>
 
 #include "engine/confinement.hpp"
+#include "engine/contacts.hpp"
 #include "engine/domain.hpp"
 #include "engine/effects/effect.hpp"
 #include "engine/loadtests/specimen.hpp"
@@ -119,7 +122,9 @@ TEST(Effects, RegistryMatchesTheDiagnosisTable) {
                        {"flaws", "fraction", 0, 0.15, false},
                        {"rate", "speed_factor", 1, 8, true},
                        {"compression_coupling", "coupling", 1, 0, false},
-                       {"post_break_friction", "mu", 0.6, 0.05, false}};
+                       {"post_break_friction", "mu", 0.6, 0.05, false},
+                       {"interaction_range", "factor", 1, 1.5, false},
+                       {"rolling_resistance", "mu_r", 0, 0.3, false}};
   ASSERT_EQ(effect_registry().size(), std::size(table));
   for (const Row& row : table) {
     const EffectDef* e = find_effect(row.name);
@@ -293,6 +298,78 @@ TEST(Effects, PostBreakFrictionLimitsSlidingOfBrokenPairsOnly) {
   EXPECT_NEAR(sliding_force({}), 0.6, 1e-9);
   EXPECT_NEAR(sliding_force({{"post_break_friction", {}}}), 0.1, 1e-9);
   EXPECT_NEAR(sliding_force({{"post_break_friction", {{"mu", 1.5}}}}), 1.5, 1e-9);
+}
+
+TEST(Effects, InteractionRangeBondsTheLatticesSecondNeighboursFromSqrtTwo) {
+  // Bonds per particle, and the longest bond over 2R: an FCC lattice has 12 touching neighbours
+  // at 2R and 6 more at 2R sqrt(2). Below sqrt(2) nothing changes; from it the second
+  // neighbours join, with their own rest length.
+  auto bonds_of = [](std::optional<double> factor) {
+    JobSpec s = cylinder();
+    if (factor) s.effects = {{"interaction_range", {{"factor", *factor}}}};
+    const Simulation sim = make_specimen(s);
+    std::map<std::int64_t, int> per;
+    double longest = 0;
+    for (const Bond& b : sim.bonds) {
+      ++per[b.id_i];
+      ++per[b.id_j];
+      longest = std::max(longest, b.r0);
+    }
+    int most = 0;
+    for (const auto& [id, n] : per) most = std::max(most, n);
+    return std::tuple{sim.bonds.size(), most, longest / 2.0};
+  };
+  const auto [plain, plain_most, plain_longest] = bonds_of(std::nullopt);
+  EXPECT_EQ(plain_most, 12);
+  EXPECT_NEAR(plain_longest, 1.0, 1e-9);
+  EXPECT_EQ(std::get<0>(bonds_of(1.0)), plain);
+  EXPECT_EQ(std::get<0>(bonds_of(1.4)), plain);
+  const auto [wide, wide_most, wide_longest] = bonds_of(1.5);
+  EXPECT_EQ(wide_most, 18);
+  EXPECT_NEAR(wide_longest, std::sqrt(2.0), 1e-9);
+  // Interior particles gain 6 bonds (3 bonds each), surface ones fewer.
+  EXPECT_GT(double(wide) / double(plain), 1.3);
+  EXPECT_LT(double(wide) / double(plain), 1.5);
+}
+
+TEST(Effects, RollingResistanceResistsRelativeRotationUpToItsLimit) {
+  // Two touching particles pressed together by an overlap of 0.01, j spinning about y (the
+  // contact normal is z): the rolling moment on j opposes the spin, grows by
+  // k_roll = 2.25 k_n mu_r^2 R*^2 per radian of relative rotation, and stops at mu_r R* F_n;
+  // i gets the opposite moment. Without the effect there is none.
+  auto extra_torque = [](std::map<std::string, EffectValues> effects, int steps) {
+    const Pair p;
+    Simulation with = pair_sim(p, p.xi + Vec3(0, 0, 1.99), false, std::move(effects));
+    Simulation without = pair_sim(p, p.xi + Vec3(0, 0, 1.99), false, {});
+    for (Simulation* s : {&with, &without}) {
+      s->particles.omega[1] = Vec3(0, 2.0, 0);
+      s->initialise();
+    }
+    for (int k = 1; k < steps; ++k) {
+      for (Simulation* s : {&with, &without}) {
+        s->particles.torque[0].setZero();
+        s->particles.torque[1].setZero();
+        s->particles.force[0].setZero();
+        s->particles.force[1].setZero();
+        accumulate_contact_forces(s->neighbours, s->particles, s->contact, s->dt);
+      }
+    }
+    const Vec3 on_j = with.particles.torque[1] - without.particles.torque[1];
+    const Vec3 on_i = with.particles.torque[0] - without.particles.torque[0];
+    EXPECT_NEAR((on_i + on_j).norm(), 0.0, 1e-12);
+    return on_j;
+  };
+  const Pair p;
+  const double fn = p.k.kr_n_m * 0.01, r_star = 0.5, mu = 0.3;
+  const double k_roll = 2.25 * p.k.kr_n_m * mu * mu * r_star * r_star;
+  EXPECT_NEAR(extra_torque({}, 1).norm(), 0.0, 1e-12);
+  // One step: elastic, 2 rad/s for dt = 1e-3.
+  const Vec3 one = extra_torque({{"rolling_resistance", {{"mu_r", mu}}}}, 1);
+  EXPECT_NEAR(one.y(), -k_roll * 2.0 * 1e-3, 1e-9 * k_roll);
+  EXPECT_NEAR(one.x(), 0.0, 1e-12);
+  // Many steps: at the limit.
+  const Vec3 many = extra_torque({{"rolling_resistance", {{"mu_r", mu}}}}, 2000);
+  EXPECT_NEAR(many.y(), -mu * r_star * fn, 1e-9 * fn);
 }
 
 TEST(Effects, ConfinementFlagTravelsWithMigrants) {

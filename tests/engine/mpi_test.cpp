@@ -56,6 +56,18 @@ std::vector<CurveRow> read_curve(const fs::path& out) {
   return rows;
 }
 
+// Two runs of one job: the same curve, to 1e-6, over more than 20 rows before any bond breaks.
+void expect_same_curve_until_the_first_break(const fs::path& a, const fs::path& b) {
+  const auto c1 = read_curve(a), c2 = read_curve(b);
+  std::size_t compared = 0;
+  for (std::size_t i = 0; i < std::min(c1.size(), c2.size()) && c1[i].broken == 0; ++i) {
+    ASSERT_EQ(c1[i].step, c2[i].step);
+    EXPECT_NEAR(c2[i].load, c1[i].load, 1e-6 * std::abs(c1[i].load)) << "row " << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, 20u);
+}
+
 std::vector<std::string> read_lines(const fs::path& file) {
   std::ifstream in(file);
   std::vector<std::string> lines;
@@ -120,14 +132,7 @@ TEST(Mpi, TriaxialWithBondEffectsTwoRanksAgreeWithOne) {
   // place and mode (the heterogeneity draws agree: different draws would break different bonds
   // first), and peaks within 5%.
   const double p1 = one["peak_load"], p2 = two["peak_load"];
-  const auto c1 = read_curve(base / "np1"), c2 = read_curve(base / "np2");
-  std::size_t compared = 0;
-  for (std::size_t i = 0; i < std::min(c1.size(), c2.size()) && c1[i].broken == 0; ++i) {
-    ASSERT_EQ(c1[i].step, c2[i].step);
-    EXPECT_NEAR(c2[i].load, c1[i].load, 1e-6 * std::abs(c1[i].load)) << "row " << i;
-    ++compared;
-  }
-  EXPECT_GT(compared, 20u);
+  expect_same_curve_until_the_first_break(base / "np1", base / "np2");
   const auto k1 = read_lines(base / "np1" / "breaks.csv"),
              k2 = read_lines(base / "np2" / "breaks.csv");
   ASSERT_GT(k1.size(), 6u);
@@ -143,6 +148,32 @@ TEST(Mpi, TriaxialWithBondEffectsTwoRanksAgreeWithOne) {
     EXPECT_EQ(fb[4], fa[4]) << "break " << i;
     for (int f = 1; f <= 3; ++f) EXPECT_NEAR(std::stod(fb[f]), std::stod(fa[f]), 1e-6) << i;
   }
+  EXPECT_NEAR(p2 / p1, 1.0, 0.05);
+  fs::remove_all(base);
+}
+
+// The longer bonds of interaction_range (up to 3.8 largest radii here, farther than the ghost
+// layer that touching pairs need) need a wider ghost layer, and rolling resistance keeps a
+// second contact history that must travel with migrating particles: two ranks must build the same
+// bonds and follow the same curve up to the first break.
+TEST(Mpi, LongerBondsAndRollingHistoryTwoRanksAgreeWithOne) {
+  const fs::path base =
+      fs::temp_directory_path() / ("rockcal_mpi_roll_" + std::to_string(::getpid()));
+  fs::create_directories(base);
+  const fs::path job = base / "job.json";
+  std::ofstream(job) << R"({"test": "uct",
+    "sample": {"diameter": 8, "height": 16, "packing": "random", "radius_ratio": 1.5},
+    "material": {"kr": 8000, "nu": 0.2}, "bond": {"fr0": 64, "fs0": 64},
+    "loading": {"platen_velocity": 0.1, "max_strain": 0.2},
+    "effects": {"interaction_range": {"factor": 1.9}, "rolling_resistance": {"mu_r": 0.3}}})";
+  const auto one = run_on(1, base / "np1", job.string());
+  const auto two = run_on(2, base / "np2", job.string());
+  ASSERT_TRUE(one.contains("peak_load") && two.contains("peak_load"));
+  EXPECT_EQ(two["ranks"], 2);
+  EXPECT_EQ(one["particles"], two["particles"]);
+  EXPECT_EQ(one["bonds"], two["bonds"]);
+  expect_same_curve_until_the_first_break(base / "np1", base / "np2");
+  const double p1 = one["peak_load"], p2 = two["peak_load"];
   EXPECT_NEAR(p2 / p1, 1.0, 0.05);
   fs::remove_all(base);
 }
