@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "api/client_http.hpp"
 #include "api/status_text.hpp"
@@ -231,11 +233,22 @@ std::string calibration_text(const json& s) {
   }
   out << consistency_text(s);
   out << fidelity_text(at(s, "fidelity"));
+  // The same budget the progress line counted down: the search's and the valley trace's.
+  const json& trace = at(s, "consistency_evaluations");
+  const bool traced =
+      at(s, "max_evaluations").is_number() && trace.is_number() && trace.get<int>() > 0;
   out << "evaluations: " << value_text(at(s, "evaluations")) << " of "
-      << value_text(at(s, "max_evaluations"));
+      << (traced ? std::to_string(budget_of(s)) : value_text(at(s, "max_evaluations")));
+  std::vector<std::string> notes;
   if (at(s, "failed_evaluations").is_number() && s["failed_evaluations"].get<int>() > 0) {
-    out << " (" << s["failed_evaluations"] << " failed)";
+    notes.push_back(s["failed_evaluations"].dump() + " failed");
   }
+  if (traced) {
+    notes.push_back("budget: search " + s["max_evaluations"].dump() + ", valley trace " +
+                    trace.dump());
+  }
+  for (std::size_t k = 0; k < notes.size(); ++k) out << (k ? "; " : " (") << notes[k];
+  if (!notes.empty()) out << ")";
   if (at(s, "realisations").is_number() && s["realisations"].get<int>() > 1) {
     out << ", " << s["realisations"] << " packings each";
   }

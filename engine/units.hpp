@@ -24,6 +24,17 @@ BondStiffness stiffness_from_youngs_modulus(double youngs_modulus_pa, double nu,
 // The job's stiffnesses for a bond of mean radius R (kr given directly, or from E).
 BondStiffness bond_stiffness(const JobSpec& spec, double radius_m);
 
+// The same material at a finer resolution: particles `factor` times smaller in the same specimen.
+// K_r scales with the radius (eq. 3 at a fixed Young's modulus) and the bond strengths with the
+// radius squared (a bond carries the stress on a cross-section of order R^2), so the specimen's
+// modulus and stresses are the coarse model's to first order; what changes is the cut.
+struct Refinement {
+  double factor;  // coarse radius / fine radius, > 0
+  double radius(double r_m) const { return r_m / factor; }
+  double kr(double kr_n_m) const { return kr_n_m / factor; }
+  double strength(double f_n) const { return f_n * (1.0 / (factor * factor)); }
+};
+
 // Mass and moment of inertia of a solid sphere.
 double sphere_mass(double density_kg_m3, double radius_m);
 double sphere_inertia(double mass_kg, double radius_m);

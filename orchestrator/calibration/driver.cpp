@@ -19,7 +19,7 @@ namespace {
 
 bool ratio_out_of_reach(const Ledger& ledger) {
   const auto range = ratio_range(ledger.history(), ledger.targets());
-  return range && !range->target_inside;
+  return range && !range->target_inside();
 }
 
 // A second check where the answer probably lies: the best start point and its copy scaled toward
@@ -162,7 +162,7 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
     return;
   }
   r.verdict = Verdict::compromise;
-  if (r.ratio && !r.ratio->target_inside) {
+  if (r.ratio && !r.ratio->target_inside()) {
     r.verdict_reason = sentence(
         "the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] the model reached: "
         "both loads cannot be met; best is the weighted log-misfit compromise",

@@ -20,15 +20,11 @@ std::optional<LoadStats> stats(const std::vector<ScatterRun>& runs, double PeakL
 
 std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& history,
                                       const PeakLoads& targets) {
-  std::optional<RatioRange> range;
+  RatioRange range{.target = targets.uct_n / targets.btt_n};
   for (const EvaluationRecord& r : history) {
-    if (!r.loads) continue;
-    const double ratio = r.loads->uct_n / r.loads->btt_n;
-    if (!range) range = RatioRange{targets.uct_n / targets.btt_n, ratio, ratio, false};
-    range->min = std::min(range->min, ratio);
-    range->max = std::max(range->max, ratio);
+    if (r.loads) range.add(r.loads->uct_n / r.loads->btt_n);
   }
-  if (range) range->target_inside = range->target >= range->min && range->target <= range->max;
+  if (range.runs == 0) return std::nullopt;
   return range;
 }
 

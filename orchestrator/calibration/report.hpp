@@ -14,6 +14,7 @@
 #include "orchestrator/calibration/fidelity.hpp"
 #include "orchestrator/calibration/ledger.hpp"
 #include "orchestrator/calibration/suggestion.hpp"
+#include "orchestrator/ratio_range.hpp"
 
 namespace rockcal::calibration {
 
@@ -23,14 +24,8 @@ enum class StopReason { tolerance_met, budget_exhausted, converged, cancelled };
 // failed: no evaluation succeeded.
 enum class Verdict { feasible, compromise, incomplete, failed };
 
-// UCT/BTT load ratios the model reached over all successful evaluations, vs the target's: the
-// first fact of the sim-to-real gap when the target lies outside.
-struct RatioRange {
-  double target = 0.0;
-  double min = 0.0;
-  double max = 0.0;
-  bool target_inside = false;
-};
+// UCT/BTT load ratios the model reached over all successful evaluations, vs the targets'.
+using orch::RatioRange;
 
 struct ScatterRun {
   std::uint64_t seed = 0;

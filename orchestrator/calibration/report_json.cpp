@@ -257,7 +257,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
         {"target", r.ratio->target},
         {"min", r.ratio->min},
         {"max", r.ratio->max},
-        {"target_inside", r.ratio->target_inside},
+        {"target_inside", r.ratio->target_inside()},
         {"best", r.best ? json(r.best->loads->uct_n / r.best->loads->btt_n) : json(nullptr)}};
   } else {
     j["ratio"] = nullptr;

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "engine/effects/effect.hpp"
+#include "engine/units.hpp"
 #include "orchestrator/job_files.hpp"
 
 namespace rockcal::diagnosis {
@@ -32,11 +33,11 @@ json job_for(const json& job_template, const JobSpec& model, const RunConditions
   // Only the disc has a thickness; leaving it alone elsewhere keeps equal cylinders equal jobs.
   if (c.test == TestKind::btt) sample["thickness"] = c.thickness_m;
   sample["seed"] = n.seed;
-  sample["radius"] = model.sample.radius_m / n.resolution;
-  if (model.material.kr_n_m) job["material"]["kr"] = *model.material.kr_n_m / n.resolution;
-  const double strength_scale = 1.0 / (n.resolution * n.resolution);
-  job["bond"] = {{"fr0", request.point.fr0_n * strength_scale},
-                 {"fs0", request.point.fs0_n * strength_scale}};
+  const Refinement fine{n.resolution};
+  sample["radius"] = fine.radius(model.sample.radius_m);
+  if (model.material.kr_n_m) job["material"]["kr"] = fine.kr(*model.material.kr_n_m);
+  job["bond"] = {{"fr0", fine.strength(request.point.fr0_n)},
+                 {"fs0", fine.strength(request.point.fs0_n)}};
   job["loading"]["platen_velocity"] = c.platen_velocity_m_s * n.speed_factor;
   if (c.test == TestKind::triaxial) job["loading"]["confining_pressure"] = c.confining_pressure_pa;
   if (effect_on(request.point)) {

@@ -19,27 +19,16 @@ std::optional<std::size_t> first(const std::vector<Target>& targets, TestKind te
 
 }  // namespace
 
-std::optional<RatioRange> ratio_range(const std::vector<Target>& targets,
-                                      const Samples& base_grid) {
+std::optional<LabRatio> ratio_range(const std::vector<Target>& targets, const Samples& base_grid) {
   for (Observable observable : {Observable::peak_load, Observable::strength}) {
     const auto uct = first(targets, TestKind::uct, observable);
     const auto btt = first(targets, TestKind::btt, observable);
     if (!uct || !btt) continue;
-    RatioRange r;
-    r.uct = *uct;
-    r.btt = *btt;
-    r.lab = targets[*uct].value / targets[*btt].value;
-    r.min = std::numeric_limits<double>::infinity();
-    r.max = -r.min;
+    LabRatio r{*uct, *btt, {.target = targets[*uct].value / targets[*btt].value}};
     for (const RunOutcome& o : base_grid.outcomes) {
-      if (!o.values[*uct] || !o.values[*btt]) continue;
-      const double ratio = *o.values[*uct] / *o.values[*btt];
-      r.min = std::min(r.min, ratio);
-      r.max = std::max(r.max, ratio);
-      ++r.runs;
+      if (o.values[*uct] && o.values[*btt]) r.range.add(*o.values[*uct] / *o.values[*btt]);
     }
-    if (r.runs == 0) return std::nullopt;
-    r.inside = r.lab >= r.min && r.lab <= r.max;
+    if (r.range.runs == 0) return std::nullopt;
     return r;
   }
   return std::nullopt;

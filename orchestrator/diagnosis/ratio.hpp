@@ -8,10 +8,16 @@
 
 #include "orchestrator/diagnosis/grid.hpp"
 #include "orchestrator/diagnosis/observations.hpp"
-#include "orchestrator/diagnosis/report.hpp"
+#include "orchestrator/ratio_range.hpp"
 
 namespace rockcal::diagnosis {
 
-std::optional<RatioRange> ratio_range(const std::vector<Target>& targets, const Samples& base_grid);
+// UCT/BTT peak ratio between two calibration targets, over the base grid runs.
+struct LabRatio {
+  std::size_t uct = 0, btt = 0;  // target indices
+  orch::RatioRange range;        // target: the lab's ratio of the two
+};
+
+std::optional<LabRatio> ratio_range(const std::vector<Target>& targets, const Samples& base_grid);
 
 }  // namespace rockcal::diagnosis

@@ -14,6 +14,7 @@
 #include "orchestrator/diagnosis/campaign.hpp"
 #include "orchestrator/diagnosis/candidate.hpp"
 #include "orchestrator/diagnosis/evaluator.hpp"
+#include "orchestrator/diagnosis/ratio.hpp"
 #include "orchestrator/diagnosis/surface_fit.hpp"
 
 namespace rockcal::diagnosis {
@@ -96,16 +97,6 @@ struct Verdict {
   std::string reason;
 };
 
-// UCT/BTT peak ratio between two calibration targets, over the base grid runs.
-struct RatioRange {
-  std::size_t uct = 0, btt = 0;  // target indices
-  double lab = 0.0;
-  double min = 0.0;
-  double max = 0.0;
-  bool inside = false;
-  int runs = 0;
-};
-
 struct DiagnosisReport {
   // The budget the residuals are judged against (gap test, calibration-fit rule after the
   // confirmations, seed checks, bootstrap), measured at the base model's confirmed fit (the model
@@ -122,7 +113,7 @@ struct DiagnosisReport {
   // calls a gap above kGapBudgets.
   std::optional<double> held_out_budgets;
   std::vector<CandidateResult> candidates;  // [0] = the base, then the effects in request order
-  std::optional<RatioRange> ratio;
+  std::optional<LabRatio> ratio;
   Verdict verdict;
   Confidence confidence;
   int model_points = 0;  // distinct model points run (each = one job per distinct condition)

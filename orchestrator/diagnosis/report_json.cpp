@@ -238,15 +238,15 @@ json gap_json(const DiagnosisReport& r, const std::vector<Target>& targets,
           {"significant", significant}};
 }
 
-json ratio_json(const std::optional<RatioRange>& r, const std::vector<Target>& targets) {
+json ratio_json(const std::optional<LabRatio>& r, const std::vector<Target>& targets) {
   if (!r) return nullptr;
   return {{"uct", targets[r->uct].id},
           {"btt", targets[r->btt].id},
-          {"lab", r->lab},
-          {"min", r->min},
-          {"max", r->max},
-          {"inside", r->inside},
-          {"runs", r->runs}};
+          {"lab", r->range.target},
+          {"min", r->range.min},
+          {"max", r->range.max},
+          {"inside", r->range.target_inside()},
+          {"runs", r->range.runs}};
 }
 
 }  // namespace

@@ -104,7 +104,7 @@ TEST(Driver, UnreachableRatioGivesCompromiseWithRatioRange) {
   const CalibrationReport r = run_calibration(c, evaluator);
   EXPECT_EQ(r.verdict, Verdict::compromise);
   ASSERT_TRUE(r.ratio.has_value());
-  EXPECT_FALSE(r.ratio->target_inside);
+  EXPECT_FALSE(r.ratio->target_inside());
   EXPECT_DOUBLE_EQ(r.ratio->target, 3.0);
   EXPECT_GT(r.ratio->min, 5.9);
   EXPECT_LT(r.ratio->min, 6.5);  // the search found the low end of the reachable ratios

@@ -131,7 +131,8 @@ TEST_F(ServiceCalibration, RunsToAFeasibleReport) {
       "verdict: feasible - both peak loads within 2% of their targets; the strengths are unique");
   EXPECT_NE(text.find("\n  UCT "), std::string::npos) << text;
   EXPECT_NE(text.find("\n  BTT "), std::string::npos) << text;
-  EXPECT_NE(text.find("\nevaluations: " + report["evaluations"].dump() + " of 40, stopped: "),
+  EXPECT_NE(text.find("\nevaluations: " + report["evaluations"].dump() +
+                      " of 64 (budget: search 40, valley trace 24), stopped: "),
             std::string::npos)
       << text;
 }

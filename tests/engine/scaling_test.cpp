@@ -83,3 +83,14 @@ TEST(Scaling, GrainForGrainLengthRatioByDefault) {
   EXPECT_DOUBLE_EQ(s.length, 1000.0);
   EXPECT_NEAR(s.stress, s.force / 1e6, 1e-15);
 }
+
+TEST(Scaling, ARefinementKeepsTheMaterialsModulusAndStresses) {
+  // The diagnosis's finer models: particles 1.25x smaller. K_r follows eq. 3 at the same Young's
+  // modulus, and a bond's strength over its cross-section (~ R^2) stays: the same stress.
+  const Refinement fine{1.25};
+  const double E = 1e4, nu = 0.2, R = 1.0;
+  EXPECT_DOUBLE_EQ(fine.radius(R), 0.8);
+  EXPECT_NEAR(fine.kr(kr_from_youngs_modulus(E, nu, R)), kr_from_youngs_modulus(E, nu, 0.8),
+              1e-9 * kr_from_youngs_modulus(E, nu, R));
+  EXPECT_NEAR(fine.strength(64.0) / (0.8 * 0.8), 64.0 / (R * R), 1e-12);
+}

@@ -177,6 +177,19 @@ TEST(CalibrationSummary, NoSuccessfulEvaluationSaysSoWithoutATable) {
             "evaluations: 4 of 40 (4 failed), stopped: converged\n");
 }
 
+// The closing line counts against the budget the progress line counted down (the quick start
+// once ended on "42 of 40" after a bar that had said "of 64").
+TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
+  json s = {{"verdict", "failed"},       {"verdict_reason", "no evaluation succeeded"},
+            {"best", nullptr},           {"evaluations", 42},
+            {"failed_evaluations", 3},   {"max_evaluations", 40},
+            {"consistency_evaluations", 24}, {"stop_reason", "tolerance_met"}};
+  EXPECT_EQ(calibration_text(s),
+            "verdict: failed - no evaluation succeeded\n"
+            "evaluations: 42 of 64 (3 failed; budget: search 40, valley trace 24), stopped: "
+            "tolerance_met\n");
+}
+
 TEST(SweepSummary, JobCountsAndWhereTheResultsAre) {
   json c = running_calibration(10.0);
   c["kind"] = "sweep";
