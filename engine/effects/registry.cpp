@@ -19,6 +19,7 @@ EffectDef compression_coupling_effect();
 EffectDef post_break_friction_effect();
 EffectDef interaction_range_effect();
 EffectDef rolling_resistance_effect();
+EffectDef brazilian_flats_effect();
 
 const std::vector<EffectDef>& effect_registry() {
   static const std::vector<EffectDef> all = {
@@ -31,6 +32,7 @@ const std::vector<EffectDef>& effect_registry() {
       post_break_friction_effect(),
       interaction_range_effect(),
       rolling_resistance_effect(),
+      brazilian_flats_effect(),
   };
   return all;
 }

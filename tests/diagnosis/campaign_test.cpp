@@ -241,13 +241,14 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   const ModelPoint lowest = model_point(c, c.candidates[1], std::vector<double>{0.5, 0.5, 0.0});
   EXPECT_TRUE(effect_on(lowest));  // u = 0 is a random packing, not the base model's FCC
   EXPECT_DOUBLE_EQ(lowest.s, kDiscontinuousFloor);
-  // A 5 x 5 (x 5) grid: 25 + 7 x 25 x 4 (+ packing's and interaction_range's own 25 x 5), twice
+  // A 5 x 5 (x 5) grid: 25 + 7 x 25 x 4 (+ packing's, interaction_range's and brazilian_flats'
+  // own 25 x 5), twice
   // 5 points x 8 budget runs
   // (reference, 2 seeds, half speed, 4 resolutions), every confirmed: 8 x (3 + 2).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
-  EXPECT_EQ(planned_jobs(c), (25 + 7 * 100 + 2 * 125 + 2 * 5 * 8 + 8 * 5) * 7u);
+  EXPECT_EQ(planned_jobs(c), (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 8 * 5) * 7u);
 }
 
 TEST(DiagnosisRuns, ARunWithoutAPeakHasNoValueAtAll) {

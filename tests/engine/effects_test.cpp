@@ -124,7 +124,8 @@ TEST(Effects, RegistryMatchesTheDiagnosisTable) {
                        {"compression_coupling", "coupling", 1, 0, false},
                        {"post_break_friction", "mu", 0.6, 0.05, false},
                        {"interaction_range", "factor", 1, 1.5, false},
-                       {"rolling_resistance", "mu_r", 0, 0.3, false}};
+                       {"rolling_resistance", "mu_r", 0, 0.3, false},
+                       {"brazilian_flats", "angle_deg", 30, 10, false}};
   ASSERT_EQ(effect_registry().size(), std::size(table));
   for (const Row& row : table) {
     const EffectDef* e = find_effect(row.name);
@@ -370,6 +371,43 @@ TEST(Effects, RollingResistanceResistsRelativeRotationUpToItsLimit) {
   // Many steps: at the limit.
   const Vec3 many = extra_torque({{"rolling_resistance", {{"mu_r", mu}}}}, 2000);
   EXPECT_NEAR(many.y(), -mu * r_star * fn, 1e-9 * fn);
+}
+
+TEST(Effects, BrazilianFlatsChangeTheDiscsLoadingOnly) {
+  JobSpec btt;
+  btt.test = TestKind::btt;
+  btt.effects = {{"brazilian_flats", {{"angle_deg", 12}}}};
+  const JobSpec e = effective_spec(btt);
+  EXPECT_EQ(e.loading.btt_geometry, BttGeometry::flattened);
+  EXPECT_DOUBLE_EQ(e.loading.flat_angle_deg, 12);
+  // From flat platens too; a UCT is left alone.
+  btt.loading.btt_geometry = BttGeometry::flat_platens;
+  EXPECT_EQ(effective_spec(btt).loading.btt_geometry, BttGeometry::flattened);
+  JobSpec uct = btt;
+  uct.test = TestKind::uct;
+  EXPECT_EQ(effective_spec(uct).loading, [&] {
+    JobSpec plain = uct;
+    plain.effects.clear();
+    return effective_spec(plain).loading;
+  }());
+  // The walk starts from the job's own flats.
+  const EffectDef* flats = find_effect("brazilian_flats");
+  ASSERT_NE(flats, nullptr);
+  JobSpec narrow;
+  narrow.loading.flat_angle_deg = 20;
+  EXPECT_DOUBLE_EQ(effect_neutral(flats->params[0], narrow), 20);
+  EXPECT_DOUBLE_EQ(effect_value_at(*flats, 1.0, narrow), 10);
+  // And the built disc has the flats: narrower flats leave more particles on the disc.
+  auto particles = [](double angle) {
+    JobSpec s;
+    s.test = TestKind::btt;
+    s.sample.diameter_m = 20;
+    s.sample.thickness_m = 10;
+    s.material.kr_n_m = 8000;
+    s.effects = {{"brazilian_flats", {{"angle_deg", angle}}}};
+    return make_specimen(s).particles.size();
+  };
+  EXPECT_GT(particles(10), particles(40));
 }
 
 TEST(Effects, ConfinementFlagTravelsWithMigrants) {
