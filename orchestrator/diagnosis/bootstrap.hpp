@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "orchestrator/diagnosis/observations.hpp"
-#include "orchestrator/diagnosis/report.hpp"
+#include "orchestrator/diagnosis/verdict.hpp"
 
 namespace rockcal::diagnosis {
 

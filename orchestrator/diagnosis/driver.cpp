@@ -331,7 +331,7 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
     conf.agreement = 1.0;
   }
   conf.level = confidence_level(conf);
-  report.ratio = ratio_range(c.targets, samples[0]);
+  report.ratio = ratio_range(c.targets, samples[0].outcomes);
   count_failures(report, c, samples);
   if (count_role(c.targets, Role::held_out) == 0) {
     report.verdict.reason =

@@ -7,8 +7,8 @@
 
 #include <vector>
 
+#include "orchestrator/diagnosis/candidate_result.hpp"
 #include "orchestrator/diagnosis/observations.hpp"
-#include "orchestrator/diagnosis/report.hpp"
 #include "orchestrator/diagnosis/surface_fit.hpp"
 
 namespace rockcal::diagnosis {

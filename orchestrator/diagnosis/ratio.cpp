@@ -19,13 +19,14 @@ std::optional<std::size_t> first(const std::vector<Target>& targets, TestKind te
 
 }  // namespace
 
-std::optional<LabRatio> ratio_range(const std::vector<Target>& targets, const Samples& base_grid) {
+std::optional<LabRatio> ratio_range(const std::vector<Target>& targets,
+                                    const std::vector<RunOutcome>& base_grid) {
   for (Observable observable : {Observable::peak_load, Observable::strength}) {
     const auto uct = first(targets, TestKind::uct, observable);
     const auto btt = first(targets, TestKind::btt, observable);
     if (!uct || !btt) continue;
     LabRatio r{*uct, *btt, {.target = targets[*uct].value / targets[*btt].value}};
-    for (const RunOutcome& o : base_grid.outcomes) {
+    for (const RunOutcome& o : base_grid) {
       if (o.values[*uct] && o.values[*btt]) r.range.add(*o.values[*uct] / *o.values[*btt]);
     }
     if (r.range.runs == 0) return std::nullopt;

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "orchestrator/diagnosis/grid.hpp"
+#include "orchestrator/diagnosis/evaluator.hpp"
 #include "orchestrator/diagnosis/observations.hpp"
 #include "orchestrator/ratio_range.hpp"
 
@@ -18,6 +18,7 @@ struct LabRatio {
   orch::RatioRange range;        // target: the lab's ratio of the two
 };
 
-std::optional<LabRatio> ratio_range(const std::vector<Target>& targets, const Samples& base_grid);
+std::optional<LabRatio> ratio_range(const std::vector<Target>& targets,
+                                    const std::vector<RunOutcome>& base_grid);
 
 }  // namespace rockcal::diagnosis

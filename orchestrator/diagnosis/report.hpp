@@ -1,9 +1,6 @@
 // What a diagnosis found: the campaign summary (JSON) and the HTML page of a diagnosis campaign.
 #pragma once
 
-#include <cstdint>
-#include <limits>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,90 +9,12 @@
 
 #include "orchestrator/diagnosis/budget.hpp"
 #include "orchestrator/diagnosis/campaign.hpp"
-#include "orchestrator/diagnosis/candidate.hpp"
+#include "orchestrator/diagnosis/candidate_result.hpp"
 #include "orchestrator/diagnosis/evaluator.hpp"
 #include "orchestrator/diagnosis/ratio.hpp"
-#include "orchestrator/diagnosis/surface_fit.hpp"
+#include "orchestrator/diagnosis/verdict.hpp"
 
 namespace rockcal::diagnosis {
-
-struct RmsByRole {
-  std::optional<double> calibration;
-  std::optional<double> held_out;
-};
-
-// Whether the data can see an effect at all: with the bond strengths re-fitted to the calibration
-// targets at each s in [0, 1], how far does each observation move from its s = 0 value?
-struct Identifiability {
-  bool identifiable = false;
-  std::vector<double> max_change;  // per target, |ln| (NaN without a surface)
-  std::vector<std::size_t> moved;  // targets moved beyond budget + lab uncertainty
-};
-
-// One real run of the refinement: where, and its real calibration misfit (infinite when a
-// calibration observation had no value).
-struct RefineStep {
-  ModelPoint point;
-  double misfit = 0.0;
-};
-
-struct CandidateResult {
-  Candidate candidate;
-  bool fitted = false;
-  std::string error;  // why it could not be fitted
-  SurfaceSet surfaces;
-  SurfaceCalibration calibration;
-  ModelPoint point;                                         // the fitted model
-  double value = std::numeric_limits<double>::quiet_NaN();  // the effect parameter at point.s
-  std::vector<double> predicted;                            // ln(sim) on the surfaces
-  RmsByRole surface_rms;
-  std::optional<double> g_surface;
-  std::optional<Identifiability> identifiability;  // effects only
-  // Whether it fits the calibration observations about as well as the best candidate does (see
-  // mark_calibration_fits): one that does not cannot be the explanation, however it predicts.
-  bool fits_calibration = true;
-  bool confirmed = false;
-  std::vector<double> confirmed_ln;  // ln(sim) of the real runs at the fitted point (NaN: failed)
-  RmsByRole confirmed_rms;
-  std::optional<double> g_confirmed;
-  std::vector<std::vector<double>> seed_ln;  // real runs with each budget seed (confirmed only)
-  // Confirmed only: real minus surface ln values at the fitted point (0 where either is missing).
-  // The surfaces plus this offset pass through the real run; the refinement re-fits on them.
-  std::vector<double> surface_offset;
-  std::vector<RefineStep> refinement;  // the real runs at successive fits, first = surface fit
-  int rank = 0;                        // 1 = best effect; 0 for the base
-
-  std::optional<double> g() const { return confirmed ? g_confirmed : g_surface; }
-  const std::vector<double>& ln_sim() const { return confirmed ? confirmed_ln : predicted; }
-  RmsByRole rms() const { return confirmed ? confirmed_rms : surface_rms; }
-};
-
-// The verdict under one replicate packing seed: base and confirmed candidates re-run at their
-// fitted points on that packing.
-struct SeedCheck {
-  std::uint64_t seed = 0;
-  std::string verdict;  // effect name, or "" for no effect needed
-  std::map<std::string, double> gap_closure;
-  // False when every re-run equals its nominal run: a regular packing with no seeded effect does
-  // not depend on the seed, and the check then repeats the verdict instead of testing it.
-  bool informative = true;
-};
-
-struct Confidence {
-  int replicates = 0;                  // bootstrap replicates
-  double agreement = 0.0;              // share of them with the nominal verdict
-  std::map<std::string, int> winners;  // verdict ("" = none) -> replicates
-  std::vector<SeedCheck> seeds;
-  int seeds_informative = 0;  // of `seeds`; only these count
-  int seeds_agreeing = 0;     // informative seeds that reach the nominal verdict
-  std::string level;          // high | medium | low
-};
-
-struct Verdict {
-  int candidate = -1;  // index into candidates; -1 = no effect needed
-  int runner_up = -1;
-  std::string reason;
-};
 
 struct DiagnosisReport {
   // The budget the residuals are judged against (gap test, calibration-fit rule after the
@@ -121,8 +40,6 @@ struct DiagnosisReport {
   std::string first_error;              // of the first run that left a value missing
   std::vector<int> base_grid_failures;  // per target: base grid runs without a value
 };
-
-inline constexpr double kMinGapClosure = 0.3;  // docs/diagnosis.md: verdict rule
 
 // The campaign summary: model units throughout.
 nlohmann::json to_json(const DiagnosisReport& report, const DiagnosisCampaign& campaign);

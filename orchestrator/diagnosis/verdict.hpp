@@ -1,13 +1,45 @@
 // Ranking, the verdict rule and its replay under replicate packing seeds.
 #pragma once
 
+#include <cstdint>
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "orchestrator/diagnosis/candidate_result.hpp"
 #include "orchestrator/diagnosis/observations.hpp"
-#include "orchestrator/diagnosis/report.hpp"
 
 namespace rockcal::diagnosis {
+
+// The verdict under one replicate packing seed: base and confirmed candidates re-run at their
+// fitted points on that packing.
+struct SeedCheck {
+  std::uint64_t seed = 0;
+  std::string verdict;  // effect name, or "" for no effect needed
+  std::map<std::string, double> gap_closure;
+  // False when every re-run equals its nominal run: a regular packing with no seeded effect does
+  // not depend on the seed, and the check then repeats the verdict instead of testing it.
+  bool informative = true;
+};
+
+struct Confidence {
+  int replicates = 0;                  // bootstrap replicates
+  double agreement = 0.0;              // share of them with the nominal verdict
+  std::map<std::string, int> winners;  // verdict ("" = none) -> replicates
+  std::vector<SeedCheck> seeds;
+  int seeds_informative = 0;  // of `seeds`; only these count
+  int seeds_agreeing = 0;     // informative seeds that reach the nominal verdict
+  std::string level;          // high | medium | low
+};
+
+struct Verdict {
+  int candidate = -1;  // index into candidates; -1 = no effect needed
+  int runner_up = -1;
+  std::string reason;
+};
+
+inline constexpr double kMinGapClosure = 0.3;  // docs/diagnosis.md: verdict rule
 
 struct Contender {
   int index;  // into the candidates
