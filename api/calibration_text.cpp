@@ -82,7 +82,8 @@ std::string calibration_line(const json& c) {
     out << ", best misfit " << num(best["misfit"], "%.3g") << " at F_r0 = " << num(best["fr0"])
         << ", F_s0 = " << num(best["fs0"]);
   }
-  out << ", " << at(c["progress"], "running") << " jobs running";
+  const json& running = at(c["progress"], "running");
+  out << ", " << running << (running == 1 ? " job" : " jobs") << " running";
   if (state == "running" || state == "queued") {
     if (const auto eta = eta_seconds(s)) {
       out << ", ETA " << duration_text(*eta) << " (full budget)";

@@ -49,6 +49,12 @@ TEST(CalibrationProgress, EtaUnknownUntilAnEvaluationHasRun) {
             "ETA unknown");
 }
 
+TEST(CalibrationProgress, OneJobIsOneJob) {
+  json c = running_calibration(nullptr);
+  c["progress"]["running"] = 1;
+  EXPECT_NE(progress_line(c).find(", 1 job running, "), std::string::npos) << progress_line(c);
+}
+
 TEST(CalibrationProgress, NeverEtaZeroWhileEvaluationsRemain) {
   json c = running_calibration(0.01);  // cached replays: a pace of 10 ms
   c["summary"]["evaluations"] = 39;
