@@ -107,8 +107,8 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
   for (int a = 0; a < 3; ++a)
     dims[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>((hi[a] - lo[a]) / cell) + 1);
   auto cell_of = [&](const Vec3& x, int a) {
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[a] - lo[a]) / cell)),
-                                    0, dims[a] - 1);
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[a] - lo[a]) / cell)), 0,
+                                    dims[a] - 1);
   };
   const std::size_t ncell = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
   std::vector<std::int32_t> start(ncell + 1, 0), members(n);
@@ -154,8 +154,7 @@ void NeighbourList::build(const Particles& p, const std::vector<Bond>& intact,
                      Vec3::Zero()};
       const SpringRecord key{p.id[cp.i], p.id[cp.j], Vec3::Zero(), Vec3::Zero()};
       auto it = std::lower_bound(history.begin(), history.end(), key, id_less);
-      if (it != history.end() && it->id_lo == key.id_lo && it->id_hi == key.id_hi)
-      {
+      if (it != history.end() && it->id_lo == key.id_lo && it->id_hi == key.id_hi) {
         cp.spring = it->spring;
         cp.roll = it->roll;
       }

@@ -20,8 +20,8 @@ struct ContactPair {
   Vec3 roll;      // rolling spring: relative rotation in the tangent plane (history), rad
 };
 
-// Tangential and rolling history of one pair, keyed by ids: it survives rebuilds and travels with migrating
-// particles.
+// Tangential and rolling history of one pair, keyed by ids: it survives rebuilds and travels with
+// migrating particles.
 struct SpringRecord {
   std::int64_t id_lo, id_hi;
   Vec3 spring, roll;

@@ -62,9 +62,8 @@ std::vector<double> pack_outbox(const Simulation& sim, const std::vector<std::in
   std::vector<SpringRecord> history;
   for (std::int32_t k : leaving) sim.neighbours.history_of(p, k, history);
   for (const SpringRecord& s : history)
-    springs.insert(springs.end(),
-                   {double(s.id_lo), double(s.id_hi), s.spring.x(), s.spring.y(), s.spring.z(),
-                    s.roll.x(), s.roll.y(), s.roll.z()});
+    springs.insert(springs.end(), {double(s.id_lo), double(s.id_hi), s.spring.x(), s.spring.y(),
+                                   s.spring.z(), s.roll.x(), s.roll.y(), s.roll.z()});
   std::vector<double> out = {double(leaving.size()), double(n_bonds), double(history.size())};
   out.insert(out.end(), parts.begin(), parts.end());
   out.insert(out.end(), bonds.begin(), bonds.end());

@@ -32,6 +32,7 @@ struct Refinement {
   double factor;  // coarse radius / fine radius, > 0
   double radius(double r_m) const { return r_m / factor; }
   double kr(double kr_n_m) const { return kr_n_m / factor; }
+  // Multiplied by 1 / factor^2, as the diagnosis always did: its stored jobs keep their identities.
   double strength(double f_n) const { return f_n * (1.0 / (factor * factor)); }
 };
 

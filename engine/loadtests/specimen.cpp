@@ -176,9 +176,9 @@ Simulation make_specimen(const JobSpec& job, MPI_Comm comm) {
     std::vector<double> z(spheres.size());
     std::transform(spheres.begin(), spheres.end(), z.begin(),
                    [](const Sphere& s) { return s.centre.z(); });
-    sim.domain = make_domain(
-        comm, std::move(z), halo_for(r_max, 2.0 * r_max * (1.0 + bond_tolerance(spec)), sim.neighbours.skin,
-                          2.0 * spec.bond.fr0_n / k.kr_n_m));
+    sim.domain = make_domain(comm, std::move(z),
+                             halo_for(r_max, 2.0 * r_max * (1.0 + bond_tolerance(spec)),
+                                      sim.neighbours.skin, 2.0 * spec.bond.fr0_n / k.kr_n_m));
   }
 
   // This rank's slab plus its halo, with global ids; bonds are found among them.

@@ -10,8 +10,8 @@
 
 #include "orchestrator/calibration/campaign.hpp"
 #include "orchestrator/calibration/ensemble_size.hpp"
-#include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/fidelity.hpp"
+#include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/ledger.hpp"
 #include "orchestrator/calibration/suggestion.hpp"
 #include "orchestrator/ratio_range.hpp"
@@ -47,9 +47,9 @@ struct SeedScatter {
 };
 
 struct CalibrationReport {
-  ValleyTrace trace;                     // the consistent-set trace after the search
-  ConsistentSet consistent;              // every evaluated point that meets the targets
-  std::optional<Suggestion> suggestion;  // when the set is not one point
+  ValleyTrace trace;                       // the consistent-set trace after the search
+  ConsistentSet consistent;                // every evaluated point that meets the targets
+  std::optional<Suggestion> suggestion;    // when the set is not one point
   std::optional<FidelityResult> fidelity;  // the fine specimen's corrections, when asked for
   StopReason stop_reason = StopReason::converged;
   Verdict verdict = Verdict::failed;

@@ -1,8 +1,5 @@
 #include "orchestrator/diagnosis/ratio.hpp"
 
-#include <algorithm>
-#include <limits>
-
 namespace rockcal::diagnosis {
 namespace {
 

@@ -240,12 +240,9 @@ json gap_json(const DiagnosisReport& r, const std::vector<Target>& targets,
 
 json ratio_json(const std::optional<LabRatio>& r, const std::vector<Target>& targets) {
   if (!r) return nullptr;
-  return {{"uct", targets[r->uct].id},
-          {"btt", targets[r->btt].id},
-          {"lab", r->range.target},
-          {"min", r->range.min},
-          {"max", r->range.max},
-          {"inside", r->range.target_inside()},
+  return {{"uct", targets[r->uct].id}, {"btt", targets[r->btt].id},
+          {"lab", r->range.target},    {"min", r->range.min},
+          {"max", r->range.max},       {"inside", r->range.target_inside()},
           {"runs", r->range.runs}};
 }
 

@@ -6,10 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <map>
 #include <fstream>
+#include <map>
 #include <regex>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -48,9 +47,8 @@ TEST(DiagnosisLayering, TheAnalysisNeverIncludesTheRequestThePipelineOrTheReport
   const char* analysis[] = {"bootstrap",       "budget", "candidate_result", "gap",
                             "identifiability", "ratio",  "surface",          "surface_fit",
                             "trust_region",    "verdict"};
-  const char* forbidden[] = {"campaign.hpp", "diagnosis_kind.hpp", "driver.hpp",
-                             "grid.hpp",     "jobs.hpp",           "pool_evaluator.hpp",
-                             "report.hpp"};
+  const char* forbidden[] = {"campaign.hpp", "diagnosis_kind.hpp", "driver.hpp", "grid.hpp",
+                             "jobs.hpp",     "pool_evaluator.hpp", "report.hpp"};
   int files = 0;
   for (const char* name : analysis) {
     for (const char* ext : {".hpp", ".cpp"}) {

@@ -373,6 +373,34 @@ TEST(Effects, RollingResistanceResistsRelativeRotationUpToItsLimit) {
   EXPECT_NEAR(many.y(), -mu * r_star * fn, 1e-9 * fn);
 }
 
+TEST(Effects, RollingHistorySurvivesRebuildsAndTravelsWithMigrants) {
+  // A touching pair whose tangential spring is zero but whose rolling spring is not: the history
+  // is kept by a rebuild, handed out for a migrating particle, and taken up by another rank's list.
+  Particles p;
+  p.add(Vec3(0, 0, 0), 1.0, 1.0, 0.4, 5);
+  p.add(Vec3(0, 0, 1.99), 1.0, 1.0, 0.4, 9);
+  NeighbourList nl;
+  nl.skin = 0.5;
+  nl.build(p, {}, {});
+  ASSERT_EQ(nl.pairs.size(), 1u);
+  nl.pairs[0].roll = Vec3(0.1, -0.2, 0);
+  nl.build(p, {}, {});
+  ASSERT_EQ(nl.pairs.size(), 1u);
+  EXPECT_EQ(nl.pairs[0].roll, Vec3(0.1, -0.2, 0));
+  std::vector<SpringRecord> leaving;
+  nl.history_of(p, 1, leaving);
+  ASSERT_EQ(leaving.size(), 1u);
+  EXPECT_EQ(leaving[0].id_lo, 5);
+  EXPECT_EQ(leaving[0].id_hi, 9);
+  EXPECT_EQ(leaving[0].roll, Vec3(0.1, -0.2, 0));
+  NeighbourList other;
+  other.skin = 0.5;
+  other.build(p, {}, {}, leaving);
+  ASSERT_EQ(other.pairs.size(), 1u);
+  EXPECT_EQ(other.pairs[0].roll, Vec3(0.1, -0.2, 0));
+  EXPECT_EQ(other.pairs[0].spring, Vec3::Zero());
+}
+
 TEST(Effects, BrazilianFlatsChangeTheDiscsLoadingOnly) {
   JobSpec btt;
   btt.test = TestKind::btt;

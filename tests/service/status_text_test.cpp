@@ -186,10 +186,14 @@ TEST(CalibrationSummary, NoSuccessfulEvaluationSaysSoWithoutATable) {
 // The closing line counts against the budget the progress line counted down (the quick start
 // once ended on "42 of 40" after a bar that had said "of 64").
 TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
-  json s = {{"verdict", "failed"},       {"verdict_reason", "no evaluation succeeded"},
-            {"best", nullptr},           {"evaluations", 42},
-            {"failed_evaluations", 3},   {"max_evaluations", 40},
-            {"consistency_evaluations", 24}, {"stop_reason", "tolerance_met"}};
+  json s = {{"verdict", "failed"},
+            {"verdict_reason", "no evaluation succeeded"},
+            {"best", nullptr},
+            {"evaluations", 42},
+            {"failed_evaluations", 3},
+            {"max_evaluations", 40},
+            {"consistency_evaluations", 24},
+            {"stop_reason", "tolerance_met"}};
   EXPECT_EQ(calibration_text(s),
             "verdict: failed - no evaluation succeeded\n"
             "evaluations: 42 of 64 (3 failed; budget: search 40, valley trace 24), stopped: "
