@@ -118,6 +118,9 @@ int main(int argc, char** argv) {
   twin->add_option("--noise", twin_options.noise, "lognormal sigma of the lab noise")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  twin->add_option("--resolution", twin_options.resolution,
+                   "made by a model this many times finer (1 = a same-resolution twin)")
+      ->capture_default_str();
   twin->add_option("--engine", twin_options.engine, "rockcal-dem executable");
   twin->add_option("--out", twin_options.out, "dataset file (.json or .csv)")
       ->capture_default_str();

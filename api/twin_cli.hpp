@@ -14,6 +14,7 @@ struct TwinOptions {
   std::uint64_t seed = 1;
   std::string job;  // template file; default: the demo sample (twin_cli.cpp)
   double noise = 0.02;
+  double resolution = 1.0;        // > 1: a finer-model twin
   std::string engine;             // default: default_engine()
   std::string out = "twin.json";  // .json or .csv; the truth goes to <out minus .json>.truth.json
   int parallel = 2;               // engine runs at once

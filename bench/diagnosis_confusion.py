@@ -39,6 +39,10 @@ VALUES = {
     "rate": [2.828, 4.757, 8.0],
     "compression_coupling": [0.5, 0.25, 0.0],
     "post_break_friction": [0.325, 0.1875, 0.05],
+    # In FCC no pair lies between 1 and sqrt(2) touching distances: below 1.414 nothing changes.
+    "interaction_range": [1.45, 1.475, 1.5],
+    "rolling_resistance": [0.15, 0.225, 0.3],
+    "brazilian_flats": [20.0, 15.0, 10.0],
 }
 
 
@@ -72,6 +76,9 @@ def main():
     ap.add_argument("--out", default=None)
     ap.add_argument("--effects", default=",".join(["none"] + list(VALUES)))
     ap.add_argument("--twins", type=int, default=3)
+    ap.add_argument("--first-seed", type=int, default=1)
+    ap.add_argument("--resolution", type=float, default=1.0,
+                    help="twins made by a model this many times finer (1: same-resolution twins)")
     ap.add_argument("--request", default=os.path.join(ROOT, "examples", "diagnose_twin.json"))
     ap.add_argument("--reuse-twins", action="store_true",
                     help="keep twin files already in --out (e.g. a copy of an earlier run's, with its job store)")
@@ -91,11 +98,12 @@ def main():
     try:
         for effect in a.effects.split(","):
             for k in range(a.twins):
-                seed = k + 1
-                name = f"{effect}-{seed}"
+                seed = a.first_seed + k
+                name = f"{effect}-{seed}" + (f"-x{a.resolution:g}" if a.resolution != 1 else "")
                 twin = os.path.join(work, f"twin_{name}.json")
                 cmd = [rockcal, "twin", "--effect", effect, "--seed", str(seed), "--out", twin,
-                       "--job", template, "--engine", os.path.join(a.build, "engine", "rockcal-dem")]
+                       "--job", template, "--engine", os.path.join(a.build, "engine", "rockcal-dem"),
+                       "--resolution", str(a.resolution)]
                 value = None
                 if effect != "none":
                     value = VALUES[effect][k % len(VALUES[effect])]
@@ -123,6 +131,7 @@ def main():
                 found = v.get("effect") or "none"
                 row = {
                     "hidden": effect, "value": value, "seed": seed, "campaign": cid,
+                    "resolution": a.resolution,
                     "verdict": found, "parameter": (v.get("parameter") or {}).get("value"),
                     "gap_closure": v.get("gap_closure"), "gap": v.get("gap"),
                     "confidence": (v.get("confidence") or {}).get("level"),

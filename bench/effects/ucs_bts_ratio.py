@@ -20,20 +20,15 @@ import json
 import math
 import os
 import statistics
-import subprocess
+
+from engine_runs import parse_effect, run_job
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def parse_effect(text):
-    if text == "none":
-        return "none", {}
-    name, _, params = text.partition(":")
-    values = {}
-    for kv in filter(None, params.split(";")):
-        key, _, value = kv.partition("=")
-        values[key] = float(value)
-    return text.replace(":", "_").replace("=", "").replace(";", "_"), {name: values}
+def labelled(text):
+    name, effects = parse_effect(text)
+    return text.replace(":", "_").replace("=", "").replace(";", "_"), effects
 
 
 def job(test, packing, size, seed, bond, effects):
@@ -77,7 +72,7 @@ def main():
     a = ap.parse_args()
     engine = os.path.join(a.build, "engine", "rockcal-dem")
     bond = [float(x) for x in a.bond.split(",")]
-    effects = [parse_effect(e) for e in a.effects.split(",")]
+    effects = [labelled(e) for e in a.effects.split(",")]
     runs = []
     for packing in a.packings.split(","):
         for label, eff in effects:
@@ -89,16 +84,7 @@ def main():
 
     def run(item):
         name, spec = item
-        out = os.path.join(a.out, name)
-        result = os.path.join(out, "result.json")
-        if not os.path.exists(result):
-            os.makedirs(out, exist_ok=True)
-            with open(os.path.join(out, "job.json"), "w") as f:
-                json.dump(spec, f)
-            subprocess.run([engine, "run", os.path.join(out, "job.json"), "--out", out],
-                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
-        with open(result) as f:
-            return name, json.load(f)
+        return name, run_job(engine, os.path.join(a.out, name), spec)
 
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         results = dict(pool.map(run, runs))

@@ -8,7 +8,29 @@
 
 namespace rockcal::diagnosis {
 
-std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed) {
+std::vector<ErrorTerm> error_terms(Origin origin) {
+  const bool model_made = origin == Origin::same_resolution_model;
+  return {
+      {"seed", true,
+       "the data's specimen is another draw of the packing and of any seeded effect than the "
+       "model's run"},
+      {"speed", origin == Origin::lab,
+       origin == Origin::lab
+           ? "the lab loads quasi-statically, the model at a finite platen speed"
+           : "the data were made by a model at the same platen speed: they share its rate error"},
+      {"resolution", !model_made,
+       model_made ? "the data were made at the model's own resolution: they share its lattice cut"
+                  : "the data come from a finer specimen than the model's (a lab's grains or a "
+                    "finer model), so the model's resolution error is between them"}};
+}
+
+std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed,
+                                           Origin origin) {
+  auto applies = [terms = error_terms(origin)](const std::string& kind) {
+    for (const ErrorTerm& t : terms)
+      if (t.kind == kind) return t.applies;
+    return true;
+  };
   std::vector<BudgetVariant> out;
   for (std::uint64_t seed : spec.seeds) {
     out.push_back({"seed " + std::to_string(seed), {seed, 1.0, 1.0}, "seed"});
@@ -19,16 +41,19 @@ std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t
     if (s.back() == '.') s.pop_back();
     return s;
   };
-  out.push_back(
-      {"speed x" + factor(spec.speed_factor), {template_seed, spec.speed_factor, 1.0}, "speed"});
+  if (applies("speed")) {
+    out.push_back(
+        {"speed x" + factor(spec.speed_factor), {template_seed, spec.speed_factor, 1.0}, "speed"});
+  }
+  if (!applies("resolution")) return out;
   for (double r : spec.resolutions) {
     out.push_back({"resolution x" + factor(r), {template_seed, 1.0, r}, "resolution"});
   }
   return out;
 }
 
-std::size_t budget_runs_per_point(const BudgetSpec& spec) {
-  return 1 + budget_variants(spec, 0).size();
+std::size_t budget_runs_per_point(const BudgetSpec& spec, Origin origin) {
+  return 1 + budget_variants(spec, 0, origin).size();
 }
 
 std::vector<std::vector<double>> budget_offsets(int points) {

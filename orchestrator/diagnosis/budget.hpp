@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "orchestrator/diagnosis/dataset.hpp"
 #include "orchestrator/diagnosis/evaluator.hpp"
 
 namespace rockcal::diagnosis {
@@ -33,10 +34,23 @@ struct BudgetVariant {
   std::string kind;
 };
 
-// The seed replicates first, then the speed and the resolution variants.
-std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed);
+// One source of numerical error and whether it separates a dataset's numbers from the model's
+// runs. Charging data an error they do not carry hides real gaps: a twin made by the model itself
+// at its own resolution and speed shares the model's lattice cut and rate error, so only the draws
+// of its specimen (the seed) differ; lab data and a finer model's numbers carry all three.
+struct ErrorTerm {
+  std::string kind;  // "seed", "speed", "resolution": a BudgetVariant kind
+  bool applies;
+  std::string why;
+};
+std::vector<ErrorTerm> error_terms(Origin origin);
+
+// The seed replicates first, then the speed and the resolution variants; only the kinds that
+// apply to data of this origin.
+std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed,
+                                           Origin origin = Origin::lab);
 // Runs at each budget point: the reference and every variant.
-std::size_t budget_runs_per_point(const BudgetSpec& spec);
+std::size_t budget_runs_per_point(const BudgetSpec& spec, Origin origin = Origin::lab);
 
 // Unit-cube offsets (fr0, fs0) of the budget's points from the base fit: the fit itself, then
 // +-kBudgetStep along each strength, then the diagonals; the first `points` of them.
@@ -47,6 +61,7 @@ std::vector<std::vector<double>> budget_offsets(int points);
 std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int points);
 
 struct Budget {
+  std::vector<ErrorTerm> terms;  // which kinds were measured, and why (the report's error model)
   std::vector<BudgetVariant> variants;
   std::vector<std::vector<double>> change;  // [variant][target] rms over points of |ln change|, NaN
   std::vector<double> per_target;           // the largest change; see numerical_budget

@@ -151,6 +151,14 @@ Dataset parse_dataset_json(const json& j) {
   d.name = root.string("name").value_or("");
   d.note = root.string("note").value_or("");
   d.source = root.string("source").value_or("");
+  const std::string origin = root.string("origin").value_or("lab");
+  if (origin == "same_resolution_model") {
+    d.origin = Origin::same_resolution_model;
+  } else if (origin == "finer_model") {
+    d.origin = Origin::finer_model;
+  } else if (origin != "lab") {
+    throw DatasetError("origin", "must be \"lab\", \"same_resolution_model\" or \"finer_model\"");
+  }
   const std::string units = root.string("units").value_or("model");
   if (units == "lab") {
     // No job template here: model_scale states K_r, R and rho itself (check_model_scale compares
@@ -171,6 +179,7 @@ json to_json(const Dataset& d) {
   json j = {{"name", d.name}};
   if (!d.note.empty()) j["note"] = d.note;
   if (!d.source.empty()) j["source"] = d.source;
+  j["origin"] = to_string(d.origin);
   j["units"] = d.lab ? "lab" : "model";
   if (d.lab) j.update(calibration::lab_case_json(*d.lab));
   json list = json::array();
@@ -201,6 +210,18 @@ const char* to_string(Observable o) {
 
 const char* to_string(Role r) {
   return r == Role::calibration ? "calibration" : "held_out";
+}
+
+const char* to_string(Origin o) {
+  switch (o) {
+    case Origin::lab:
+      return "lab";
+    case Origin::same_resolution_model:
+      return "same_resolution_model";
+    case Origin::finer_model:
+      return "finer_model";
+  }
+  return "?";
 }
 
 bool is_triaxial(TestKind test) {

@@ -21,6 +21,11 @@ namespace rockcal::diagnosis {
 using DatasetError = calibration::CampaignError;
 
 enum class Observable { peak_load, strength, youngs_modulus };
+// Who made the numbers decides which numerical errors separate them from the model's runs
+// (budget.hpp, error_terms): a lab or a finer model differ from the model by its resolution and
+// its loading speed; a twin made by the same model at the same resolution and speed differs only
+// by the draws of its specimen.
+enum class Origin { lab, same_resolution_model, finer_model };
 enum class Role { calibration, held_out };
 
 // The conditions of one lab test, SI units of the dataset's unit system. Absent = the diagnosis
@@ -45,8 +50,9 @@ struct Observation {
 
 struct Dataset {
   std::string name;
-  std::string note;    // free text: assumptions (e.g. how the uncertainty was chosen)
-  std::string source;  // free text: where the numbers come from
+  std::string note;             // free text: assumptions (e.g. how the uncertainty was chosen)
+  std::string source;           // free text: where the numbers come from
+  Origin origin = Origin::lab;  // "origin"; a dataset that does not say is treated as lab data
   std::vector<Observation> observations;
   // Set when the values are in lab units: the lab specimen/material and the model's scale, the
   // same block a calibration campaign's "targets" carries ("lab" + "model_scale").
@@ -70,6 +76,7 @@ void write_dataset_file(const Dataset& d, const std::filesystem::path& file);
 
 const char* to_string(Observable o);
 const char* to_string(Role r);
+const char* to_string(Origin o);
 bool is_triaxial(TestKind test);
 
 // --- Lab -> model units (eq. 4) ---

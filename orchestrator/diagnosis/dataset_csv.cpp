@@ -2,7 +2,7 @@
 // so both forms obey exactly the same rules and name fields the same way; CSV errors add the line.
 //
 //   # name: seed lab case                 (directives: "# KEY: VALUE" with KEY one of name,
-//   # units: lab                           units, note, source, lab, model_scale; lab and
+//   # units: lab                           units, note, source, origin, lab, model_scale; lab and
 //   # lab: {"specimen": ..., ...}          model_scale take JSON; before the header only)
 //   # model_scale: {"kr": 8000, ...}
 //   # any other comment line is free text
@@ -26,8 +26,8 @@ constexpr std::array<const char*, 11> kColumns = {
     "loading_rate", "observable", "value",    "uncertainty", "role"};
 constexpr std::array<const char*, 5> kConditionColumns = {"diameter", "height", "thickness",
                                                           "confining_pressure", "loading_rate"};
-constexpr std::array<const char*, 6> kDirectives = {"name",   "units", "note",
-                                                    "source", "lab",   "model_scale"};
+constexpr std::array<const char*, 7> kDirectives = {"name",   "units", "note",       "source",
+                                                    "origin", "lab",   "model_scale"};
 
 std::string trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");

@@ -24,8 +24,8 @@ std::size_t planned_jobs(const DiagnosisCampaign& c) {
   const std::size_t grid = std::size_t(grid_points(c));
   const std::size_t seeds = c.budget.seeds.size();
   // Measured at the base model's first fit and, if it moved, again at its confirmed fit.
-  const std::size_t budget =
-      2 * budget_offsets(c.budget.points).size() * budget_runs_per_point(c.budget);
+  const std::size_t budget = 2 * budget_offsets(c.budget.points).size() *
+                             budget_runs_per_point(c.budget, c.dataset.origin);
   const std::size_t confirm = (1 + std::size_t(c.confirm)) * (1 + std::size_t(c.refine) + seeds);
   return (grid + budget + confirm) * plan_runs(c.targets).runs.size();
 }

@@ -189,7 +189,7 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
 // Every variant at the base fit and its neighbours (budget_points), one batch.
 Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
                       const std::vector<double>& z, Evaluator& evaluator) {
-  std::vector<BudgetVariant> variants = budget_variants(c.budget, c.sample_seed);
+  std::vector<BudgetVariant> variants = budget_variants(c.budget, c.sample_seed, c.dataset.origin);
   std::vector<RunRequest> requests;
   for (const std::vector<double>& at : budget_points(z, c.budget.points)) {
     const ModelPoint point = model_point(c, base.candidate, at);
@@ -204,7 +204,9 @@ Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
     references.push_back(outcomes[k]);
     changed.emplace_back(outcomes.begin() + k + 1, outcomes.begin() + k + per_point);
   }
-  return numerical_budget(std::move(variants), references, changed);
+  Budget budget = numerical_budget(std::move(variants), references, changed);
+  budget.terms = error_terms(c.dataset.origin);
+  return budget;
 }
 
 // Values the grids left missing, and the first reason. The samples of every effect that shares the
@@ -261,7 +263,7 @@ DiagnosisReport run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   const SurfaceCalibration base_first =
       calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
   report.weight_budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
-  const int runs_per_point = int(budget_runs_per_point(c.budget));
+  const int runs_per_point = int(budget_runs_per_point(c.budget, c.dataset.origin));
   phase(options, "budget", 2, int(budget_offsets(c.budget.points).size()) * runs_per_point);
   report.weight_budget = measure_budget(c, report.candidates[0], base_first.z, evaluator);
   report.model_points += report.weight_budget.points * runs_per_point;

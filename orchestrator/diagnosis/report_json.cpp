@@ -198,7 +198,7 @@ json verdict_json(const DiagnosisReport& r) {
   return j;
 }
 
-json budget_json(const DiagnosisReport& r, const std::vector<Target>& targets) {
+json budget_json(const DiagnosisReport& r, const std::vector<Target>& targets, Origin origin) {
   json variants = json::array();
   for (std::size_t v = 0; v < r.budget.variants.size(); ++v) {
     const BudgetVariant& b = r.budget.variants[v];
@@ -208,9 +208,14 @@ json budget_json(const DiagnosisReport& r, const std::vector<Target>& targets) {
                         {"resolution", b.numerics.resolution},
                         {"change", by_target(targets, r.budget.change[v])}});
   }
+  json terms = json::array();
+  for (const ErrorTerm& t : r.budget.terms) {
+    terms.push_back({{"kind", t.kind}, {"applies", t.applies}, {"why", t.why}});
+  }
   return {
       {"point", {{"fr0", r.budget_point.fr0_n}, {"fs0", r.budget_point.fs0_n}}},
       {"points", r.budget.points},
+      {"error_model", {{"origin", to_string(origin)}, {"terms", terms}}},
       {"per_observation", by_target(targets, r.budget.per_target)},
       // The calibrations' weights: the budget at the base model's first fit.
       {"weights",
@@ -263,7 +268,7 @@ json to_json(const DiagnosisReport& r, const DiagnosisCampaign& c) {
           {"verdict", verdict_json(r)},
           {"gap", gap_json(r, c.targets, lab)},
           {"observations", observations},
-          {"budget", budget_json(r, c.targets)},
+          {"budget", budget_json(r, c.targets, c.dataset.origin)},
           {"ratio", ratio_json(r.ratio, c.targets)},
           {"candidates", candidates},
           {"grid",

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "engine/effects/effect.hpp"
+#include "engine/units.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -50,9 +51,27 @@ double measured(const json& result, const Observation& o) {
   return v.get<double>();
 }
 
+// The design's job for one observation, as the twin's model runs it: its own packing seed, and
+// for a finer-model twin the continuum kept at a smaller radius (radius, K_r and strengths).
+json twin_job(const TwinDesign& design, const Observation& o, const TruthBonds& truth,
+              const json& effects, const TwinRequest& request) {
+  json job = design.job_template;
+  job["sample"]["seed"] = design.model.sample.seed + kTwinSeedOffset + request.seed;
+  const Refinement fine{request.resolution};
+  job["sample"]["radius"] = fine.radius(design.model.sample.radius_m);
+  if (design.model.material.kr_n_m) job["material"]["kr"] = fine.kr(*design.model.material.kr_n_m);
+  return observation_job(job, o, fine.strength(truth.fr0_n), fine.strength(truth.fs0_n), effects);
+}
+
 std::string note(const TwinRequest& r) {
   const std::string n = json(r.noise).dump();
-  return "Synthetic lab data made by rockcal twin from the engine itself, with a hidden model "
+  const std::string made_by = r.resolution == 1.0 ? "the engine itself at the template's resolution"
+                                                  : "the engine at " + json(r.resolution).dump() +
+                                                        "x the template's resolution (radius / " +
+                                                        json(r.resolution).dump() +
+                                                        ", K_r and bond strengths scaled)";
+  return "Synthetic lab data made by rockcal twin from " + made_by +
+         ", with a hidden model "
          "set-up (bond strengths drawn from the seed, possibly one physics effect); model units. "
          "Lab-like noise: each value is the engine's times exp(" +
          n + " N(0,1)); uncertainty = " + n +
@@ -85,6 +104,9 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
   if (!(request.noise > 0) || !std::isfinite(request.noise)) {
     throw std::invalid_argument("noise must be positive (the uncertainty is noise x value)");
   }
+  if (!(request.resolution >= 1.0 && request.resolution <= 3.0)) {
+    throw std::invalid_argument("resolution must be in [1, 3] (1 = the template's own)");
+  }
   const json effects = twin_effects(request);
   Stream stream(request.seed);
   const TruthBonds truth = draw_from(design.model, stream);
@@ -93,7 +115,7 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
   std::vector<json> jobs;
   std::vector<std::size_t> job_of;
   for (const Observation& o : design.observations) {
-    const json job = observation_job(design.job_template, o, truth.fr0_n, truth.fs0_n, effects);
+    const json job = twin_job(design, o, truth, effects, request);
     std::size_t k = 0;
     while (k < jobs.size() && jobs[k] != job) ++k;
     if (k == jobs.size()) jobs.push_back(job);
@@ -104,6 +126,8 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
   Twin twin;
   twin.dataset.name = "synthetic twin (seed " + std::to_string(request.seed) + ")";
   twin.dataset.note = note(request);
+  twin.dataset.origin =
+      request.resolution == 1.0 ? Origin::same_resolution_model : Origin::finer_model;
   twin.dataset.source =
       "rockcal twin, engine " + results.front().value("engine_version", std::string("?"));
   json truth_observations = json::array();
@@ -126,6 +150,7 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
       {"fs0", truth.fs0_n},
       {"seed", request.seed},
       {"noise", request.noise},
+      {"resolution", request.resolution},
       {"design",
        {{"base_ucs", design.base_ucs_pa},
         {"p_low", design.p_low_pa},

@@ -19,7 +19,15 @@ struct TwinRequest {
   double value = 0.0;           // the effect's params[0]; ignored for "none"
   std::uint64_t seed = 1;
   double noise = 0.02;  // sigma of the lognormal lab noise; > 0
+  // 1: a same-resolution twin (it tests identification); > 1: made by a model this many times
+  // finer (engine Refinement), which tests that a resolution difference is not called an effect.
+  double resolution = 1.0;
 };
+
+// The twin's specimens are drawn with their own packing seed (template seed + kTwinSeedOffset +
+// request seed), so its effect's random draws (heterogeneity, flaws, a random packing) are
+// independent of the model's runs and of the budget's replicate seeds (template seed + 1, + 2).
+inline constexpr std::uint64_t kTwinSeedOffset = 1000;
 
 // Truth bond strengths from the seed: with the template's bond strengths (F_r, F_s) (default
 // 64, 64), F_r0 = F_r exp(u1) and F_s0 = F_r0 (F_s / F_r) exp(u2), u1, u2 uniform in [-0.5, 0.5]:

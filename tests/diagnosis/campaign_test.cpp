@@ -330,6 +330,31 @@ TEST(DiagnosisBudget, IsTheRmsChangeOverItsPointsAndTheLargestOverTheVariants) {
   EXPECT_NEAR(pooled.per_target[1], std::sqrt((0.16 + 0.04) / 2), 1e-12);
 }
 
+// The budget measures only the errors that lie between the data and the model: a same-resolution
+// twin shares the model's lattice cut and platen speed, so charging it their spread (0.38-0.89 in
+// ln on the demo twins) would hide every gap smaller than that; lab data carry all three.
+TEST(DiagnosisBudget, ChargesOnlyTheErrorsTheDataCarry) {
+  BudgetSpec spec;
+  spec.seeds = {2, 3};
+  spec.resolutions = {1.25, 1.5};
+  auto kinds = [&](Origin origin) {
+    std::vector<std::string> out;
+    for (const BudgetVariant& v : budget_variants(spec, 1, origin)) out.push_back(v.kind);
+    return out;
+  };
+  using V = std::vector<std::string>;
+  EXPECT_EQ(kinds(Origin::lab), (V{"seed", "seed", "speed", "resolution", "resolution"}));
+  EXPECT_EQ(kinds(Origin::finer_model), (V{"seed", "seed", "resolution", "resolution"}));
+  EXPECT_EQ(kinds(Origin::same_resolution_model), (V{"seed", "seed"}));
+  EXPECT_EQ(budget_runs_per_point(spec, Origin::same_resolution_model), 3u);
+  EXPECT_EQ(budget_runs_per_point(spec, Origin::lab), 6u);
+  for (const Origin origin : {Origin::lab, Origin::same_resolution_model, Origin::finer_model}) {
+    const std::vector<ErrorTerm> terms = error_terms(origin);
+    ASSERT_EQ(terms.size(), 3u);
+    for (const ErrorTerm& t : terms) EXPECT_FALSE(t.why.empty()) << t.kind;
+  }
+}
+
 TEST(DiagnosisRefinement, AWorseRunHalvesTheNextStepTowardsTheSameFit) {
   TrustRegion t{0.25};
   EXPECT_TRUE(t.record({0.5, 0.5}, 4.0, {1.0}));

@@ -106,6 +106,7 @@ TEST(DiagnosisDataset, ErrorsNameTheField) {
        "observations[0].conditions.diameter"},
       {[](json& j) { j["units"] = "lab"; }, "lab"},
       {[](json& j) { j["units"] = "si"; }, "units"},
+      {[](json& j) { j["origin"] = "twin"; }, "origin"},
       {[](json& j) {
          j["model_scale"] = {{"kr", 8000}};
        },
@@ -115,6 +116,28 @@ TEST(DiagnosisDataset, ErrorsNameTheField) {
     json j = model_dataset();
     cases[i].first(j);
     EXPECT_EQ(refused_field(j), cases[i].second) << "case " << i << ": " << j.dump();
+  }
+}
+
+// Who made the numbers travels with them (the budget charges each origin its own errors), in both
+// forms; a dataset that does not say is lab data, so it is charged every error.
+TEST(DiagnosisDataset, OriginIsKeptAndDefaultsToLab) {
+  EXPECT_EQ(parse_dataset_json(model_dataset()).origin, Origin::lab);
+  for (const Origin o : {Origin::lab, Origin::same_resolution_model, Origin::finer_model}) {
+    json j = model_dataset();
+    j["origin"] = to_string(o);
+    const Dataset d = parse_dataset_json(j);
+    EXPECT_EQ(d.origin, o);
+    EXPECT_EQ(parse_dataset_json(to_json(d)).origin, o);
+    EXPECT_EQ(parse_dataset_csv(to_csv(d)).origin, o);
+  }
+  json j = model_dataset();
+  j["origin"] = "twin";
+  try {
+    parse_dataset_json(j);
+    ADD_FAILURE() << "accepted origin \"twin\"";
+  } catch (const DatasetError& e) {
+    EXPECT_STREQ(e.what(), "origin: must be \"lab\", \"same_resolution_model\" or \"finer_model\"");
   }
 }
 

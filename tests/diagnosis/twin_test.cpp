@@ -126,12 +126,16 @@ TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
   const Twin other = make_twin(d, {"heterogeneity", 3, 12, 0.05}, formula_engine());
   EXPECT_NE(a.truth["fr0"], other.truth["fr0"]);
 
-  // The UCT's peak and modulus share a run: 7 distinct jobs, each with the hidden effect.
+  // The UCT's peak and modulus share a run: 7 distinct jobs, each with the hidden effect, drawn
+  // with the twin's own seed (not the model's 1 or the budget's 2 and 3).
   EXPECT_EQ(jobs.size(), 7u);
   for (const json& job : jobs) {
     EXPECT_EQ(job["effects"]["heterogeneity"]["weibull_m"], 3.0);
     EXPECT_EQ(job["bond"]["fr0"], a.truth["fr0"]);
+    EXPECT_EQ(job["sample"]["seed"], 1 + kTwinSeedOffset + 11);
+    EXPECT_EQ(job["sample"]["radius"], 1.0);
   }
+  EXPECT_EQ(a.dataset.origin, Origin::same_resolution_model);
   const TruthBonds truth = draw_truth_bonds(d.model, 11);
   EXPECT_EQ(a.truth["fr0"], truth.fr0_n);
   EXPECT_LE(std::abs(std::log(truth.fr0_n / 64)), 0.5);
@@ -154,6 +158,26 @@ TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
   EXPECT_EQ(a.truth["parameter"], "weibull_m");
   EXPECT_EQ(truth_file_for("out/twin.json"), "out/twin.truth.json");
   EXPECT_EQ(truth_file_for("twin.csv"), "twin.truth.json");
+}
+
+// A finer-model twin keeps the continuum at a smaller radius (radius / f, K_r / f, strengths / f^2,
+// as the budget's resolution variants do) and says where its numbers come from.
+TEST(DiagnosisTwin, AFinerModelTwinRefinesItsSpecimens) {
+  const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
+  std::vector<json> jobs;
+  TwinRequest request{"none", 0, 5, 0.02};
+  request.resolution = 1.5;
+  const Twin t = make_twin(d, request, formula_engine(&jobs));
+  EXPECT_EQ(t.dataset.origin, Origin::finer_model);
+  EXPECT_EQ(t.truth["resolution"], 1.5);
+  ASSERT_FALSE(jobs.empty());
+  for (const json& job : jobs) {
+    EXPECT_DOUBLE_EQ(job["sample"]["radius"].get<double>(), 1.0 / 1.5);
+    EXPECT_DOUBLE_EQ(job["material"]["kr"].get<double>(), 8000 / 1.5);
+    EXPECT_DOUBLE_EQ(job["bond"]["fr0"].get<double>(), t.truth["fr0"].get<double>() / 2.25);
+  }
+  request.resolution = 0.5;
+  EXPECT_THROW(make_twin(d, request, formula_engine()), std::invalid_argument);
 }
 
 class DiagnosisTwinEngine : public ::testing::Test {
