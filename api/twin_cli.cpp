@@ -43,10 +43,7 @@ int run_twin(const TwinOptions& o, const std::string& argv0) {
     throw std::runtime_error("--value is required with --effect " + o.effect);
   }
   const TwinRequest request{o.effect, o.value, o.seed, o.noise, o.resolution};
-  twin_effects(request);  // an unknown effect or a value out of range fails before any run
-  if (!(o.resolution >= 1.0 && o.resolution <= 3.0)) {
-    throw std::runtime_error("--resolution must be in [1, 3] (1 = the template's own)");
-  }
+  check_twin_request(request);  // a request no twin can be made of fails before any run
   // rockcal-dem runs as an MPI singleton; Open MPI refuses root without these.
   setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
   setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);

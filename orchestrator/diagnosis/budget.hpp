@@ -61,7 +61,6 @@ std::vector<std::vector<double>> budget_offsets(int points);
 std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int points);
 
 struct Budget {
-  std::vector<ErrorTerm> terms;  // which kinds were measured, and why (the report's error model)
   std::vector<BudgetVariant> variants;
   std::vector<std::vector<double>> change;  // [variant][target] rms over points of |ln change|, NaN
   std::vector<double> per_target;           // the largest change; see numerical_budget

@@ -204,9 +204,7 @@ Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
     references.push_back(outcomes[k]);
     changed.emplace_back(outcomes.begin() + k + 1, outcomes.begin() + k + per_point);
   }
-  Budget budget = numerical_budget(std::move(variants), references, changed);
-  budget.terms = error_terms(c.dataset.origin);
-  return budget;
+  return numerical_budget(std::move(variants), references, changed);
 }
 
 // Values the grids left missing, and the first reason. The samples of every effect that shares the

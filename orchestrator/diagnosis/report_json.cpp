@@ -209,7 +209,7 @@ json budget_json(const DiagnosisReport& r, const std::vector<Target>& targets, O
                         {"change", by_target(targets, r.budget.change[v])}});
   }
   json terms = json::array();
-  for (const ErrorTerm& t : r.budget.terms) {
+  for (const ErrorTerm& t : error_terms(origin)) {
     terms.push_back({{"kind", t.kind}, {"applies", t.applies}, {"why", t.why}});
   }
   return {

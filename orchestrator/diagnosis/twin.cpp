@@ -100,13 +100,18 @@ json twin_effects(const TwinRequest& request) {
   return {{effect->name, {{p.name, request.value}}}};
 }
 
-Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJobs& run) {
+void check_twin_request(const TwinRequest& request) {
+  twin_effects(request);
   if (!(request.noise > 0) || !std::isfinite(request.noise)) {
     throw std::invalid_argument("noise must be positive (the uncertainty is noise x value)");
   }
   if (!(request.resolution >= 1.0 && request.resolution <= 3.0)) {
     throw std::invalid_argument("resolution must be in [1, 3] (1 = the template's own)");
   }
+}
+
+Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJobs& run) {
+  check_twin_request(request);
   const json effects = twin_effects(request);
   Stream stream(request.seed);
   const TruthBonds truth = draw_from(design.model, stream);

@@ -109,6 +109,11 @@ TEST(DiagnosisTwin, BadTemplatesAndRequestsAreRefused) {
   EXPECT_THROW(twin_effects({"bogus", 1, 1, 0.02}), std::invalid_argument);
   EXPECT_THROW(twin_effects({"rate", 100, 1, 0.02}), std::invalid_argument);
   EXPECT_EQ(twin_effects({"none", 0, 1, 0.02}), json::object());
+  EXPECT_NO_THROW(check_twin_request({"none", 0, 1, 0.02, 3.0}));
+  EXPECT_THROW(check_twin_request({"none", 0, 1, 0.02, 3.5}), std::invalid_argument);
+  EXPECT_THROW(check_twin_request({"none", 0, 1, 0.02, 0.9}), std::invalid_argument);
+  EXPECT_THROW(check_twin_request({"none", 0, 1, 0.0}), std::invalid_argument);
+  EXPECT_THROW(check_twin_request({"rate", 100, 1, 0.02}), std::invalid_argument);
   EXPECT_EQ(twin_effects({"heterogeneity", 3, 1, 0.02}),
             json({{"heterogeneity", {{"weibull_m", 3.0}}}}));
   const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
