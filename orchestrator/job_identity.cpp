@@ -36,7 +36,7 @@ db::NewJob make_job(const nlohmann::json& job_spec, const std::string& field_pre
   try {
     canonical = rockcal::to_json(rockcal::parse_job(job_spec));
   } catch (const rockcal::SpecError& e) {
-    throw RequestError(field_prefix + e.field, e.what());
+    throw RequestError(field_prefix + e.field, e.message);
   }
   db::NewJob job;
   job.test = canonical.at("test").get<std::string>();

@@ -4,17 +4,10 @@
 #include <cmath>
 
 #include "engine/spec.hpp"
+#include "orchestrator/json_fields.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::orch {
-
-void reject_unknown_keys(const nlohmann::json& object, std::initializer_list<const char*> known,
-                         const std::string& prefix) {
-  for (const auto& [key, value] : object.items()) {
-    bool ok = std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; });
-    if (!ok) throw RequestError(prefix + key, "unknown field '" + prefix + key + "'");
-  }
-}
 
 std::string campaign_name(const nlohmann::json& request, const std::string& fallback) {
   auto it = request.find("name");
@@ -29,9 +22,7 @@ std::string campaign_name(const nlohmann::json& request, const std::string& fall
 }
 
 double positive_number(const nlohmann::json& value, const std::string& field) {
-  if (!value.is_number()) throw RequestError(field, "must be a number");
-  double x = value.get<double>();
-  if (!std::isfinite(x)) throw RequestError(field, "must be finite");
+  const double x = finite_number(value, field);
   if (!(x > 0)) throw RequestError(field, "must be positive");
   return x;
 }

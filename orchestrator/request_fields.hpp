@@ -1,17 +1,13 @@
-// Small checks on request JSON shared by campaign kinds; each throws RequestError naming the field.
+// Checks of request values shared by campaign kinds, on top of the field reader (json_fields.hpp);
+// each throws RequestError naming the field.
 #pragma once
 
-#include <initializer_list>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace rockcal::orch {
-
-// Rejects keys of `object` not in `known` ("name" -> field prefix + name).
-void reject_unknown_keys(const nlohmann::json& object, std::initializer_list<const char*> known,
-                         const std::string& prefix);
 
 // The campaign name (optional, default `fallback`): a short printable string.
 std::string campaign_name(const nlohmann::json& request, const std::string& fallback);

@@ -6,6 +6,7 @@
 #include "engine/spec.hpp"
 #include "orchestrator/ensemble.hpp"
 #include "orchestrator/job_identity.hpp"
+#include "orchestrator/json_fields.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/request_fields.hpp"
 
@@ -18,11 +19,10 @@ using Point = std::pair<double, double>;
 std::vector<Point> grid_points(const json& grid, std::size_t cap) {
   if (!grid.is_object())
     throw RequestError("grid", "must be an object {\"fr0\": [...], \"fs0\": [...]}");
-  reject_unknown_keys(grid, {"fr0", "fs0"}, "grid.");
-  if (!grid.contains("fr0")) throw RequestError("grid.fr0", "is required");
-  if (!grid.contains("fs0")) throw RequestError("grid.fs0", "is required");
-  auto fr0 = positive_numbers(grid["fr0"], "grid.fr0", cap);
-  auto fs0 = positive_numbers(grid["fs0"], "grid.fs0", cap);
+  JsonFields f(grid, "grid");
+  auto fr0 = positive_numbers(f.require("fr0"), "grid.fr0", cap);
+  auto fs0 = positive_numbers(f.require("fs0"), "grid.fs0", cap);
+  f.reject_unknown();
   // Both sizes are <= cap, so the product cannot overflow.
   if (fr0.size() * fs0.size() > cap) {
     throw RequestError("grid", "has " + std::to_string(fr0.size() * fs0.size()) +
@@ -65,8 +65,12 @@ std::uint64_t base_seed(int count, const rockcal::JobSpec& spec) {
 }  // namespace
 
 CampaignPlan plan_sweep(const json& request, const Limits& limits) {
-  reject_unknown_keys(request, {"kind", "name", "tests", "job", "grid", "points", "realisations"},
-                      "");
+  JsonFields f(request, "");
+  for (const char* key : {"kind", "name", "tests", "job", "grid", "points", "realisations"}) {
+    f.get(key);
+  }
+  // Unknown keys first: a typo must not be reported as some other field's error.
+  f.reject_unknown();
   CampaignPlan plan;
   plan.name = campaign_name(request, "sweep");
   auto tests = test_names(request);
@@ -101,7 +105,7 @@ CampaignPlan plan_sweep(const json& request, const Limits& limits) {
       const rockcal::BondSpec first{points.front().first, points.front().second};
       base = rockcal::parse_job_template(tmpl, *rockcal::test_kind_from_string(test), first);
     } catch (const rockcal::SpecError& e) {
-      throw RequestError("job." + e.field, e.what());
+      throw under("job", e);
     }
     const auto seeds = realisation_seeds(base_seed(realisations, base), realisations);
     for (auto [fr0, fs0] : points) {

@@ -13,14 +13,6 @@
 namespace rockcal::calibration {
 namespace {
 
-CalibrationCampaign parse_request(const nlohmann::json& request) {
-  try {
-    return parse_calibration_campaign(request);
-  } catch (const CampaignError& e) {
-    throw orch::RequestError(e.field, e.what());
-  }
-}
-
 // How fast this driver's evaluations go, for a client's ETA. Evaluations the job cache answered
 // at once (the replay of a restarted driver, points run before) count against the budget but not
 // in the pace: they would make every later evaluation look nearly free.
@@ -81,13 +73,13 @@ orch::CampaignKind calibration_kind() {
   orch::CampaignKind kind;
   kind.name = "calibration";
   kind.plan = [](const nlohmann::json& request, const orch::Limits&) {
-    const CalibrationCampaign c = parse_request(request);
+    const CalibrationCampaign c = parse_calibration_campaign(request);
     return orch::CampaignPlan{c.name, {}};
   };
   // Runs in the service's driver thread; a restart after a crash runs it again from the stored
   // request, and the job cache replays the finished evaluations.
   kind.driver = [](orch::DriverContext& ctx) {
-    const CalibrationCampaign c = parse_request(ctx.request);
+    const CalibrationCampaign c = parse_calibration_campaign(ctx.request);
     PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, ctx.stop);
     Pace pace(ctx.service.store());
     // While it runs, the campaign's summary is the history so far, with the budget and the pace

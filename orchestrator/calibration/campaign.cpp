@@ -6,16 +6,16 @@
 #include "engine/effects/effect.hpp"
 #include "engine/spec.hpp"
 #include "orchestrator/calibration/algorithms.hpp"
-#include "orchestrator/calibration/json_fields.hpp"
 #include "orchestrator/calibration/lab_case.hpp"
+#include "orchestrator/json_fields.hpp"
 
 namespace rockcal::calibration {
 
 Range parse_log_range(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_array() || v.size() != 2) throw CampaignError(field, "must be [lower, upper]");
-  Range r{finite_number(v[0], field + "[0]"), finite_number(v[1], field + "[1]")};
-  if (!(r.lo > 0)) throw CampaignError(field, "lower bound must be positive (log space)");
-  if (!(r.hi > r.lo)) throw CampaignError(field, "upper bound must exceed the lower bound");
+  if (!v.is_array() || v.size() != 2) throw orch::RequestError(field, "must be [lower, upper]");
+  Range r{orch::finite_number(v[0], field + "[0]"), orch::finite_number(v[1], field + "[1]")};
+  if (!(r.lo > 0)) throw orch::RequestError(field, "lower bound must be positive (log space)");
+  if (!(r.hi > r.lo)) throw orch::RequestError(field, "upper bound must exceed the lower bound");
   return r;
 }
 
@@ -23,22 +23,25 @@ namespace {
 
 using nlohmann::json;
 
-TargetValue parse_target(JsonFields& targets, const std::string& test) {
-  JsonFields t(targets.require(test), targets.path_of(test));
+TargetValue parse_target(orch::JsonFields& targets, const std::string& test) {
+  orch::JsonFields t(targets.require(test), targets.path_of(test));
   auto load = t.positive("peak_load");
   auto strength = t.positive("strength");
   t.reject_unknown();
-  if (load && strength) throw CampaignError(t.path_of("strength"), "give peak_load or strength");
-  if (!load && !strength) throw CampaignError(t.path_of("peak_load"), "is required (or strength)");
+  if (load && strength)
+    throw orch::RequestError(t.path_of("strength"), "give peak_load or strength");
+  if (!load && !strength)
+    throw orch::RequestError(t.path_of("peak_load"), "is required (or strength)");
   return load ? TargetValue{TargetQuantity::peak_load, *load}
               : TargetValue{TargetQuantity::strength, *strength};
 }
 
-Targets parse_targets(JsonFields& root, const JobSpec& model, const Specimen& model_specimen) {
-  JsonFields t(root.require("targets"), "targets");
+Targets parse_targets(orch::JsonFields& root, const JobSpec& model,
+                      const Specimen& model_specimen) {
+  orch::JsonFields t(root.require("targets"), "targets");
   const std::string units = t.string("units").value_or("model");
   if (units != "model" && units != "lab") {
-    throw CampaignError("targets.units", "must be \"model\" or \"lab\"");
+    throw orch::RequestError("targets.units", "must be \"model\" or \"lab\"");
   }
   const TargetValue uct = parse_target(t, "uct");
   const TargetValue btt = parse_target(t, "btt");
@@ -46,7 +49,7 @@ Targets parse_targets(JsonFields& root, const JobSpec& model, const Specimen& mo
   if (units == "lab") {
     lab = parse_lab_case(t, model_choice_of(model));
   } else if (t.get("lab") || t.get("model_scale")) {
-    throw CampaignError("targets.units", "must be \"lab\" when lab and model_scale are given");
+    throw orch::RequestError("targets.units", "must be \"lab\" when lab and model_scale are given");
   }
   t.reject_unknown();
   return resolve_targets(uct, btt, model_specimen, lab);
@@ -55,52 +58,50 @@ Targets parse_targets(JsonFields& root, const JobSpec& model, const Specimen& mo
 // The template through the engine's own validation, for both tests; the bond block is the
 // search's to set, so it is filled with a placeholder inside the bounds for this check.
 JobSpec validate_template(const json& job_template, const Range& fr0, const Range& fs0) {
-  if (!job_template.is_object()) throw CampaignError("job", "must be a JSON object");
+  if (!job_template.is_object()) throw orch::RequestError("job", "must be a JSON object");
   if (job_template.contains("bond")) {
-    throw CampaignError("job.bond", "is set by the calibration; leave it out of the template");
+    throw orch::RequestError("job.bond", "is set by the calibration; leave it out of the template");
   }
   const BondSpec probe{std::sqrt(fr0.lo * fr0.hi), std::sqrt(fs0.lo * fs0.hi)};
   try {
     parse_job_template(job_template, TestKind::btt, probe);
     return parse_job_template(job_template, TestKind::uct, probe);
   } catch (const SpecError& e) {
-    const bool prefixed = e.field.rfind("job.", 0) == 0;
-    const std::string message = e.message;
-    throw CampaignError(prefixed ? e.field : "job." + e.field, message);
+    throw orch::under("job", e);
   }
 }
 
-Strategy parse_strategy(JsonFields& root) {
+Strategy parse_strategy(orch::JsonFields& root) {
   const std::string name = root.string("strategy").value_or("auto");
   if (name == "auto") return Strategy::automatic;
   if (name == "ratio_scale") return Strategy::ratio_scale;
   if (name == "direct_2d") return Strategy::direct_2d;
-  throw CampaignError("strategy", "must be auto, ratio_scale or direct_2d");
+  throw orch::RequestError("strategy", "must be auto, ratio_scale or direct_2d");
 }
 
-std::vector<std::uint64_t> parse_seeds(JsonFields& root) {
+std::vector<std::uint64_t> parse_seeds(orch::JsonFields& root) {
   std::vector<std::uint64_t> seeds;
   const json* v = root.get("seeds");
   if (!v) return seeds;
   if (!v->is_array() || v->size() > 16)
-    throw CampaignError("seeds", "must be a list of at most 16 seeds");
+    throw orch::RequestError("seeds", "must be a list of at most 16 seeds");
   std::set<std::uint64_t> seen;
   for (std::size_t i = 0; i < v->size(); ++i) {
     const json& s = (*v)[i];
     const std::string field = "seeds[" + std::to_string(i) + "]";
     if (!s.is_number_integer() || (!s.is_number_unsigned() && s.get<std::int64_t>() < 0)) {
-      throw CampaignError(field, "must be a non-negative integer");
+      throw orch::RequestError(field, "must be a non-negative integer");
     }
-    if (!seen.insert(s.get<std::uint64_t>()).second) throw CampaignError(field, "is repeated");
+    if (!seen.insert(s.get<std::uint64_t>()).second) throw orch::RequestError(field, "is repeated");
     seeds.push_back(s.get<std::uint64_t>());
   }
   return seeds;
 }
 
-void parse_weights(JsonFields& root, CalibrationCampaign& c) {
+void parse_weights(orch::JsonFields& root, CalibrationCampaign& c) {
   const json* v = root.get("weights");
   if (!v) return;
-  JsonFields w(*v, "weights");
+  orch::JsonFields w(*v, "weights");
   c.weight_uct = w.positive("uct").value_or(c.weight_uct);
   c.weight_btt = w.positive("btt").value_or(c.weight_btt);
   w.reject_unknown();
@@ -109,7 +110,7 @@ void parse_weights(JsonFields& root, CalibrationCampaign& c) {
 // Every evaluation an ensemble of `realisations` packings. The scatter of the best point over
 // other seeds is the older way to the same uncertainty; the two together would mix ensemble means
 // with single runs, so a campaign asks for one of them.
-void parse_realisations(JsonFields& root, const JobSpec& model, CalibrationCampaign& c) {
+void parse_realisations(orch::JsonFields& root, const JobSpec& model, CalibrationCampaign& c) {
   const nlohmann::json* value = root.get("realisations");
   c.auto_realisations = value && value->is_string() && *value == "auto";
   if (c.auto_realisations) {
@@ -117,23 +118,24 @@ void parse_realisations(JsonFields& root, const JobSpec& model, CalibrationCampa
         root.integer("max_realisations", 2, orch::kMaxRealisations).value_or(c.max_realisations));
   } else {
     if (root.get("max_realisations")) {
-      throw CampaignError("max_realisations", "only with \"realisations\": \"auto\"");
+      throw orch::RequestError("max_realisations", "only with \"realisations\": \"auto\"");
     }
     try {
       c.realisations = orch::realisation_count(value);
     } catch (const std::invalid_argument& e) {
-      throw CampaignError("realisations", std::string(e.what()) + ", or \"auto\"");
+      throw orch::RequestError("realisations", std::string(e.what()) + ", or \"auto\"");
     }
   }
   const int largest =
       c.auto_realisations ? std::max(c.max_realisations, kPilotRealisations) : c.realisations;
   if (auto problem = orch::realisations_problem(largest, c.sample_seed, seed_matters(model))) {
-    throw CampaignError("realisations", *problem);
+    throw orch::RequestError("realisations", *problem);
   }
   if ((c.auto_realisations || c.realisations > 1) && !c.scatter_seeds.empty()) {
-    throw CampaignError("realisations",
-                        "give \"realisations\" (every evaluation an ensemble) or \"seeds\" (the "
-                        "best point re-run on other packings), not both");
+    throw orch::RequestError(
+        "realisations",
+        "give \"realisations\" (every evaluation an ensemble) or \"seeds\" (the "
+        "best point re-run on other packings), not both");
   }
 }
 
@@ -142,21 +144,21 @@ void parse_realisations(JsonFields& root, const JobSpec& model, CalibrationCampa
 // "fidelity": {"fine": {merge patch of "job"}, "corrections": n, "strength_scale": s}. The fine
 // template is validated for both tests like the job itself; returns its spec, the model the lab
 // targets are mapped to (the answer is the fine specimen's).
-std::optional<JobSpec> parse_fidelity(JsonFields& root, CalibrationCampaign& c) {
+std::optional<JobSpec> parse_fidelity(orch::JsonFields& root, CalibrationCampaign& c) {
   const nlohmann::json* f = root.get("fidelity");
   if (!f) return std::nullopt;
-  if (!f->is_object()) throw CampaignError("fidelity", "must be an object");
-  JsonFields fields(*f, "fidelity");
+  if (!f->is_object()) throw orch::RequestError("fidelity", "must be an object");
+  orch::JsonFields fields(*f, "fidelity");
   const nlohmann::json& fine = fields.require("fine");
   if (!fine.is_object() || fine.empty())
-    throw CampaignError("fidelity.fine", "must be a non-empty object (a patch of \"job\")");
+    throw orch::RequestError("fidelity.fine", "must be a non-empty object (a patch of \"job\")");
   nlohmann::json tmpl = c.job_template;
   tmpl.merge_patch(fine);
   JobSpec spec;
   try {
     spec = validate_template(tmpl, c.fr0_n, c.fs0_n);
-  } catch (const CampaignError& e) {
-    throw CampaignError("fidelity.fine", std::string("the fine job: ") + e.what());
+  } catch (const orch::RequestError& e) {
+    throw orch::RequestError("fidelity.fine", std::string("the fine job: ") + e.what());
   }
   c.fine_patch = fine;
   c.fine_corrections = int(fields.integer("corrections", 1, 20).value_or(c.fine_corrections));
@@ -166,14 +168,14 @@ std::optional<JobSpec> parse_fidelity(JsonFields& root, CalibrationCampaign& c) 
 }
 
 CalibrationCampaign parse_calibration_campaign(const json& campaign) {
-  JsonFields root(campaign, "");
+  orch::JsonFields root(campaign, "");
   CalibrationCampaign c;
   if (root.string("kind").value_or("") != "calibration") {
-    throw CampaignError("kind", "must be \"calibration\"");
+    throw orch::RequestError("kind", "must be \"calibration\"");
   }
   c.name = root.string("name").value_or("");
   {
-    JsonFields bounds(root.require("bounds"), "bounds");
+    orch::JsonFields bounds(root.require("bounds"), "bounds");
     c.fr0_n = parse_log_range(bounds.require("fr0"), bounds.path_of("fr0"));
     c.fs0_n = parse_log_range(bounds.require("fs0"), bounds.path_of("fs0"));
     bounds.reject_unknown();
@@ -191,14 +193,15 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
                    : parse_targets(root, model, c.model_specimen);
   c.max_evaluations = int(root.integer("max_evaluations", 4, 10'000).value_or(c.max_evaluations));
   c.tolerance = root.positive("tolerance").value_or(c.tolerance);
-  if (c.tolerance >= 1.0) throw CampaignError("tolerance", "must be below 1 (a relative error)");
+  if (c.tolerance >= 1.0)
+    throw orch::RequestError("tolerance", "must be below 1 (a relative error)");
   parse_weights(root, c);
   c.algorithm = root.string("algorithm").value_or(c.algorithm);
   if (!nlopt_algorithm(c.algorithm)) {
     std::string known;
     for (const auto& n : algorithm_names()) known += (known.empty() ? "" : ", ") + n;
-    throw CampaignError("algorithm",
-                        "unknown algorithm '" + c.algorithm + "' (known: " + known + ")");
+    throw orch::RequestError("algorithm",
+                             "unknown algorithm '" + c.algorithm + "' (known: " + known + ")");
   }
   c.strategy = parse_strategy(root);
   c.initial_points = int(root.integer("initial_points", 0, 64).value_or(c.initial_points));

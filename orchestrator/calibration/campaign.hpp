@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "orchestrator/calibration/campaign_error.hpp"
 #include "orchestrator/calibration/specimen.hpp"
 #include "orchestrator/calibration/targets.hpp"
+#include "orchestrator/request_error.hpp"
 
 namespace rockcal::calibration {
 
@@ -31,7 +31,8 @@ struct CalibrationCampaign {
   Specimen model_specimen;        // the template's sample, for strengths in model units
   std::uint64_t sample_seed = 1;  // the template's packing seed, used by the search
   int realisations = 1;  // packings per evaluation: seeds sample_seed, sample_seed + 1, ...
-  // "realisations": "auto" (ensemble_size.hpp): the size comes from a pilot's scatter, at most this.
+  // "realisations": "auto" (ensemble_size.hpp): the size comes from a pilot's scatter, at most
+  // this.
   bool auto_realisations = false;
   int max_realisations = 8;
   Targets targets;
@@ -62,7 +63,7 @@ struct CalibrationCampaign {
 inline constexpr int kPilotRealisations = 3;
 
 // Parses and validates the whole campaign (the job template through the engine's validation for
-// both tests). Throws CampaignError naming the first offending field.
+// both tests). Throws orch::RequestError naming the first offending field.
 CalibrationCampaign parse_calibration_campaign(const nlohmann::json& campaign);
 
 const char* to_string(Strategy strategy);

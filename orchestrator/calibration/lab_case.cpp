@@ -2,21 +2,21 @@
 
 #include <cmath>
 
-#include "orchestrator/calibration/campaign_error.hpp"
+#include "orchestrator/request_error.hpp"
 
 namespace rockcal::calibration {
 namespace {
 
 using nlohmann::json;
 
-double required_positive(JsonFields& f, const std::string& key) {
+double required_positive(orch::JsonFields& f, const std::string& key) {
   auto x = f.positive(key);
-  if (!x) throw CampaignError(f.path_of(key), "is required");
+  if (!x) throw orch::RequestError(f.path_of(key), "is required");
   return *x;
 }
 
-Specimen parse_lab_specimen(JsonFields& lab) {
-  JsonFields s(lab.require("specimen"), lab.path_of("specimen"));
+Specimen parse_lab_specimen(orch::JsonFields& lab) {
+  orch::JsonFields s(lab.require("specimen"), lab.path_of("specimen"));
   Specimen specimen{required_positive(s, "diameter"), required_positive(s, "height"), 0.0};
   // A Brazilian disc of t = D/2 unless stated (examples/datasets/seed_paper/README.md; ISRM
   // proportion).
@@ -25,13 +25,13 @@ Specimen parse_lab_specimen(JsonFields& lab) {
   return specimen;
 }
 
-LabMaterial parse_lab_material(JsonFields& lab) {
-  JsonFields m(lab.require("material"), lab.path_of("material"));
+LabMaterial parse_lab_material(orch::JsonFields& lab) {
+  orch::JsonFields m(lab.require("material"), lab.path_of("material"));
   LabMaterial material{required_positive(m, "youngs_modulus"), 0.0, required_positive(m, "density"),
                        required_positive(m, "grain_radius")};
   const auto nu = m.number("nu");
-  if (!nu) throw CampaignError(m.path_of("nu"), "is required");
-  if (!(*nu > -1.0 && *nu < 0.5)) throw CampaignError(m.path_of("nu"), "must be in (-1, 0.5)");
+  if (!nu) throw orch::RequestError(m.path_of("nu"), "is required");
+  if (!(*nu > -1.0 && *nu < 0.5)) throw orch::RequestError(m.path_of("nu"), "must be in (-1, 0.5)");
   material.nu = *nu;
   m.reject_unknown();
   return material;
@@ -40,7 +40,7 @@ LabMaterial parse_lab_material(JsonFields& lab) {
 void agree(const std::string& field, std::optional<double> stated, double from_job,
            const std::string& job_field) {
   if (stated && std::abs(*stated - from_job) > 1e-9 * from_job) {
-    throw CampaignError(field, "differs from the job template's " + job_field);
+    throw orch::RequestError(field, "differs from the job template's " + job_field);
   }
 }
 
@@ -58,8 +58,8 @@ void check_model_scale(const ModelChoice& stated, const ModelChoice& job, const 
   agree(path + ".density", stated.density_kg_m3, job.density_kg_m3, "material.density");
 }
 
-LabCase parse_lab_case(JsonFields& parent, const std::optional<ModelChoice>& job_model) {
-  JsonFields lab(parent.require("lab"), parent.path_of("lab"));
+LabCase parse_lab_case(orch::JsonFields& parent, const std::optional<ModelChoice>& job_model) {
+  orch::JsonFields lab(parent.require("lab"), parent.path_of("lab"));
   LabCase c{parse_lab_specimen(lab), parse_lab_material(lab), {}, std::nullopt};
   lab.reject_unknown();
   // The model's scale is the job template's own K_r, R and rho when there is a template; the
@@ -67,7 +67,7 @@ LabCase parse_lab_case(JsonFields& parent, const std::optional<ModelChoice>& job
   const json* v = job_model ? parent.get("model_scale") : &parent.require("model_scale");
   if (job_model) c.model = *job_model;
   if (!v) return c;
-  JsonFields s(*v, parent.path_of("model_scale"));
+  orch::JsonFields s(*v, parent.path_of("model_scale"));
   const auto kr = s.positive("kr");
   const auto radius = s.positive("radius");
   const auto density = s.positive("density");
@@ -77,7 +77,7 @@ LabCase parse_lab_case(JsonFields& parent, const std::optional<ModelChoice>& job
     agree(s.path_of("density"), density, job_model->density_kg_m3, "material.density");
   } else {
     for (const auto& [key, value] : {std::pair{"kr", kr}, {"radius", radius}, {"density", density}})
-      if (!value) throw CampaignError(s.path_of(key), "is required");
+      if (!value) throw orch::RequestError(s.path_of(key), "is required");
     c.model = {*kr, *radius, *density};
   }
   c.length_ratio = s.positive("length_ratio");

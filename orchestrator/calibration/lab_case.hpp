@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/spec.hpp"
-#include "orchestrator/calibration/json_fields.hpp"
 #include "orchestrator/calibration/targets.hpp"
+#include "orchestrator/json_fields.hpp"
 
 namespace rockcal::calibration {
 
@@ -20,10 +20,10 @@ ModelChoice model_choice_of(const JobSpec& model);
 // Reads `parent`'s "lab" (required) and "model_scale". With `job_model` (a campaign's template),
 // model_scale may restate K_r, R, rho and must agree; without one (a dataset stands alone),
 // model_scale is required and gives all three. Either way it may add "length_ratio" (x2/x1).
-LabCase parse_lab_case(JsonFields& parent, const std::optional<ModelChoice>& job_model);
+LabCase parse_lab_case(orch::JsonFields& parent, const std::optional<ModelChoice>& job_model);
 
-// Throws CampaignError naming `path`.kr / .radius / .density when the stated scale differs from
-// the job template's (relative 1e-9).
+// Throws orch::RequestError naming `path`.kr / .radius / .density when the stated scale differs
+// from the job template's (relative 1e-9).
 void check_model_scale(const ModelChoice& stated, const ModelChoice& job, const std::string& path);
 
 // {"lab": {...}, "model_scale": {...}}, as parse_lab_case reads them back.

@@ -1,5 +1,6 @@
 #include "orchestrator/calibration/pool_evaluator.hpp"
 
+#include "orchestrator/job_batch.hpp"
 #include "orchestrator/realisations.hpp"
 
 namespace rockcal::calibration {
@@ -13,19 +14,18 @@ PoolEvaluator::PoolEvaluator(orch::JobService& service, std::int64_t campaign_id
 
 std::vector<EvaluationOutcome> PoolEvaluator::evaluate_batch(
     std::span<const EvaluationRequest> requests) {
-  // Every realisation of both tests of every request, submitted before any is waited for.
+  // Every realisation of both tests of every request, in one batch.
   constexpr TestKind kTests[] = {TestKind::uct, TestKind::btt};
-  std::vector<std::vector<Submitted>> jobs;  // [2 * request + test]
+  Groups groups;  // [2 * request + test]
   for (const EvaluationRequest& r : requests) {
     for (TestKind test : kTests) {
-      jobs.emplace_back();
+      groups.emplace_back();
       for (std::uint64_t seed : orch::realisation_seeds(r.sample_seed, r.realisations)) {
-        jobs.back().push_back(
-            {service_.submit_job(campaign_id_, job_for(job_template_, r, test, seed)), seed});
+        groups.back().push_back({job_for(job_template_, r, test, seed), seed});
       }
     }
   }
-  std::vector<orch::Ensemble> ensembles = collect(jobs);
+  std::vector<orch::Ensemble> ensembles = run(groups);
   std::vector<EvaluationOutcome> outcomes;
   for (std::size_t i = 0; i < requests.size(); ++i) {
     outcomes.push_back(outcome_of(std::move(ensembles[2 * i]), std::move(ensembles[2 * i + 1])));
@@ -34,29 +34,31 @@ std::vector<EvaluationOutcome> PoolEvaluator::evaluate_batch(
 }
 
 std::vector<orch::Ensemble> PoolEvaluator::probe_batch(std::span<const ProbeRequest> probes) {
-  std::vector<std::vector<Submitted>> jobs;
+  Groups groups;
   for (const ProbeRequest& p : probes) {
-    jobs.emplace_back();
+    groups.emplace_back();
     for (std::uint64_t seed : orch::realisation_seeds(p.sample_seed, p.realisations)) {
-      jobs.back().push_back(
-          {service_.submit_job(campaign_id_, job_for(job_template_, p, seed)), seed});
+      groups.back().push_back({job_for(job_template_, p, seed), seed});
     }
   }
-  return collect(jobs);
+  return run(groups);
 }
 
 // A job whose run ended without a peak is a failed job ("no peak: ..."): it is left out of the
 // ensemble's statistics like any other failure, never taken as a load.
-std::vector<orch::Ensemble> PoolEvaluator::collect(
-    const std::vector<std::vector<Submitted>>& groups) {
+std::vector<orch::Ensemble> PoolEvaluator::run(const Groups& groups) {
+  std::vector<nlohmann::json> jobs;
+  for (const auto& group : groups) {
+    for (const Job& job : group) jobs.push_back(job.spec);
+  }
+  const auto outcomes = orch::run_batch(service_, campaign_id_, jobs, stop_);
+  if (!outcomes) throw EvaluationCancelled();
   std::vector<orch::Ensemble> ensembles;
-  for (const std::vector<Submitted>& group : groups) {
+  std::size_t next = 0;
+  for (const auto& group : groups) {
     std::vector<orch::Realisation> realisations;
-    for (const Submitted& s : group) {
-      const orch::JobOutcome outcome = service_.wait_job(s.job_id, stop_);
-      if (stop_.stop_requested() || outcome.state == "cancelled") throw EvaluationCancelled();
-      realisations.push_back(orch::realisation(outcome, s.seed));
-    }
+    for (const Job& job : group)
+      realisations.push_back(orch::realisation((*outcomes)[next++], job.seed));
     ensembles.push_back(orch::make_ensemble(std::move(realisations)));
   }
   return ensembles;

@@ -1,7 +1,6 @@
-// The service's worker pool as the calibration's Evaluator: each request of a batch becomes a UCT
-// and a BTT job of the campaign, all submitted before any is waited for, so the pool runs them in
-// parallel. The job cache answers finished jobs at once, which is what lets a restarted campaign
-// replay its history.
+// The service's worker pool as the calibration's Evaluator: each request of a batch becomes the UCT
+// and BTT jobs of its realisations, run as one batch of the campaign (orch::run_batch). The job
+// cache answers finished jobs at once, which is what lets a restarted campaign replay its history.
 #pragma once
 
 #include <cstdint>
@@ -23,12 +22,13 @@ class PoolEvaluator : public Evaluator {
   std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> probes) override;
 
  private:
-  struct Submitted {
-    std::int64_t job_id;
+  struct Job {
+    nlohmann::json spec;
     std::uint64_t seed;
   };
-  // Waits for each group of jobs and makes it an ensemble.
-  std::vector<orch::Ensemble> collect(const std::vector<std::vector<Submitted>>& groups);
+  using Groups = std::vector<std::vector<Job>>;  // one group per ensemble
+  // Runs every group's jobs in one batch and makes each group an ensemble.
+  std::vector<orch::Ensemble> run(const Groups& groups);
 
   orch::JobService& service_;
   std::int64_t campaign_id_;

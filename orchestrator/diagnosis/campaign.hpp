@@ -44,7 +44,7 @@ struct DiagnosisCampaign {
 // Parses and validates the whole request: the dataset (through the dataset parser), the template
 // (through the engine's validation, for every test the dataset needs, with every candidate effect
 // switched on at its strong end), the effect names against the registry. Throws
-// calibration::CampaignError naming the first offending field ("dataset.observations[2].value",
+// orch::RequestError naming the first offending field ("dataset.observations[2].value",
 // "effects[1]", "grid.s").
 DiagnosisCampaign parse_diagnosis_campaign(const nlohmann::json& request);
 

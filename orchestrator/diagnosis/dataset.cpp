@@ -3,73 +3,75 @@
 
 #include <map>
 
-#include "orchestrator/calibration/json_fields.hpp"
 #include "orchestrator/calibration/lab_case.hpp"
+#include "orchestrator/json_fields.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
 
-using calibration::JsonFields;
 using nlohmann::json;
+using orch::JsonFields;
 
-std::string required_string(JsonFields& f, const std::string& key) {
+std::string required_string(orch::JsonFields& f, const std::string& key) {
   auto s = f.string(key);
-  if (!s) throw DatasetError(f.path_of(key), "is required");
-  if (s->empty()) throw DatasetError(f.path_of(key), "must not be empty");
+  if (!s) throw orch::RequestError(f.path_of(key), "is required");
+  if (s->empty()) throw orch::RequestError(f.path_of(key), "must not be empty");
   return *s;
 }
 
-double required_positive(JsonFields& f, const std::string& key) {
+double required_positive(orch::JsonFields& f, const std::string& key) {
   auto x = f.positive(key);
-  if (!x) throw DatasetError(f.path_of(key), "is required");
+  if (!x) throw orch::RequestError(f.path_of(key), "is required");
   return *x;
 }
 
-TestKind parse_test(JsonFields& f) {
+TestKind parse_test(orch::JsonFields& f) {
   const std::string name = required_string(f, "test");
   const auto kind = test_kind_from_string(name);
   if (!kind || *kind == TestKind::elastic) {
-    throw DatasetError(f.path_of("test"),
-                       "unknown test '" + name + "' (known: uct, btt, triaxial)");
+    throw orch::RequestError(f.path_of("test"),
+                             "unknown test '" + name + "' (known: uct, btt, triaxial)");
   }
   return *kind;
 }
 
-Observable parse_observable(JsonFields& f, TestKind test) {
+Observable parse_observable(orch::JsonFields& f, TestKind test) {
   const std::string name = required_string(f, "observable");
   for (Observable o : {Observable::peak_load, Observable::strength, Observable::youngs_modulus}) {
     if (name != to_string(o)) continue;
     // The engine measures E on the compressed cylinder only (the pre-peak slope).
     if (o == Observable::youngs_modulus && test == TestKind::btt) {
-      throw DatasetError(f.path_of("observable"), "youngs_modulus is measured by uct or triaxial");
+      throw orch::RequestError(f.path_of("observable"),
+                               "youngs_modulus is measured by uct or triaxial");
     }
     return o;
   }
-  throw DatasetError(f.path_of("observable"), "unknown observable '" + name +
-                                                  "' (known: peak_load, strength, youngs_modulus)");
+  throw orch::RequestError(
+      f.path_of("observable"),
+      "unknown observable '" + name + "' (known: peak_load, strength, youngs_modulus)");
 }
 
-Role parse_role(JsonFields& f) {
+Role parse_role(orch::JsonFields& f) {
   const std::string name = required_string(f, "role");
   if (name == "calibration") return Role::calibration;
   if (name == "held_out") return Role::held_out;
-  throw DatasetError(f.path_of("role"), "must be calibration or held_out");
+  throw orch::RequestError(f.path_of("role"), "must be calibration or held_out");
 }
 
 // Each dimension belongs to one specimen shape, and the confining pressure to the triaxial test
 // alone: a stray key is far more likely a mistake than something to ignore.
-Conditions parse_conditions(JsonFields& obs, TestKind test) {
+Conditions parse_conditions(orch::JsonFields& obs, TestKind test) {
   Conditions c;
   const json* v = obs.get("conditions");
   const bool triaxial = is_triaxial(test);
   if (!v) {
     if (triaxial) {
-      throw DatasetError(obs.path_of("conditions.confining_pressure"),
-                         "is required for a triaxial test");
+      throw orch::RequestError(obs.path_of("conditions.confining_pressure"),
+                               "is required for a triaxial test");
     }
     return c;
   }
-  JsonFields f(*v, obs.path_of("conditions"));
+  orch::JsonFields f(*v, obs.path_of("conditions"));
   c.diameter_m = f.positive("diameter");
   c.height_m = f.positive("height");
   c.thickness_m = f.positive("thickness");
@@ -77,16 +79,16 @@ Conditions parse_conditions(JsonFields& obs, TestKind test) {
   c.loading_rate_m_s = f.positive("loading_rate");
   f.reject_unknown();
   if (test == TestKind::btt && c.height_m) {
-    throw DatasetError(f.path_of("height"), "a btt disc has no height (give thickness)");
+    throw orch::RequestError(f.path_of("height"), "a btt disc has no height (give thickness)");
   }
   if (test != TestKind::btt && c.thickness_m) {
-    throw DatasetError(f.path_of("thickness"), "only a btt disc has a thickness");
+    throw orch::RequestError(f.path_of("thickness"), "only a btt disc has a thickness");
   }
   if (triaxial && !pressure) {
-    throw DatasetError(f.path_of("confining_pressure"), "is required for a triaxial test");
+    throw orch::RequestError(f.path_of("confining_pressure"), "is required for a triaxial test");
   }
   if (!triaxial && pressure) {
-    throw DatasetError(
+    throw orch::RequestError(
         f.path_of("confining_pressure"),
         std::string("only a triaxial test has one (this is a ") + to_string(test) + ")");
   }
@@ -95,7 +97,7 @@ Conditions parse_conditions(JsonFields& obs, TestKind test) {
 }
 
 Observation parse_observation(const json& j, const std::string& path) {
-  JsonFields f(j, path);
+  orch::JsonFields f(j, path);
   Observation o;
   o.id = required_string(f, "id");
   o.test = parse_test(f);
@@ -108,10 +110,10 @@ Observation parse_observation(const json& j, const std::string& path) {
   return o;
 }
 
-std::vector<Observation> parse_observations(JsonFields& root) {
+std::vector<Observation> parse_observations(orch::JsonFields& root) {
   const json& list = root.require("observations");
   if (!list.is_array() || list.empty()) {
-    throw DatasetError("observations", "must be a non-empty list");
+    throw orch::RequestError("observations", "must be a non-empty list");
   }
   std::vector<Observation> observations;
   std::map<std::string, std::size_t> index_of_id;
@@ -120,14 +122,15 @@ std::vector<Observation> parse_observations(JsonFields& root) {
     observations.push_back(parse_observation(list[i], path));
     const auto [it, fresh] = index_of_id.emplace(observations.back().id, i);
     if (!fresh) {
-      throw DatasetError(path + ".id", "duplicate id '" + it->first + "' (also observations[" +
-                                           std::to_string(it->second) + "])");
+      throw orch::RequestError(path + ".id", "duplicate id '" + it->first +
+                                                 "' (also observations[" +
+                                                 std::to_string(it->second) + "])");
     }
   }
   bool any_calibration = false;
   for (const Observation& o : observations) any_calibration |= o.role == Role::calibration;
   if (!any_calibration) {
-    throw DatasetError("observations", "no observation has role calibration");
+    throw orch::RequestError("observations", "no observation has role calibration");
   }
   return observations;
 }
@@ -146,7 +149,7 @@ json conditions_json(const Observation& o) {
 }  // namespace
 
 Dataset parse_dataset_json(const json& j) {
-  JsonFields root(j, "");
+  orch::JsonFields root(j, "");
   Dataset d;
   d.name = root.string("name").value_or("");
   d.note = root.string("note").value_or("");
@@ -157,7 +160,8 @@ Dataset parse_dataset_json(const json& j) {
   } else if (origin == "finer_model") {
     d.origin = Origin::finer_model;
   } else if (origin != "lab") {
-    throw DatasetError("origin", "must be \"lab\", \"same_resolution_model\" or \"finer_model\"");
+    throw orch::RequestError("origin",
+                             "must be \"lab\", \"same_resolution_model\" or \"finer_model\"");
   }
   const std::string units = root.string("units").value_or("model");
   if (units == "lab") {
@@ -166,9 +170,9 @@ Dataset parse_dataset_json(const json& j) {
     d.lab = calibration::parse_lab_case(root, std::nullopt);
     d.scaling = make_scaling(d.lab->material, d.lab->model, d.lab->length_ratio);
   } else if (units != "model") {
-    throw DatasetError("units", "must be \"model\" or \"lab\"");
+    throw orch::RequestError("units", "must be \"model\" or \"lab\"");
   } else if (root.get("lab") || root.get("model_scale")) {
-    throw DatasetError("units", "must be \"lab\" when lab and model_scale are given");
+    throw orch::RequestError("units", "must be \"lab\" when lab and model_scale are given");
   }
   d.observations = parse_observations(root);
   root.reject_unknown();

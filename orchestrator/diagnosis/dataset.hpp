@@ -11,14 +11,13 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/spec.hpp"
-#include "orchestrator/calibration/campaign_error.hpp"
 #include "orchestrator/calibration/targets.hpp"
+#include "orchestrator/request_error.hpp"
 
 namespace rockcal::diagnosis {
 
 // An invalid dataset; `field` is the path of the offending key ("observations[3].uncertainty").
 // The calibration's error type, because the lab block is parsed by the calibration's own code.
-using DatasetError = calibration::CampaignError;
 
 enum class Observable { peak_load, strength, youngs_modulus };
 // Who made the numbers decides which numerical errors separate them from the model's runs
@@ -61,7 +60,7 @@ struct Dataset {
 };
 
 // Strict parsing: unknown fields, NaN, non-positive values or uncertainties, unknown tests or
-// observables, duplicate ids, a dataset without calibration observations: DatasetError naming
+// observables, duplicate ids, a dataset without calibration observations: orch::RequestError naming
 // the field ("observations[3].uncertainty").
 Dataset parse_dataset_json(const nlohmann::json& j);
 Dataset parse_dataset_csv(const std::string& text);  // header row + one observation per row
@@ -95,7 +94,8 @@ Observation to_model_units(const Observation& o, const Dataset& d);
 Dataset in_model_units(const Dataset& d);
 
 // A lab dataset's model_scale must be the job template's own K_r, R and rho (as for a calibration
-// campaign); throws DatasetError ("model_scale.kr") otherwise. No-op for a model-unit dataset.
+// campaign); throws orch::RequestError ("model_scale.kr") otherwise. No-op for a model-unit
+// dataset.
 void check_model_scale(const Dataset& d, const JobSpec& job_template);
 
 }  // namespace rockcal::diagnosis

@@ -57,7 +57,7 @@ json number_cell(const std::string& cell, const std::string& field) {
   double x = 0;
   const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), x);
   if (ec != std::errc() || end != cell.data() + cell.size()) {
-    throw DatasetError(field, "'" + cell + "' is not a number");
+    throw orch::RequestError(field, "'" + cell + "' is not a number");
   }
   return x;
 }
@@ -81,13 +81,13 @@ void apply_directive(json& root, const std::string& key, const std::string& valu
                      const std::string& where) {
   bool known = false;
   for (const char* d : kDirectives) known |= key == d;
-  if (!known) throw DatasetError(key, where + ": unknown directive '# " + key + ":'");
-  if (root.contains(key)) throw DatasetError(key, where + ": given twice");
+  if (!known) throw orch::RequestError(key, where + ": unknown directive '# " + key + ":'");
+  if (root.contains(key)) throw orch::RequestError(key, where + ": given twice");
   if (key == "lab" || key == "model_scale") {
     try {
       root[key] = parse_json_input(value);
     } catch (const JsonInputError& e) {
-      throw DatasetError(key, where + ": not JSON (" + e.what() + ")");
+      throw orch::RequestError(key, where + ": not JSON (" + e.what() + ")");
     }
   } else {
     root[key] = value;
@@ -147,7 +147,8 @@ Dataset parse_dataset_csv(const std::string& text) {
     if (line.empty()) continue;
     if (line[0] == '#') {
       if (const auto d = directive(line)) {
-        if (header_seen) throw DatasetError(d->first, where + ": directives go before the header");
+        if (header_seen)
+          throw orch::RequestError(d->first, where + ": directives go before the header");
         apply_directive(root, d->first, d->second, where);
       }
       continue;
@@ -155,31 +156,33 @@ Dataset parse_dataset_csv(const std::string& text) {
     const std::vector<std::string> cells = split_cells(line);
     if (!header_seen) {
       if (cells != split_cells(expected_header())) {
-        throw DatasetError("(header)", where + ": the header must be " + expected_header());
+        throw orch::RequestError("(header)", where + ": the header must be " + expected_header());
       }
       header_seen = true;
       continue;
     }
     const std::string path = "observations[" + std::to_string(observations.size()) + "]";
     if (cells.size() != kColumns.size()) {
-      throw DatasetError(path, where + ": " + std::to_string(cells.size()) +
-                                   " cells, the header has " + std::to_string(kColumns.size()));
+      throw orch::RequestError(path, where + ": " + std::to_string(cells.size()) +
+                                         " cells, the header has " +
+                                         std::to_string(kColumns.size()));
     }
     observations.push_back(observation_json(cells, path));
     line_of_observation.push_back(number);
   }
-  if (!header_seen) throw DatasetError("(header)", "missing; it must be " + expected_header());
+  if (!header_seen)
+    throw orch::RequestError("(header)", "missing; it must be " + expected_header());
   root["observations"] = observations;
   try {
     return parse_dataset_json(root);
-  } catch (const DatasetError& e) {
+  } catch (const orch::RequestError& e) {
     // Point at the row: "observations[3]..." is the 4th data row.
     const std::string prefix = "observations[";
     if (e.field.rfind(prefix, 0) != 0) throw;
     const std::size_t index = std::stoul(e.field.substr(prefix.size()));
     const std::string message = e.message;
-    throw DatasetError(e.field,
-                       message + " (line " + std::to_string(line_of_observation.at(index)) + ")");
+    throw orch::RequestError(
+        e.field, message + " (line " + std::to_string(line_of_observation.at(index)) + ")");
   }
 }
 

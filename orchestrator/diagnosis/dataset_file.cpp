@@ -24,10 +24,10 @@ Dataset read_dataset_file(const std::filesystem::path& file) {
     return parse_dataset_json(parse_json_input(text.str()));
   } catch (const JsonInputError& e) {
     throw std::runtime_error(file.string() + ": not JSON (" + e.what() + ")");
-  } catch (const DatasetError& e) {
+  } catch (const orch::RequestError& e) {
     // Keep the type and the field, so callers can still point at it; the message names the file.
     const std::string message = e.message;
-    throw DatasetError(e.field, message + " [" + file.string() + "]");
+    throw orch::RequestError(e.field, message + " [" + file.string() + "]");
   }
 }
 

@@ -8,17 +8,6 @@
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::diagnosis {
-namespace {
-
-DiagnosisCampaign parse_request(const nlohmann::json& request) {
-  try {
-    return parse_diagnosis_campaign(request);
-  } catch (const calibration::CampaignError& e) {
-    throw orch::RequestError(e.field, e.what());
-  }
-}
-
-}  // namespace
 
 std::size_t planned_jobs(const DiagnosisCampaign& c) {
   const std::size_t grid = std::size_t(grid_points(c));
@@ -34,7 +23,7 @@ orch::CampaignKind diagnosis_kind() {
   orch::CampaignKind kind;
   kind.name = "diagnosis";
   kind.plan = [](const nlohmann::json& request, const orch::Limits& limits) {
-    const DiagnosisCampaign c = parse_request(request);
+    const DiagnosisCampaign c = parse_diagnosis_campaign(request);
     if (planned_jobs(c) > limits.max_jobs_per_campaign) {
       throw orch::RequestError("grid", "the diagnosis may need " + std::to_string(planned_jobs(c)) +
                                            " jobs, above the server's cap of " +
@@ -46,7 +35,7 @@ orch::CampaignKind diagnosis_kind() {
   // Runs in the service's driver thread; a restart after a crash runs it again from the stored
   // request, and the job cache replays the finished runs.
   kind.driver = [](orch::DriverContext& ctx) {
-    const DiagnosisCampaign c = parse_request(ctx.request);
+    const DiagnosisCampaign c = parse_diagnosis_campaign(ctx.request);
     PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, c.targets, ctx.stop);
     DiagnosisOptions options;
     options.stop = ctx.stop;

@@ -36,8 +36,8 @@ struct Target {
 // Lab units map to model units by eq. 4 first (in_model_units: absent sizes become the lab
 // specimen's); then every condition still absent takes the template's value: its sample, its
 // platen speed, and for a disc its explicit thickness or else half the disc's own diameter (the
-// engine's default). Throws DatasetError ("model_scale.kr") when a lab dataset's model scale is
-// not the template's.
+// engine's default). Throws orch::RequestError ("model_scale.kr") when a lab dataset's model scale
+// is not the template's.
 std::vector<Target> model_targets(const Dataset& dataset, const JobSpec& model_template);
 
 // How many targets have this role.

@@ -1,6 +1,8 @@
 #include "orchestrator/diagnosis/pool_evaluator.hpp"
 
-#include <map>
+#include <utility>
+
+#include "orchestrator/job_batch.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -37,38 +39,33 @@ PoolEvaluator::PoolEvaluator(orch::JobService& service, std::int64_t campaign_id
 }
 
 std::vector<RunOutcome> PoolEvaluator::run_batch(std::span<const RunRequest> requests) {
-  // One job per distinct spec: equal runs within a batch (a confirmation at a grid node) are
-  // submitted once.
-  std::map<std::string, std::int64_t> job_of_spec;
-  std::vector<std::vector<std::string>> spec_of(requests.size());
-  std::map<std::string, std::string> refused;  // spec key -> why the engine refused it
+  // Every run of every request in one batch of the campaign (equal runs within it, a confirmation
+  // at a grid node, are submitted once); a run the engine refuses is not submitted, its reason
+  // kept as the run's error.
+  std::vector<json> jobs;
+  std::vector<std::vector<JobResult>> results(requests.size());
+  std::vector<std::pair<std::size_t, std::size_t>> submitted;  // (request, run) of each job
   for (std::size_t r = 0; r < requests.size(); ++r) {
     for (const RunConditions& run : plan_.runs) {
-      std::string key;
+      results[r].emplace_back();
       try {
-        key = job_for(job_template_, model_, run, requests[r]).dump();
+        jobs.push_back(job_for(job_template_, model_, run, requests[r]));
+        submitted.emplace_back(r, results[r].size() - 1);
       } catch (const std::exception& e) {
-        key = "refused:" + std::to_string(r) + ":" + std::to_string(spec_of[r].size());
-        refused[key] = e.what();
+        results[r].back() = {nullptr, e.what()};
       }
-      if (!refused.count(key) && !job_of_spec.count(key)) {
-        job_of_spec[key] = service_.submit_job(campaign_id_, json::parse(key));
-      }
-      spec_of[r].push_back(key);
     }
   }
-  std::map<std::string, JobResult> results;
-  for (const auto& [key, id] : job_of_spec) {
-    const orch::JobOutcome outcome = service_.wait_job(id, stop_);
-    if (stop_.stop_requested() || outcome.state == "cancelled") throw DiagnosisCancelled();
-    results[key] = job_result(outcome);
+  const auto finished = orch::run_batch(service_, campaign_id_, jobs, stop_);
+  if (!finished) throw DiagnosisCancelled();
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    results[submitted[j].first][submitted[j].second] = job_result((*finished)[j]);
   }
-  for (const auto& [key, why] : refused) results[key] = {nullptr, why};
   std::vector<RunOutcome> outcomes;
   for (std::size_t r = 0; r < requests.size(); ++r) {
     RunOutcome o;
     for (std::size_t i = 0; i < targets_.size(); ++i) {
-      const JobResult& jr = results.at(spec_of[r][plan_.run_of[i]]);
+      const JobResult& jr = results[r][plan_.run_of[i]];
       // A run without a peak comes back as a failed job ("no peak: ..."), like any failure.
       o.values.push_back(observable_value(jr.result, targets_[i].observable));
       if (!o.values.back() && o.error.empty()) {

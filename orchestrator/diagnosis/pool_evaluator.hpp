@@ -1,7 +1,7 @@
 // The service's worker pool as the diagnosis's Evaluator: every run of a batch becomes an ordinary
-// job of the campaign, all submitted before any is waited for, so the pool runs them in parallel.
-// The job cache answers runs already made (by this diagnosis before a restart, or by another
-// diagnosis of the same template) at once.
+// job of the campaign, run as one batch (orch::run_batch, shared with calibration). The job cache
+// answers runs already made (by this diagnosis before a restart, or by another diagnosis of the
+// same template) at once.
 #pragma once
 
 #include <cstdint>

@@ -7,6 +7,7 @@
 
 #include "engine/effects/effect.hpp"
 #include "engine/units.hpp"
+#include "orchestrator/request_error.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -89,13 +90,14 @@ json twin_effects(const TwinRequest& request) {
   if (request.effect == "none") return json::object();
   const EffectDef* effect = find_effect(request.effect);
   if (!effect || effect->params.empty()) {
-    throw std::invalid_argument("unknown effect '" + request.effect + "' (known: none, " +
-                                known_effect_names() + ")");
+    throw orch::RequestError("effect", "unknown effect '" + request.effect + "' (known: none, " +
+                                           known_effect_names() + ")");
   }
   const EffectParam& p = effect->params[0];
   if (!(request.value >= p.lo && request.value <= p.hi)) {
-    throw std::invalid_argument(effect->name + "." + p.name + " must be in [" + json(p.lo).dump() +
-                                ", " + json(p.hi).dump() + "]");
+    throw orch::RequestError("value", "must be in [" + json(p.lo).dump() + ", " +
+                                          json(p.hi).dump() + "] (" + effect->name + "." + p.name +
+                                          ")");
   }
   return {{effect->name, {{p.name, request.value}}}};
 }
@@ -103,10 +105,10 @@ json twin_effects(const TwinRequest& request) {
 void check_twin_request(const TwinRequest& request) {
   twin_effects(request);
   if (!(request.noise > 0) || !std::isfinite(request.noise)) {
-    throw std::invalid_argument("noise must be positive (the uncertainty is noise x value)");
+    throw orch::RequestError("noise", "must be positive (the uncertainty is noise x value)");
   }
   if (!(request.resolution >= 1.0 && request.resolution <= 3.0)) {
-    throw std::invalid_argument("resolution must be in [1, 3] (1 = the template's own)");
+    throw orch::RequestError("resolution", "must be in [1, 3] (1 = the template's own)");
   }
 }
 

@@ -38,12 +38,14 @@ struct TruthBonds {
 };
 TruthBonds draw_truth_bonds(const JobSpec& model, std::uint64_t seed);
 
-// Throws std::invalid_argument for a request no twin can be made of: an unknown effect or a
-// value outside its range, a noise that is not positive, a resolution outside [1, 3].
+// Throws orch::RequestError for a request no twin can be made of, naming the field: an unknown
+// "effect" or a "value" outside its range, a "noise" that is not positive, a "resolution" outside
+// [1, 3].
 void check_twin_request(const TwinRequest& request);
 
 // The job's "effects" block for the request: {} for "none", else {NAME: {params[0]: value}}.
-// Throws std::invalid_argument for an unknown effect or a value outside its parameter's range.
+// Throws orch::RequestError for an unknown effect ("effect") or a value outside its parameter's
+// range ("value").
 nlohmann::json twin_effects(const TwinRequest& request);
 
 struct Twin {

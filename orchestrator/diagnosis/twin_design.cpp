@@ -17,16 +17,16 @@ nlohmann::json demo_twin_template() {
 
 namespace {
 
-using calibration::CampaignError;
 using nlohmann::json;
+using orch::RequestError;
 
 // The template through the engine's own validation for the tests the twin runs; errors name the
 // field under "job." as a calibration campaign's do.
 JobSpec validate_template(const json& job_template) {
-  if (!job_template.is_object()) throw CampaignError("job", "must be a JSON object");
+  if (!job_template.is_object()) throw orch::RequestError("job", "must be a JSON object");
   for (const char* key : {"test", "effects"}) {
     if (job_template.contains(key)) {
-      throw CampaignError(std::string("job.") + key, "is set by the twin; leave it out");
+      throw orch::RequestError(std::string("job.") + key, "is set by the twin; leave it out");
     }
   }
   // The template's "bond" is optional here: it is the centre of the truth draw, and the design's
@@ -40,8 +40,7 @@ JobSpec validate_template(const json& job_template) {
     parse_job_template(probe, TestKind::btt);
     return parse_job_template(probe, TestKind::uct);
   } catch (const SpecError& e) {
-    const std::string message = e.message;
-    throw CampaignError("job." + e.field, message);
+    throw orch::under("job", e);
   }
 }
 

@@ -41,7 +41,7 @@ using RunJobs = std::function<std::vector<nlohmann::json>(const std::vector<nloh
 //                load at p_low (D, H)
 //   held out:    triaxial at p_high (D, H); UCT at 1.5 D x 1.5 H; BTT at 1.5 D x 1.5 t; UCT at
 //                4x the platen speed
-// Throws calibration::CampaignError naming "job..." for a bad template.
+// Throws orch::RequestError naming "job..." for a bad template.
 TwinDesign make_twin_design(const nlohmann::json& job_template, const RunJobs& run);
 
 // The engine job measuring `o` (model units, conditions stated): the template with the

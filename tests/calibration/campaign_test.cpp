@@ -35,7 +35,7 @@ struct BadCase {
 std::string field_of(const json& overrides) {
   try {
     testing::campaign({1000, 100}, overrides);
-  } catch (const CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     return e.field;
   }
   return "(accepted)";
@@ -114,7 +114,7 @@ TEST(Campaign, RootMustBeAnObject) {
   try {
     parse_calibration_campaign(json::array());
     FAIL();
-  } catch (const CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     EXPECT_EQ(e.field, "(root)");
   }
 }

@@ -133,13 +133,13 @@ TEST(ConsistentSet, ItsFieldsAreCheckedLikeEveryOther) {
   try {
     testing::campaign(t, {{"consistency_evaluations", -1}});
     FAIL();
-  } catch (const CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     EXPECT_EQ(e.field, "consistency_evaluations");
   }
   try {
     testing::campaign(t, {{"suggest", "yes"}});
     FAIL();
-  } catch (const CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     EXPECT_EQ(e.field, "suggest");
     EXPECT_STREQ(e.what(), "suggest: must be true or false");
   }

@@ -28,7 +28,7 @@ json with(json overrides) {
 std::pair<std::string, std::string> refusal(const json& overrides) {
   try {
     testing::campaign({1000, 100}, overrides);
-  } catch (const CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     return {e.field, e.what()};
   }
   return {"(accepted)", ""};

@@ -113,14 +113,14 @@ TEST(Fidelity, AFineTemplateTheEngineRefusesNamesTheField) {
   try {
     testing::campaign({1000, 100}, {{"fidelity", {{"fine", {{"sample", {{"diameter", -1}}}}}}}});
     FAIL();
-  } catch (const CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     EXPECT_EQ(e.field, "fidelity.fine");
   }
   try {
     testing::campaign({1000, 100},
                       {{"fidelity", {{"fine", {{"sample", {{"diameter", 12}}}}}, {"steps", 2}}}});
     FAIL();
-  } catch (const CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     EXPECT_EQ(e.field, "fidelity.steps");
     EXPECT_STREQ(e.what(), "fidelity.steps: unknown field");
   }

@@ -52,7 +52,7 @@ json request() {
 std::string refused_field(const json& r) {
   try {
     parse_diagnosis_campaign(r);
-  } catch (const calibration::CampaignError& e) {
+  } catch (const orch::RequestError& e) {
     return e.field;
   }
   return "(accepted)";
@@ -216,7 +216,7 @@ TEST(DiagnosisRequest, JobsAreCanonicalAndCarryTheEffectAndNumerics) {
 TEST(DiagnosisRequest, CalibrationOnlyDatasetNeedsNoEffects) {
   json r = request();
   for (json& o : r["dataset"]["observations"]) o["role"] = "calibration";
-  EXPECT_THROW(parse_diagnosis_campaign(r), calibration::CampaignError);
+  EXPECT_THROW(parse_diagnosis_campaign(r), orch::RequestError);
   r["effects"] = json::array();
   const DiagnosisCampaign c = parse_diagnosis_campaign(r);
   EXPECT_TRUE(c.candidates.empty());

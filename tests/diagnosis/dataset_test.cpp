@@ -55,7 +55,7 @@ json model_dataset() {
 std::string refused_field(const json& j) {
   try {
     parse_dataset_json(j);
-  } catch (const DatasetError& e) {
+  } catch (const orch::RequestError& e) {
     return e.field;
   }
   return "";
@@ -64,7 +64,7 @@ std::string refused_field(const json& j) {
 std::string refused_csv_field(const std::string& text, std::string* message = nullptr) {
   try {
     parse_dataset_csv(text);
-  } catch (const DatasetError& e) {
+  } catch (const orch::RequestError& e) {
     if (message) *message = e.what();
     return e.field;
   }
@@ -136,7 +136,7 @@ TEST(DiagnosisDataset, OriginIsKeptAndDefaultsToLab) {
   try {
     parse_dataset_json(j);
     ADD_FAILURE() << "accepted origin \"twin\"";
-  } catch (const DatasetError& e) {
+  } catch (const orch::RequestError& e) {
     EXPECT_STREQ(e.what(), "origin: must be \"lab\", \"same_resolution_model\" or \"finer_model\"");
   }
 }
@@ -305,7 +305,7 @@ TEST(DiagnosisDataset, ModelScaleMustBeTheTemplates) {
   try {
     check_model_scale(seed, parse_job(job));
     ADD_FAILURE() << "a different K_r was accepted";
-  } catch (const DatasetError& e) {
+  } catch (const orch::RequestError& e) {
     EXPECT_EQ(e.field, "model_scale.kr");
   }
 }

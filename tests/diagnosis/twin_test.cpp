@@ -91,7 +91,7 @@ TEST(DiagnosisTwin, BadTemplatesAndRequestsAreRefused) {
   const auto field = [](const json& t) {
     try {
       make_twin_design(t, formula_engine());
-    } catch (const DatasetError& e) {
+    } catch (const orch::RequestError& e) {
       return e.field;
     }
     return std::string();
@@ -106,18 +106,29 @@ TEST(DiagnosisTwin, BadTemplatesAndRequestsAreRefused) {
   t["sample"]["diameter"] = -1;
   EXPECT_EQ(field(t), "job.sample.diameter");
 
-  EXPECT_THROW(twin_effects({"bogus", 1, 1, 0.02}), std::invalid_argument);
-  EXPECT_THROW(twin_effects({"rate", 100, 1, 0.02}), std::invalid_argument);
+  // A request no twin can be made of is refused naming the CLI's field, before any run.
+  auto refusal = [](const TwinRequest& r) -> std::string {
+    try {
+      check_twin_request(r);
+    } catch (const orch::RequestError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(
+      refusal({"bogus", 1, 1, 0.02}).rfind("effect: unknown effect 'bogus' (known: none, ", 0), 0u);
+  EXPECT_EQ(refusal({"rate", 100, 1, 0.02}), "value: must be in [0.125, 16.0] (rate.speed_factor)");
   EXPECT_EQ(twin_effects({"none", 0, 1, 0.02}), json::object());
-  EXPECT_NO_THROW(check_twin_request({"none", 0, 1, 0.02, 3.0}));
-  EXPECT_THROW(check_twin_request({"none", 0, 1, 0.02, 3.5}), std::invalid_argument);
-  EXPECT_THROW(check_twin_request({"none", 0, 1, 0.02, 0.9}), std::invalid_argument);
-  EXPECT_THROW(check_twin_request({"none", 0, 1, 0.0}), std::invalid_argument);
-  EXPECT_THROW(check_twin_request({"rate", 100, 1, 0.02}), std::invalid_argument);
+  EXPECT_EQ(refusal({"none", 0, 1, 0.02, 3.0}), "(accepted)");
+  const std::string resolution = "resolution: must be in [1, 3] (1 = the template's own)";
+  EXPECT_EQ(refusal({"none", 0, 1, 0.02, 3.5}), resolution);
+  EXPECT_EQ(refusal({"none", 0, 1, 0.02, 0.9}), resolution);
+  EXPECT_EQ(refusal({"none", 0, 1, 0.0}),
+            "noise: must be positive (the uncertainty is noise x value)");
   EXPECT_EQ(twin_effects({"heterogeneity", 3, 1, 0.02}),
             json({{"heterogeneity", {{"weibull_m", 3.0}}}}));
   const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
-  EXPECT_THROW(make_twin(d, {"none", 0, 1, 0.0}, formula_engine()), std::invalid_argument);
+  EXPECT_THROW(make_twin(d, {"none", 0, 1, 0.0}, formula_engine()), orch::RequestError);
 }
 
 TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
@@ -182,7 +193,7 @@ TEST(DiagnosisTwin, AFinerModelTwinRefinesItsSpecimens) {
     EXPECT_DOUBLE_EQ(job["bond"]["fr0"].get<double>(), t.truth["fr0"].get<double>() / 2.25);
   }
   request.resolution = 0.5;
-  EXPECT_THROW(make_twin(d, request, formula_engine()), std::invalid_argument);
+  EXPECT_THROW(make_twin(d, request, formula_engine()), orch::RequestError);
 }
 
 class DiagnosisTwinEngine : public ::testing::Test {

@@ -171,8 +171,10 @@ TEST_F(Ensembles, ABadCountIsRefusedAndStoresNothing) {
   auto r = c.Post("/api/v1/campaigns", bad.dump(), "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
-  EXPECT_EQ(json::parse(r->body),
-            json::parse(R"({"error": "must be an integer in [1, 100]", "field": "realisations"})"));
+  EXPECT_EQ(
+      json::parse(r->body),
+      json::parse(
+          R"({"error": "realisations: must be an integer in [1, 100]", "field": "realisations"})"));
   bad["realisations"] = 2;
   bad["job"]["sample"]["packing"] = "fcc";  // aligned: one specimen under every seed
   bad["job"]["sample"]["lattice"] = "aligned";

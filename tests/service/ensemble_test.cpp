@@ -134,7 +134,7 @@ std::pair<std::string, std::string> refusal(const json& request, Limits limits =
   try {
     plan_sweep(request, limits);
   } catch (const RequestError& e) {
-    return {e.field, e.what()};
+    return {e.field, e.message};
   }
   return {"(accepted)", ""};
 }

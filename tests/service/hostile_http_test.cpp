@@ -323,7 +323,7 @@ TEST_F(HostileHttp, AParticleEstimateThatOverflowsIsRefused) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(error_of(r), json({{"error",
-                                "sample.diameter: specimen would hold about 1.39e+23 "
+                                "job.sample.diameter: specimen would hold about 1.39e+23 "
                                 "particles (limit 2000000)"},
                                {"field", "job.sample.diameter"}}));
   expect_nothing_stored();

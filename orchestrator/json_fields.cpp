@@ -1,15 +1,15 @@
-#include "orchestrator/calibration/json_fields.hpp"
+#include "orchestrator/json_fields.hpp"
 
 #include <cmath>
 
-#include "orchestrator/calibration/campaign_error.hpp"
+#include "orchestrator/request_error.hpp"
 
-namespace rockcal::calibration {
+namespace rockcal::orch {
 
 JsonFields::JsonFields(const nlohmann::json& object, std::string path)
     : object_(object), path_(std::move(path)) {
   if (!object_.is_object()) {
-    throw CampaignError(path_.empty() ? "(root)" : path_, "must be a JSON object");
+    throw RequestError(path_.empty() ? "(root)" : path_, "must be a JSON object");
   }
 }
 
@@ -25,14 +25,14 @@ const nlohmann::json* JsonFields::get(const std::string& key) {
 
 const nlohmann::json& JsonFields::require(const std::string& key) {
   const nlohmann::json* v = get(key);
-  if (!v) throw CampaignError(path_of(key), "is required");
+  if (!v) throw RequestError(path_of(key), "is required");
   return *v;
 }
 
 double finite_number(const nlohmann::json& value, const std::string& field) {
-  if (!value.is_number()) throw CampaignError(field, "must be a number");
+  if (!value.is_number()) throw RequestError(field, "must be a number");
   const double x = value.get<double>();
-  if (!std::isfinite(x)) throw CampaignError(field, "must be finite");
+  if (!std::isfinite(x)) throw RequestError(field, "must be finite");
   return x;
 }
 
@@ -44,7 +44,7 @@ std::optional<double> JsonFields::number(const std::string& key) {
 
 std::optional<double> JsonFields::positive(const std::string& key) {
   auto x = number(key);
-  if (x && !(*x > 0)) throw CampaignError(path_of(key), "must be positive");
+  if (x && !(*x > 0)) throw RequestError(path_of(key), "must be positive");
   return x;
 }
 
@@ -57,30 +57,30 @@ std::optional<std::int64_t> JsonFields::integer(const std::string& key, std::int
   // Built by appending: GCC 12 warns falsely (-Wrestrict) on "[" + std::to_string(...).
   std::string range = "[";
   range.append(std::to_string(lo)).append(", ").append(std::to_string(hi)).append("]");
-  if (!fits) throw CampaignError(path_of(key), "must be an integer in " + range);
+  if (!fits) throw RequestError(path_of(key), "must be an integer in " + range);
   const std::int64_t x = v->get<std::int64_t>();
-  if (x < lo || x > hi) throw CampaignError(path_of(key), "must be in " + range);
+  if (x < lo || x > hi) throw RequestError(path_of(key), "must be in " + range);
   return x;
 }
 
 std::optional<std::string> JsonFields::string(const std::string& key) {
   const nlohmann::json* v = get(key);
   if (!v) return std::nullopt;
-  if (!v->is_string()) throw CampaignError(path_of(key), "must be a string");
+  if (!v->is_string()) throw RequestError(path_of(key), "must be a string");
   return v->get<std::string>();
 }
 
 std::optional<bool> JsonFields::boolean(const std::string& key) {
   const nlohmann::json* v = get(key);
   if (!v) return std::nullopt;
-  if (!v->is_boolean()) throw CampaignError(path_of(key), "must be true or false");
+  if (!v->is_boolean()) throw RequestError(path_of(key), "must be true or false");
   return v->get<bool>();
 }
 
 void JsonFields::reject_unknown() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
-    if (!read_.count(it.key())) throw CampaignError(path_of(it.key()), "unknown field");
+    if (!read_.count(it.key())) throw RequestError(path_of(it.key()), "unknown field");
   }
 }
 
-}  // namespace rockcal::calibration
+}  // namespace rockcal::orch

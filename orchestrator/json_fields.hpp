@@ -1,5 +1,7 @@
 // Strict reading of one JSON object of a campaign: typed getters that name the field on error,
 // and a final check that no key was left unread (a typo must not silently fall back to a default).
+// The one reader of request JSON: campaigns of every kind, datasets and twin requests use it, and
+// every refusal is a RequestError naming the dotted path of the field.
 #pragma once
 
 #include <cstdint>
@@ -9,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace rockcal::calibration {
+namespace rockcal::orch {
 
 class JsonFields {
  public:
@@ -33,7 +35,7 @@ class JsonFields {
   std::set<std::string> read_;
 };
 
-// A finite JSON number, or CampaignError naming `field`.
+// A finite JSON number, or RequestError naming `field`.
 double finite_number(const nlohmann::json& value, const std::string& field);
 
-}  // namespace rockcal::calibration
+}  // namespace rockcal::orch
