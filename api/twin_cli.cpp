@@ -8,9 +8,9 @@
 
 #include "api/serve.hpp"
 #include "engine/json_input.hpp"
-#include "orchestrator/diagnosis/engine_runs.hpp"
-#include "orchestrator/diagnosis/twin.hpp"
-#include "orchestrator/diagnosis/twin_design.hpp"
+#include "orchestrator/diagnosis/twin/engine_runs.hpp"
+#include "orchestrator/diagnosis/twin/twin.hpp"
+#include "orchestrator/diagnosis/twin/twin_design.hpp"
 
 namespace rockcal::api {
 namespace {

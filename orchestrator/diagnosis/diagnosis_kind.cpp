@@ -1,10 +1,10 @@
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
 
-#include "orchestrator/diagnosis/driver.hpp"
-#include "orchestrator/diagnosis/grid.hpp"
-#include "orchestrator/diagnosis/jobs.hpp"
-#include "orchestrator/diagnosis/pool_evaluator.hpp"
-#include "orchestrator/diagnosis/report.hpp"
+#include "orchestrator/diagnosis/pipeline/driver.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
+#include "orchestrator/diagnosis/pipeline/jobs.hpp"
+#include "orchestrator/diagnosis/pipeline/pool_evaluator.hpp"
+#include "orchestrator/diagnosis/report/report.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::diagnosis {

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "orchestrator/campaign_kinds.hpp"
-#include "orchestrator/diagnosis/campaign.hpp"
+#include "orchestrator/diagnosis/pipeline/campaign.hpp"
 
 namespace rockcal::diagnosis {
 

@@ -6,12 +6,12 @@
 #include <fstream>
 
 #include "engine/effects/effect.hpp"
-#include "orchestrator/diagnosis/budget.hpp"
-#include "orchestrator/diagnosis/campaign.hpp"
+#include "orchestrator/diagnosis/analysis/budget.hpp"
+#include "orchestrator/diagnosis/analysis/trust_region.hpp"
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
-#include "orchestrator/diagnosis/grid.hpp"
-#include "orchestrator/diagnosis/jobs.hpp"
-#include "orchestrator/diagnosis/trust_region.hpp"
+#include "orchestrator/diagnosis/pipeline/campaign.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
+#include "orchestrator/diagnosis/pipeline/jobs.hpp"
 
 namespace rockcal::diagnosis {
 namespace {

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "orchestrator/calibration/campaign.hpp"
-#include "orchestrator/diagnosis/dataset.hpp"
+#include "orchestrator/diagnosis/dataset/dataset.hpp"
 
 namespace rockcal::diagnosis {
 namespace {

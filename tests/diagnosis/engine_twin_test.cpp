@@ -10,10 +10,10 @@
 #include <thread>
 
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
-#include "orchestrator/diagnosis/engine_runs.hpp"
-#include "orchestrator/diagnosis/report.hpp"
-#include "orchestrator/diagnosis/twin.hpp"
-#include "orchestrator/diagnosis/twin_design.hpp"
+#include "orchestrator/diagnosis/report/report.hpp"
+#include "orchestrator/diagnosis/twin/engine_runs.hpp"
+#include "orchestrator/diagnosis/twin/twin.hpp"
+#include "orchestrator/diagnosis/twin/twin_design.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 

@@ -1,10 +1,12 @@
-// Focus: the diagnosis's layers. The analysis (surfaces, budget, identifiability, gap, verdict,
-// bootstrap, ratio) works on observations and run outcomes; it must never reach the request
-// (campaign.hpp), the pipeline that runs it (driver, grid, the campaign kind) or the report, so
+// Focus: the diagnosis's layers (orchestrator/diagnosis/CMakeLists.txt). Each folder includes only
+// the folders below it: dataset < twin; dataset < analysis < pipeline < report < the campaign kind.
+// Above all the analysis (surfaces, budget, identifiability, gap, verdict) works on observations
+// and run outcomes and must never reach the request, the pipeline that runs it or the report, so
 // that a numerical routine can be tested, reused and reasoned about without them. Follows the
-// quoted includes of every analysis file, transitively.
+// quoted includes of every file of a layer, transitively.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -40,28 +42,56 @@ void reach(const std::string& file, const std::string& chain,
   }
 }
 
+// The files of orchestrator/diagnosis/`folder`.
+std::vector<std::string> layer(const std::string& folder) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(kRoot / "orchestrator/diagnosis" / folder)) {
+    const std::string ext = e.path().extension().string();
+    if (ext == ".hpp" || ext == ".cpp") {
+      out.push_back("orchestrator/diagnosis/" + folder + "/" + e.path().filename().string());
+    }
+  }
+  return out;
+}
+
+// Every chain from a file of `folder` to a diagnosis file outside `allowed` (folders, or
+// "diagnosis_kind" for the campaign kind at the top).
+std::vector<std::string> reaches_above(const std::string& folder,
+                                       const std::vector<std::string>& allowed) {
+  std::vector<std::string> out;
+  for (const std::string& file : layer(folder)) {
+    std::map<std::string, std::string> seen;
+    reach(file, file, seen);
+    for (const auto& [header, chain] : seen) {
+      const std::string prefix = "orchestrator/diagnosis/";
+      if (header.rfind(prefix, 0) != 0) continue;
+      const std::string rest = header.substr(prefix.size());
+      const std::string top = rest.substr(0, rest.find_first_of("/."));
+      if (std::find(allowed.begin(), allowed.end(), top) == allowed.end()) out.push_back(chain);
+    }
+  }
+  return out;
+}
+
+using Chains = std::vector<std::string>;
+
 }  // namespace
 
 TEST(DiagnosisLayering, TheAnalysisNeverIncludesTheRequestThePipelineOrTheReport) {
-  const std::string dir = "orchestrator/diagnosis/";
-  const char* analysis[] = {"bootstrap",       "budget", "candidate_result", "gap",
-                            "identifiability", "ratio",  "surface",          "surface_fit",
-                            "trust_region",    "verdict"};
-  const char* forbidden[] = {"campaign.hpp", "diagnosis_kind.hpp", "driver.hpp", "grid.hpp",
-                             "jobs.hpp",     "pool_evaluator.hpp", "report.hpp"};
-  int files = 0;
-  for (const char* name : analysis) {
-    for (const char* ext : {".hpp", ".cpp"}) {
-      const std::string file = dir + name + ext;
-      if (!fs::exists(kRoot / file)) continue;
-      ++files;
-      std::map<std::string, std::string> seen;
-      reach(file, file, seen);
-      for (const char* f : forbidden) {
-        const auto it = seen.find(dir + f);
-        EXPECT_TRUE(it == seen.end()) << it->second;
-      }
-    }
-  }
-  EXPECT_GE(files, 19);  // every analysis file was read (candidate_result has no .cpp)
+  EXPECT_GE(layer("analysis").size(), 23u);  // every analysis file is read
+  EXPECT_EQ(reaches_above("analysis", {"dataset", "analysis"}), Chains{});
+}
+
+TEST(DiagnosisLayering, EachLayerIncludesOnlyTheLayersBelowIt) {
+  EXPECT_EQ(reaches_above("dataset", {"dataset"}), Chains{});
+  EXPECT_EQ(reaches_above("twin", {"dataset", "twin"}), Chains{});
+  EXPECT_EQ(reaches_above("pipeline", {"dataset", "analysis", "pipeline"}), Chains{});
+  EXPECT_EQ(reaches_above("report", {"dataset", "analysis", "pipeline", "report"}), Chains{});
+}
+
+TEST(DiagnosisLayering, TheCheckSeesAnInclusionAbove) {
+  // The test of the test: the report reaches the pipeline's request, which the analysis may not.
+  const Chains found = reaches_above("report", {"dataset", "analysis", "report"});
+  ASSERT_FALSE(found.empty());
+  EXPECT_NE(found.front().find("orchestrator/diagnosis/pipeline/"), std::string::npos);
 }

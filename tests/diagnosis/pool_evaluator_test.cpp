@@ -6,7 +6,7 @@
 
 #include <filesystem>
 
-#include "orchestrator/diagnosis/pool_evaluator.hpp"
+#include "orchestrator/diagnosis/pipeline/pool_evaluator.hpp"
 #include "orchestrator/local_executor.hpp"
 
 namespace rockcal::diagnosis {

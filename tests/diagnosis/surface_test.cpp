@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "orchestrator/diagnosis/grid.hpp"
-#include "orchestrator/diagnosis/surface_fit.hpp"
+#include "orchestrator/diagnosis/analysis/surface_fit.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
 
 namespace rockcal::diagnosis {
 namespace {

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "orchestrator/diagnosis/campaign.hpp"
-#include "orchestrator/diagnosis/evaluator.hpp"
+#include "orchestrator/diagnosis/analysis/evaluator.hpp"
+#include "orchestrator/diagnosis/pipeline/campaign.hpp"
 
 namespace rockcal::diagnosis::testing {
 

@@ -9,10 +9,10 @@
 #include <set>
 
 #include "api/client.hpp"
-#include "orchestrator/diagnosis/driver.hpp"
-#include "orchestrator/diagnosis/gap.hpp"
-#include "orchestrator/diagnosis/report.hpp"
-#include "orchestrator/diagnosis/verdict.hpp"
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
+#include "orchestrator/diagnosis/pipeline/driver.hpp"
+#include "orchestrator/diagnosis/report/report.hpp"
 #include "synthetic_model.hpp"
 
 namespace rockcal::diagnosis {
@@ -24,7 +24,7 @@ using testing::twin_campaign;
 
 struct Diagnosed {
   DiagnosisCampaign campaign;
-  DiagnosisReport report;
+  DiagnosisResult report;
   json summary;
 };
 
@@ -37,7 +37,7 @@ Diagnosed diagnose(const std::string& effect, double s, double noise = 0.01,
   return r;
 }
 
-const CandidateResult& candidate(const DiagnosisReport& r, const std::string& effect) {
+const CandidateResult& candidate(const DiagnosisResult& r, const std::string& effect) {
   for (const CandidateResult& c : r.candidates) {
     if (c.candidate.effect == effect) return c;
   }
@@ -207,7 +207,7 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   // and 2 seed runs.
   DiagnosisCampaign c = twin_campaign("rate", 0.7);
   SyntheticModel model(c.targets);
-  const DiagnosisReport report = run_diagnosis(c, model);
+  const DiagnosisResult report = run_diagnosis(c, model);
   int refinement_runs = 0, confirmed = 0;
   for (const CandidateResult& r : report.candidates) {
     refinement_runs += int(r.refinement.size());
@@ -368,7 +368,7 @@ TEST(Diagnosis, RefinementCorrectsTheSurfaceFitWithRealRuns) {
   DiagnosisCampaign c = twin_campaign("", 0.0);
   c.candidates.resize(1);
   RippledModel model(c, 0.08);
-  const DiagnosisReport with = run_diagnosis(c, model);
+  const DiagnosisResult with = run_diagnosis(c, model);
   const CandidateResult& base = with.candidates[0];
   ASSERT_GE(base.refinement.size(), 2u);
   // The real misfit of the confirmed point is a fraction of the surface fit's.
@@ -393,7 +393,7 @@ TEST(Diagnosis, RefinementCorrectsTheSurfaceFitWithRealRuns) {
   // Without refinement the base model's calibration residuals (real runs) are larger.
   c.refine = 0;
   RippledModel plain(c, 0.08);
-  const DiagnosisReport without = run_diagnosis(c, plain);
+  const DiagnosisResult without = run_diagnosis(c, plain);
   ASSERT_EQ(without.candidates[0].refinement.size(), 1u);
   EXPECT_LT(*base.confirmed_rms.calibration,
             0.6 * *without.candidates[0].confirmed_rms.calibration);

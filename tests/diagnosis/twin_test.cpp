@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "orchestrator/diagnosis/engine_runs.hpp"
-#include "orchestrator/diagnosis/twin.hpp"
-#include "orchestrator/diagnosis/twin_design.hpp"
+#include "orchestrator/diagnosis/twin/engine_runs.hpp"
+#include "orchestrator/diagnosis/twin/twin.hpp"
+#include "orchestrator/diagnosis/twin/twin_design.hpp"
 
 namespace rockcal::diagnosis {
 namespace {

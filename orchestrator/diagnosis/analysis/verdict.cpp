@@ -1,0 +1,177 @@
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+std::string fixed(double x, int digits = 3) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
+  return buf;
+}
+
+bool eligible(const CandidateResult& c) {
+  return c.fitted && c.confirmed && c.identifiability && c.identifiability->identifiable &&
+         c.fits_calibration && c.g_confirmed.has_value();
+}
+
+int group(const CandidateResult& c) {
+  if (!c.fitted) return 4;
+  if (!c.identifiability || !c.identifiability->identifiable) return 3;
+  if (!c.fits_calibration) return 2;
+  return c.confirmed ? 0 : 1;
+}
+
+}  // namespace
+
+int choose_effect(std::optional<double> base_held_out_budgets,
+                  const std::vector<Contender>& contenders) {
+  if (!base_held_out_budgets || !(*base_held_out_budgets > kGapBudgets)) return -1;
+  const Contender* best = nullptr;
+  for (const Contender& c : contenders) {
+    if (!best || c.g > best->g) best = &c;
+  }
+  return best && best->g >= kMinGapClosure ? best->index : -1;
+}
+
+void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration) {
+  std::optional<double> best;
+  for (const CandidateResult& c : candidates) {
+    const auto r = c.fitted ? c.rms().calibration : std::nullopt;
+    if (r && (!best || *r < *best)) best = r;
+  }
+  for (CandidateResult& c : candidates) {
+    const auto r = c.fitted ? c.rms().calibration : std::nullopt;
+    c.fits_calibration =
+        r && best &&
+        *r <= std::max(*best + combined_calibration, kCalibrationFitBudgets * combined_calibration);
+  }
+}
+
+std::vector<int> rank_effects(std::vector<CandidateResult>& candidates) {
+  std::vector<int> order;
+  for (int i = 1; i < int(candidates.size()); ++i) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const CandidateResult& x = candidates[a];
+    const CandidateResult& y = candidates[b];
+    if (group(x) != group(y)) return group(x) < group(y);
+    const double gx = x.g().value_or(-1e300), gy = y.g().value_or(-1e300);
+    return gx > gy;
+  });
+  for (std::size_t r = 0; r < order.size(); ++r) candidates[order[r]].rank = int(r) + 1;
+  return order;
+}
+
+std::string verdict_label(const std::vector<CandidateResult>& candidates, int index) {
+  return index < 0 ? "no effect needed" : candidates[index].candidate.effect;
+}
+
+Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
+               std::optional<double> gap, double combined_held_out) {
+  Verdict v;
+  std::vector<Contender> contenders;
+  for (int i : order) {
+    if (eligible(candidates[i])) contenders.push_back({i, *candidates[i].g_confirmed});
+  }
+  const auto base_rms = candidates[0].confirmed_rms.held_out;
+  v.candidate = choose_effect(gap, contenders);
+  for (int i : order) {
+    if (i != v.candidate) {
+      v.runner_up = i;
+      break;
+    }
+  }
+  if (!base_rms || !gap) {
+    v.reason = "the base model has no held-out residual (its runs failed): nothing to judge";
+    return v;
+  }
+  const std::string size = "the base model's held-out residuals are " + fixed(*gap, 2) +
+                           " budgets (rms of each over its own numerical budget and lab "
+                           "uncertainty; held-out rms " +
+                           fixed(*base_rms) + ", combined budget " + fixed(combined_held_out) + ")";
+  if (!(*gap > kGapBudgets)) {
+    v.reason = size + ": within their budgets, no gap to explain";
+  } else if (v.candidate >= 0) {
+    const CandidateResult& c = candidates[v.candidate];
+    v.reason = c.candidate.effect + " closes G = " + fixed(*c.g_confirmed, 2) +
+               " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
+               fixed(c.confirmed_rms.held_out.value_or(0)) + "); the base model's held-out " +
+               "residuals are " + fixed(*gap, 2) + " budgets (combined budget " +
+               fixed(combined_held_out) + ")";
+  } else if (contenders.empty()) {
+    v.reason = size +
+               ": a gap, but no candidate effect is both identifiable from these observations and "
+               "able to fit the calibration observations";
+  } else {
+    const CandidateResult& c = candidates[contenders.front().index];
+    v.reason = size + ": a gap, but the best effect, " + c.candidate.effect +
+               ", closes only G = " + fixed(*c.g_confirmed, 2) + " of it (< " +
+               fixed(kMinGapClosure, 1) + "): none of the candidates explains the gap";
+  }
+  return v;
+}
+
+namespace {
+
+// Equal element by element, a missing value (NaN) equal only to another missing one.
+bool same_values(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] != b[i] && !(std::isnan(a[i]) && std::isnan(b[i]))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
+                                   const std::vector<Target>& targets,
+                                   const std::vector<std::uint64_t>& seeds,
+                                   const std::vector<double>& budget) {
+  std::vector<SeedCheck> out;
+  const std::vector<double> lab = ln_lab(targets);
+  for (std::size_t j = 0; j < seeds.size(); ++j) {
+    if (candidates[0].seed_ln.size() <= j) break;
+    SeedCheck check;
+    check.seed = seeds[j];
+    check.informative = false;
+    for (const CandidateResult& c : candidates) {
+      if (c.seed_ln.size() > j && !same_values(c.seed_ln[j], c.confirmed_ln)) {
+        check.informative = true;
+      }
+    }
+    const std::vector<double> base_residuals = residuals(candidates[0].seed_ln[j], lab);
+    const auto base_rms = rms(base_residuals, targets, Role::held_out);
+    std::vector<Contender> contenders;
+    for (int i = 1; i < int(candidates.size()); ++i) {
+      const CandidateResult& c = candidates[i];
+      if (!eligible(c) || c.seed_ln.size() <= j) continue;
+      const auto g =
+          gap_closure(rms(residuals(c.seed_ln[j], lab), targets, Role::held_out), base_rms);
+      if (!g) continue;
+      check.gap_closure[c.candidate.effect] = *g;
+      contenders.push_back({i, *g});
+    }
+    const int chosen =
+        choose_effect(rms_in_budgets(base_residuals, targets, budget, Role::held_out), contenders);
+    check.verdict = chosen < 0 ? "" : candidates[chosen].candidate.effect;
+    out.push_back(std::move(check));
+  }
+  return out;
+}
+
+std::string confidence_level(const Confidence& c) {
+  const int seeds = c.seeds_informative;
+  if (c.agreement >= 0.9 && c.seeds_agreeing == seeds) return "high";
+  if (c.agreement >= 0.7 && 2 * c.seeds_agreeing > seeds) return "medium";
+  if (c.agreement >= 0.7 && seeds == 0) return "medium";
+  return "low";
+}
+
+}  // namespace rockcal::diagnosis

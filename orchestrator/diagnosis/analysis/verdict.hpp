@@ -1,0 +1,91 @@
+// Ranking, the verdict rule and its replay under replicate packing seeds.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "orchestrator/diagnosis/analysis/candidate_result.hpp"
+#include "orchestrator/diagnosis/analysis/observations.hpp"
+
+namespace rockcal::diagnosis {
+
+// The verdict under one replicate packing seed: base and confirmed candidates re-run at their
+// fitted points on that packing.
+struct SeedCheck {
+  std::uint64_t seed = 0;
+  std::string verdict;  // effect name, or "" for no effect needed
+  std::map<std::string, double> gap_closure;
+  // False when every re-run equals its nominal run: a regular packing with no seeded effect does
+  // not depend on the seed, and the check then repeats the verdict instead of testing it.
+  bool informative = true;
+};
+
+struct Confidence {
+  int replicates = 0;                  // bootstrap replicates
+  double agreement = 0.0;              // share of them with the nominal verdict
+  std::map<std::string, int> winners;  // verdict ("" = none) -> replicates
+  std::vector<SeedCheck> seeds;
+  int seeds_informative = 0;  // of `seeds`; only these count
+  int seeds_agreeing = 0;     // informative seeds that reach the nominal verdict
+  std::string level;          // high | medium | low
+};
+
+struct Verdict {
+  int candidate = -1;  // index into candidates; -1 = no effect needed
+  int runner_up = -1;
+  std::string reason;
+};
+
+inline constexpr double kMinGapClosure = 0.3;  // docs/diagnosis.md: verdict rule
+
+struct Contender {
+  int index;  // into the candidates
+  double g;
+};
+
+// docs/diagnosis.md: the contender with the largest G if the base's held-out residuals exceed their
+// budgets (rms_in_budgets > kGapBudgets) and that G >= 0.3; otherwise -1 ("no effect needed").
+// Ties keep the earlier.
+inline constexpr double kGapBudgets = 1.0;
+int choose_effect(std::optional<double> base_held_out_budgets,
+                  const std::vector<Contender>& contenders);
+
+// A candidate explains the data only if it fits the calibration observations: its calibration rms
+// (real runs if confirmed, else surfaces) must lie within the combined calibration budget of the
+// best candidate's, or within kCalibrationFitBudgets of those budgets. Held-out data rank the
+// candidates; this only keeps out those whose good held-out prediction comes with calibration
+// residuals many noise levels wide. Generous on purpose: one odd calibration value (a lab
+// modulus off by 15%) leaves the right effect at about 3 budgets, and it must stay eligible.
+inline constexpr double kCalibrationFitBudgets = 4.0;
+void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration);
+
+// Ranks the effects (candidates[1..]) and sets their `rank` (1 = best): confirmed identifiable
+// ones by their confirmed G, then the other identifiable ones by surface G, then identifiable ones
+// that do not fit the calibration observations, then the non-identifiable ones, then those that
+// could not be fitted. Returns the indices in rank order.
+std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
+
+// The verdict over the confirmed identifiable effects (real runs only) and the runner-up (the
+// best-ranked effect that is not the verdict), with a sentence saying why. `gap` is the base's
+// held-out residuals in budgets (rms_in_budgets of its real runs); the combined budget is quoted.
+Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
+               std::optional<double> gap, double combined_held_out);
+
+// The verdict rule replayed on each replicate seed's runs of the base and confirmed effects; a
+// seed is informative when some candidate's runs on it differ from its nominal runs.
+std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
+                                   const std::vector<Target>& targets,
+                                   const std::vector<std::uint64_t>& seeds,
+                                   const std::vector<double>& budget);
+
+// high: >= 90% of bootstrap replicates and every informative seed agree; medium: >= 70% and
+// most informative seeds; low otherwise.
+std::string confidence_level(const Confidence& c);
+
+// "heterogeneity", or "no effect needed".
+std::string verdict_label(const std::vector<CandidateResult>& candidates, int index);
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,55 @@
+// A campaign of kind "diagnosis": the lab dataset, the model template, the candidate effects, and
+// how finely to look (bounds, grid, budget, confirmation, bootstrap).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "orchestrator/calibration/campaign.hpp"
+#include "orchestrator/diagnosis/analysis/budget.hpp"
+#include "orchestrator/diagnosis/analysis/candidate.hpp"
+#include "orchestrator/diagnosis/analysis/observations.hpp"
+#include "orchestrator/diagnosis/dataset/dataset.hpp"
+
+namespace rockcal::diagnosis {
+
+// Grid of the response surfaces: values of ln F_r0 and ln F_s0 spread evenly over the bounds
+// (ends included), and of s over [0, 1] per effect. Three per axis is the least a quadratic needs.
+struct GridSpec {
+  int fr0 = 4;
+  int fs0 = 4;
+  int s = 3;
+};
+
+struct DiagnosisCampaign {
+  std::string name;
+  nlohmann::json job_template;        // the "job" block: no test, bond or effects
+  std::uint64_t sample_seed = 1;      // the template's packing seed
+  Dataset dataset;                    // as given
+  std::vector<Target> targets;        // the dataset in model units, in dataset order
+  std::vector<Candidate> candidates;  // effects only, in request order (the base is implied)
+  calibration::Range fr0_n{16, 256};
+  calibration::Range fs0_n{16, 256};
+  GridSpec grid;
+  BudgetSpec budget;
+  int confirm = 2;                // top candidates confirmed by real runs (besides the base)
+  int refine = 2;                 // re-fits of each confirmed candidate on run-corrected surfaces
+  int bootstrap = 200;            // replicates of the lab and numerical noise for the confidence
+  std::uint64_t random_seed = 1;  // the bootstrap's draws
+};
+
+// Parses and validates the whole request: the dataset (through the dataset parser), the template
+// (through the engine's validation, for every test the dataset needs, with every candidate effect
+// switched on at its strong end), the effect names against the registry. Throws
+// orch::RequestError naming the first offending field ("dataset.observations[2].value",
+// "effects[1]", "grid.s").
+DiagnosisCampaign parse_diagnosis_campaign(const nlohmann::json& request);
+
+// Every effect the engine registers, in registration order, as candidates; a parameter's neutral
+// value may depend on the job (post_break_friction: its contact.friction), hence `model`.
+std::vector<Candidate> registry_candidates(const JobSpec& model);
+
+}  // namespace rockcal::diagnosis

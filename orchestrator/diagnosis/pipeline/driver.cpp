@@ -1,0 +1,349 @@
+#include "orchestrator/diagnosis/pipeline/driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "orchestrator/diagnosis/analysis/bootstrap.hpp"
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/identifiability.hpp"
+#include "orchestrator/diagnosis/analysis/ratio.hpp"
+#include "orchestrator/diagnosis/analysis/trust_region.hpp"
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+
+void phase(const DiagnosisOptions& o, const std::string& name, int step, int runs) {
+  if (o.stop.stop_requested()) throw DiagnosisCancelled();
+  if (o.on_progress) o.on_progress({{"phase", name}, {"step", step}, {"steps", 4}, {"runs", runs}});
+}
+
+bool has_weight(const Objective& o) {
+  return std::any_of(o.weight.begin(), o.weight.end(), [](double w) { return w > 0; });
+}
+
+std::string first_error(const Samples& s) {
+  for (const RunOutcome& o : s.outcomes) {
+    if (!o.error.empty()) return o.error;
+  }
+  return "";
+}
+
+// The calibration of one candidate on its surfaces, and what it predicts.
+void fit_candidate(CandidateResult& r, const DiagnosisCampaign& c, const std::vector<double>& lab,
+                   const std::vector<double>& budget, const CandidateResult& base) {
+  const Objective objective = calibration_objective(c.targets, budget, r.surfaces, lab);
+  if (!has_weight(objective)) {
+    r.error = "no calibration observation has a response surface (too many failed runs)";
+    return;
+  }
+  r.calibration = calibrate_on_surfaces(r.surfaces, objective, lattice_starts(r.surfaces.dims, 3));
+  r.point = model_point(c, r.candidate, r.calibration.z);
+  if (!r.candidate.is_base()) {
+    r.value = r.candidate.value_at ? r.candidate.value_at(r.point.s) : r.point.s;
+  }
+  r.predicted = predict(r.surfaces, r.calibration.z);
+  const std::vector<double> res = residuals(r.predicted, lab);
+  r.surface_rms = {rms(res, c.targets, Role::calibration), rms(res, c.targets, Role::held_out)};
+  r.fitted = true;
+  if (!r.candidate.is_base()) {
+    r.identifiability = identifiability(r.surfaces, objective, c.targets, budget, 11,
+                                        r.candidate.shares_base_grid() ? nullptr : &base.predicted);
+  }
+}
+
+// Base first, then up to `confirm` identifiable effects that fit the calibration observations, by
+// surface G.
+std::vector<int> to_confirm(const std::vector<CandidateResult>& candidates, int confirm) {
+  std::vector<int> effects;
+  for (int i = 1; i < int(candidates.size()); ++i) {
+    const CandidateResult& r = candidates[i];
+    if (r.fitted && r.identifiability->identifiable && r.fits_calibration && r.g_surface) {
+      effects.push_back(i);
+    }
+  }
+  std::stable_sort(effects.begin(), effects.end(), [&](int a, int b) {
+    return *candidates[a].g_surface > *candidates[b].g_surface;
+  });
+  if (int(effects.size()) > confirm) effects.resize(confirm);
+  effects.insert(effects.begin(), 0);
+  return effects;
+}
+
+// The real calibration misfit of a run; infinite when a calibration observation has no value (a
+// failed run must not look like a good fit).
+double real_misfit(const Objective& objective, const std::vector<double>& ln_sim) {
+  for (std::size_t i = 0; i < ln_sim.size(); ++i) {
+    if (objective.weight[i] > 0 && !std::isfinite(ln_sim[i])) {
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+  return misfit(objective, ln_sim);
+}
+
+std::vector<double> offset_of(const std::vector<double>& real, const std::vector<double>& surface) {
+  std::vector<double> out(real.size(), 0.0);
+  for (std::size_t i = 0; i < real.size(); ++i) {
+    if (std::isfinite(real[i]) && std::isfinite(surface[i])) out[i] = real[i] - surface[i];
+  }
+  return out;
+}
+
+// A surface misses a run by its interpolation error (the leave-one-out rms: 0.1-0.3 in ln on a
+// coarse grid), far more than lab noise, so a fit on the surfaces alone lands off the real optimum
+// and the real residuals there mix fit error into the gap. Each chosen candidate is therefore run
+// at its surface fit, its surfaces are shifted to pass through that run, re-fitted, and run again
+// (`refine` times, or until the fit stops moving); the run with the smallest real calibration
+// misfit is the candidate's confirmed point. Then the replicate seeds run there.
+void confirm_candidates(std::vector<CandidateResult>& candidates, const DiagnosisCampaign& c,
+                        const std::vector<int>& chosen, Evaluator& evaluator,
+                        const std::vector<double>& lab, const std::vector<double>& budget) {
+  const Numerics nominal{c.sample_seed, 1.0, 1.0};
+  constexpr double kSettled = 0.01;  // unit-cube step below which a re-fit counts as settled
+  constexpr double kMaxStep = 0.25;  // first trust radius: the longest unit-cube step of a re-fit
+  struct State {
+    std::vector<double> z;  // the next trial
+    bool active = true;
+    TrustRegion trust{kMaxStep};
+  };
+  std::vector<State> state(chosen.size());
+  for (std::size_t j = 0; j < chosen.size(); ++j) state[j].z = candidates[chosen[j]].calibration.z;
+  for (int step = 0; step <= c.refine; ++step) {
+    std::vector<RunRequest> requests;
+    std::vector<std::size_t> who;
+    for (std::size_t j = 0; j < chosen.size(); ++j) {
+      if (!state[j].active) continue;
+      requests.push_back({model_point(c, candidates[chosen[j]].candidate, state[j].z), nominal});
+      who.push_back(j);
+    }
+    if (requests.empty()) break;
+    const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
+    for (std::size_t k = 0; k < who.size(); ++k) {
+      State& st = state[who[k]];
+      CandidateResult& r = candidates[chosen[who[k]]];
+      const Objective objective = calibration_objective(c.targets, budget, r.surfaces, lab);
+      const std::vector<double> ln = ln_values(outcomes[k]);
+      const double m = real_misfit(objective, ln);
+      r.refinement.push_back({requests[k].point, m});
+      // A worse run shortens the next step (without it the D = 8 null twins' base fits bounced
+      // between two points a step apart, F_r0 32 and 64, never nearing the truth between them).
+      st.trust.record(st.z, m, ln);
+      if (step == c.refine) {
+        st.active = false;
+        continue;
+      }
+      // The next step starts from the best run, on the surfaces shifted through it (after a worse
+      // run: the same direction, half as far). The shift is exact only at the run, so a long step
+      // trusts the surface's shape far away, which on a coarse grid is what failed first.
+      const TrustRegion& t = st.trust;
+      const SurfaceCalibration fit = refit_near(
+          r.surfaces, objective, t.best_z, offset_of(t.best_ln, predict(r.surfaces, t.best_z)));
+      const auto z = st.trust.next(fit.z, kSettled);
+      if (z) {
+        st.z = *z;
+      } else {
+        st.active = false;
+      }
+    }
+  }
+
+  std::vector<RunRequest> seed_requests;
+  for (std::size_t j = 0; j < chosen.size(); ++j) {
+    CandidateResult& r = candidates[chosen[j]];
+    const TrustRegion& st = state[j].trust;
+    r.calibration.z = st.best_z;
+    r.point = model_point(c, r.candidate, st.best_z);
+    if (!r.candidate.is_base()) {
+      r.value = r.candidate.value_at ? r.candidate.value_at(r.point.s) : r.point.s;
+    }
+    r.predicted = predict(r.surfaces, st.best_z);
+    const std::vector<double> predicted_res = residuals(r.predicted, lab);
+    r.surface_rms = {rms(predicted_res, c.targets, Role::calibration),
+                     rms(predicted_res, c.targets, Role::held_out)};
+    r.surface_offset = offset_of(st.best_ln, r.predicted);
+    r.confirmed = true;
+    r.confirmed_ln = st.best_ln;
+    const std::vector<double> res = residuals(r.confirmed_ln, lab);
+    r.confirmed_rms = {rms(res, c.targets, Role::calibration), rms(res, c.targets, Role::held_out)};
+    for (std::uint64_t seed : c.budget.seeds) seed_requests.push_back({r.point, {seed, 1.0, 1.0}});
+  }
+  const std::vector<RunOutcome> outcomes = evaluator.run_batch(seed_requests);
+  std::size_t k = 0;
+  for (int i : chosen) {
+    for (std::size_t s = 0; s < c.budget.seeds.size(); ++s) {
+      candidates[i].seed_ln.push_back(ln_values(outcomes[k++]));
+    }
+  }
+  for (int i : chosen) {
+    candidates[i].g_confirmed =
+        gap_closure(candidates[i].confirmed_rms.held_out, candidates[0].confirmed_rms.held_out);
+  }
+  candidates[0].g_confirmed.reset();
+}
+
+// Every variant at the base fit and its neighbours (budget_points), one batch.
+Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
+                      const std::vector<double>& z, Evaluator& evaluator) {
+  std::vector<BudgetVariant> variants = budget_variants(c.budget, c.sample_seed, c.dataset.origin);
+  std::vector<RunRequest> requests;
+  for (const std::vector<double>& at : budget_points(z, c.budget.points)) {
+    const ModelPoint point = model_point(c, base.candidate, at);
+    requests.push_back({point, {c.sample_seed, 1.0, 1.0}});
+    for (const BudgetVariant& v : variants) requests.push_back({point, v.numerics});
+  }
+  const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
+  const std::size_t per_point = 1 + variants.size();
+  std::vector<RunOutcome> references;
+  std::vector<std::vector<RunOutcome>> changed;
+  for (std::size_t k = 0; k < outcomes.size(); k += per_point) {
+    references.push_back(outcomes[k]);
+    changed.emplace_back(outcomes.begin() + k + 1, outcomes.begin() + k + per_point);
+  }
+  return numerical_budget(std::move(variants), references, changed);
+}
+
+// Values the grids left missing, and the first reason. The samples of every effect that shares the
+// base grid end with it: those are counted once.
+void count_failures(DiagnosisResult& report, const DiagnosisCampaign& c,
+                    const std::vector<Samples>& samples) {
+  const std::size_t base_runs = samples[0].outcomes.size();
+  report.base_grid_failures.assign(
+      samples[0].outcomes.empty() ? 0 : samples[0].outcomes[0].values.size(), 0);
+  for (const RunOutcome& o : samples[0].outcomes) {
+    for (std::size_t i = 0; i < o.values.size(); ++i) report.base_grid_failures[i] += !o.values[i];
+  }
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const bool shared = k > 0 && c.candidates[k - 1].shares_base_grid();
+    const std::size_t own = samples[k].outcomes.size() - (shared ? base_runs : 0);
+    for (std::size_t r = 0; r < own; ++r) {
+      const RunOutcome& o = samples[k].outcomes[r];
+      report.failed_values += int(std::count(o.values.begin(), o.values.end(), std::nullopt));
+      if (report.first_error.empty()) report.first_error = o.error;
+    }
+  }
+}
+
+}  // namespace
+
+DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
+                              const DiagnosisOptions& options) {
+  const std::size_t n = c.targets.size();
+  const std::vector<double> lab = ln_lab(c.targets);
+  DiagnosisResult report;
+
+  // 1. Every grid, one batch.
+  phase(options, "grid", 1, grid_points(c));
+  const std::vector<Samples> samples = run_grids(c, evaluator);
+  report.candidates.resize(1 + c.candidates.size());
+  for (std::size_t k = 0; k < report.candidates.size(); ++k) {
+    CandidateResult& r = report.candidates[k];
+    if (k > 0) r.candidate = c.candidates[k - 1];
+    r.surfaces = fit_surfaces(samples[k], r.candidate.dims(), n);
+  }
+  report.model_points = grid_points(c);
+
+  // 2. The budget, at the base model's fit with lab uncertainties alone (the budget is not known
+  // yet); later fits weight each residual by lab uncertainty and budget together.
+  const std::vector<double> no_budget(n, 0.0);
+  const Objective first =
+      calibration_objective(c.targets, no_budget, report.candidates[0].surfaces, lab);
+  if (!has_weight(first)) {
+    throw std::runtime_error(
+        "the base model has no response surface for any calibration "
+        "observation: its grid runs failed (" +
+        first_error(samples[0]) + ")");
+  }
+  const SurfaceCalibration base_first =
+      calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
+  report.weight_budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
+  const int runs_per_point = int(budget_runs_per_point(c.budget, c.dataset.origin));
+  phase(options, "budget", 2, int(budget_offsets(c.budget.points).size()) * runs_per_point);
+  report.weight_budget = measure_budget(c, report.candidates[0], base_first.z, evaluator);
+  report.model_points += report.weight_budget.points * runs_per_point;
+  const std::vector<double>& budget = report.weight_budget.per_target;
+  report.combined_calibration = combined_budget(c.targets, budget, Role::calibration);
+
+  // 3. Every candidate calibrated on its surfaces; held-out predicted; identifiability.
+  for (CandidateResult& r : report.candidates)
+    fit_candidate(r, c, lab, budget, report.candidates[0]);
+  if (!report.candidates[0].fitted) throw std::runtime_error(report.candidates[0].error);
+  for (std::size_t k = 1; k < report.candidates.size(); ++k) {
+    CandidateResult& r = report.candidates[k];
+    if (r.fitted) {
+      r.g_surface = gap_closure(r.surface_rms.held_out, report.candidates[0].surface_rms.held_out);
+    }
+  }
+
+  // 4. The base and the best candidates by real runs, with the replicate seeds.
+  mark_calibration_fits(report.candidates, report.combined_calibration);
+  const std::vector<int> chosen = to_confirm(report.candidates, c.confirm);
+  phase(options, "confirm", 3,
+        int(chosen.size() * (1 + c.refine + c.budget.seeds.size())) +
+            int(budget_offsets(c.budget.points).size()) * runs_per_point);
+  confirm_candidates(report.candidates, c, chosen, evaluator, lab, budget);
+  for (int i : chosen) {
+    report.model_points += int(report.candidates[i].refinement.size() + c.budget.seeds.size());
+  }
+  // The budget of the model the residuals come from: re-measured at the confirmed base fit unless
+  // that kept the first fit's points (on the demo twins the fit moved up to x7 along F_r0).
+  const std::vector<double>& base_z = report.candidates[0].calibration.z;
+  report.budget = report.weight_budget;
+  report.budget_point = report.weight_budget_point;
+  if (budget_points(base_z, c.budget.points) != budget_points(base_first.z, c.budget.points)) {
+    report.budget = measure_budget(c, report.candidates[0], base_z, evaluator);
+    report.budget_point = report.candidates[0].point;
+    report.model_points += report.budget.points * runs_per_point;
+  }
+  const std::vector<double>& judged = report.budget.per_target;
+  report.combined_calibration = combined_budget(c.targets, judged, Role::calibration);
+  report.combined_held_out = combined_budget(c.targets, judged, Role::held_out);
+
+  // 5. G, ranking, verdict, confidence.
+  phase(options, "analysis", 4, 0);
+  mark_calibration_fits(report.candidates, report.combined_calibration);
+  const std::vector<int> order = rank_effects(report.candidates);
+  report.held_out_budgets = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
+                                           c.targets, judged, Role::held_out);
+  report.verdict =
+      decide(report.candidates, order, report.held_out_budgets, report.combined_held_out);
+  Confidence& conf = report.confidence;
+  conf.seeds = seed_checks(report.candidates, c.targets, c.budget.seeds, judged);
+  const std::string verdict = report.verdict.candidate < 0
+                                  ? ""
+                                  : report.candidates[report.verdict.candidate].candidate.effect;
+  for (const SeedCheck& s : conf.seeds) {
+    conf.seeds_informative += s.informative;
+    conf.seeds_agreeing += s.informative && s.verdict == verdict;
+  }
+  const BootstrapResult boot =
+      bootstrap_verdicts(report.candidates, c.targets, budget, judged, c.bootstrap, c.random_seed);
+  conf.replicates = boot.replicates;
+  conf.winners = boot.winners;
+  if (boot.replicates > 0) {
+    const auto it = boot.winners.find(verdict);
+    conf.agreement = it == boot.winners.end() ? 0.0 : double(it->second) / boot.replicates;
+  } else {
+    conf.agreement = 1.0;
+  }
+  conf.level = confidence_level(conf);
+  report.ratio = ratio_range(c.targets, samples[0].outcomes);
+  count_failures(report, c, samples);
+  if (count_role(c.targets, Role::held_out) == 0) {
+    report.verdict.reason =
+        "no held-out observations: the gap is located (calibration residuals, UCT/BTT ratio "
+        "range) but no effect can be judged";
+    return report;
+  }
+  // Without held-out residuals there is nothing to judge; say what stopped the runs.
+  if (!report.candidates[0].confirmed_rms.held_out && !report.first_error.empty()) {
+    report.verdict.reason += " (first failure: " + report.first_error + ")";
+  }
+  return report;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,94 @@
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
+
+#include <cmath>
+
+namespace rockcal::diagnosis {
+
+std::vector<double> grid_axis(int n) {
+  std::vector<double> out;
+  for (int k = 0; k < n; ++k) out.push_back(n == 1 ? 0.5 : double(k) / double(n - 1));
+  return out;
+}
+
+ModelPoint model_point(const DiagnosisCampaign& c, const Candidate& candidate,
+                       std::span<const double> z) {
+  auto along = [](const calibration::Range& r, double u) {
+    return std::exp(std::log(r.lo) + u * (std::log(r.hi) - std::log(r.lo)));
+  };
+  ModelPoint p{along(c.fr0_n, z[0]), along(c.fs0_n, z[1]), candidate.effect, 0.0};
+  if (!candidate.is_base() && z.size() > 2) p.s = candidate.s_at(z[2]);
+  return p;
+}
+
+int grid_levels(const Candidate& candidate, int s_values) {
+  return candidate.shares_base_grid() ? s_values - 1 : s_values;
+}
+
+int grid_points(const DiagnosisCampaign& c) {
+  int levels = 1;
+  for (const Candidate& k : c.candidates) levels += grid_levels(k, c.grid.s);
+  return c.grid.fr0 * c.grid.fs0 * levels;
+}
+
+std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator) {
+  const Candidate base;
+  const Numerics numerics{c.sample_seed, 1.0, 1.0};
+  std::vector<Samples> samples(1 + c.candidates.size());
+  std::vector<RunRequest> requests;
+  std::vector<std::size_t> owner;  // which candidate's samples each request feeds
+  for (double x : grid_axis(c.grid.fr0)) {
+    for (double y : grid_axis(c.grid.fs0)) {
+      samples[0].z.push_back({x, y});
+      requests.push_back({model_point(c, base, std::vector<double>{x, y}), numerics});
+      owner.push_back(0);
+    }
+  }
+  const std::size_t base_runs = requests.size();
+  for (std::size_t k = 0; k < c.candidates.size(); ++k) {
+    const Candidate& candidate = c.candidates[k];
+    for (double s : grid_axis(c.grid.s)) {
+      if (candidate.shares_base_grid() && s <= kEffectOffBelow) continue;  // the base grid
+      for (double x : grid_axis(c.grid.fr0)) {
+        for (double y : grid_axis(c.grid.fs0)) {
+          samples[k + 1].z.push_back({x, y, s});
+          requests.push_back(
+              {model_point(c, c.candidates[k], std::vector<double>{x, y, s}), numerics});
+          owner.push_back(k + 1);
+        }
+      }
+    }
+  }
+  const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
+  for (std::size_t r = 0; r < outcomes.size(); ++r)
+    samples[owner[r]].outcomes.push_back(outcomes[r]);
+  // The s = 0 slice of every effect continuous at neutral is the base grid.
+  for (std::size_t k = 1; k < samples.size(); ++k) {
+    if (!c.candidates[k - 1].shares_base_grid()) continue;
+    for (std::size_t r = 0; r < base_runs; ++r) {
+      std::vector<double> z = samples[0].z[r];
+      z.push_back(0.0);
+      samples[k].z.push_back(std::move(z));
+      samples[k].outcomes.push_back(outcomes[r]);
+    }
+  }
+  return samples;
+}
+
+SurfaceSet fit_surfaces(const Samples& samples, int dims, std::size_t targets) {
+  SurfaceSet set;
+  set.dims = dims;
+  for (std::size_t i = 0; i < targets; ++i) {
+    std::vector<std::vector<double>> z;
+    std::vector<double> y;
+    for (std::size_t r = 0; r < samples.outcomes.size(); ++r) {
+      const auto& v = samples.outcomes[r].values[i];
+      if (!v) continue;
+      z.push_back(samples.z[r]);
+      y.push_back(std::log(*v));
+    }
+    set.per_target.push_back(fit_surface(z, y));
+  }
+  return set;
+}
+
+}  // namespace rockcal::diagnosis

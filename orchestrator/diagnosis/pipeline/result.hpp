@@ -1,0 +1,42 @@
+// What a diagnosis found, as the pipeline hands it on: the budget, every candidate's fits, the
+// verdict and its confidence. The report (report/) renders it; the campaign kind stores it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "orchestrator/diagnosis/analysis/budget.hpp"
+#include "orchestrator/diagnosis/analysis/candidate_result.hpp"
+#include "orchestrator/diagnosis/analysis/evaluator.hpp"
+#include "orchestrator/diagnosis/analysis/ratio.hpp"
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
+
+namespace rockcal::diagnosis {
+
+struct DiagnosisResult {
+  // The budget the residuals are judged against (gap test, calibration-fit rule after the
+  // confirmations, seed checks, bootstrap), measured at the base model's confirmed fit (the model
+  // whose residuals they are; on a demo twin the budget doubled between the two fits).
+  Budget budget;
+  ModelPoint budget_point;
+  // The first budget, at the base model's fit on lab uncertainties alone: the calibrations'
+  // weights. The same as `budget` when the confirmed fit kept the first fit's budget points.
+  Budget weight_budget;
+  ModelPoint weight_budget_point;
+  double combined_calibration = 0.0;
+  double combined_held_out = 0.0;
+  // The base model's held-out residuals (real runs) in budgets: rms_in_budgets, what the verdict
+  // calls a gap above kGapBudgets.
+  std::optional<double> held_out_budgets;
+  std::vector<CandidateResult> candidates;  // [0] = the base, then the effects in request order
+  std::optional<LabRatio> ratio;
+  Verdict verdict;
+  Confidence confidence;
+  int model_points = 0;  // distinct model points run (each = one job per distinct condition)
+  int failed_values = 0;
+  std::string first_error;              // of the first run that left a value missing
+  std::vector<int> base_grid_failures;  // per target: base grid runs without a value
+};
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,286 @@
+// to_json of the diagnosis report. JSON has no NaN: quantities that do not exist are null.
+#include <cmath>
+
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
+#include "orchestrator/diagnosis/report/report.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+
+json num(double x) {
+  return std::isfinite(x) ? json(x) : json(nullptr);
+}
+json num(const std::optional<double>& x) {
+  return x ? num(*x) : json(nullptr);
+}
+
+json rms_json(const RmsByRole& r) {
+  return {{"calibration", num(r.calibration)}, {"held_out", num(r.held_out)}};
+}
+
+// Per target, keyed by id: easy to read and to plot.
+json by_target(const std::vector<Target>& targets, const std::vector<double>& values) {
+  json out = json::object();
+  for (std::size_t i = 0; i < targets.size() && i < values.size(); ++i) {
+    out[targets[i].id] = num(values[i]);
+  }
+  return out;
+}
+
+json conditions_json(const RunConditions& c) {
+  json j = {{"diameter", c.diameter_m}, {"platen_velocity", c.platen_velocity_m_s}};
+  if (c.test == TestKind::btt) {
+    j["thickness"] = c.thickness_m;
+  } else {
+    j["height"] = c.height_m;
+  }
+  if (is_triaxial(c.test)) j["confining_pressure"] = c.confining_pressure_pa;
+  return j;
+}
+
+json parameter_json(const CandidateResult& c) {
+  if (c.candidate.is_base()) return nullptr;
+  return {{"name", c.candidate.param},
+          {"unit", c.candidate.unit},
+          {"value", num(c.value)},
+          {"s", c.point.s}};
+}
+
+// The fitted coordinates that sit on the search box ("fr0 lower", "s upper"): there the fit is the
+// bound, not an optimum, and the data may want strengths the bounds exclude.
+json on_bounds(const std::vector<double>& z) {
+  constexpr double kOnBound = 1e-3;  // of the unit cube: 0.3% of F on the default log box
+  static const char* const names[] = {"fr0", "fs0", "s"};
+  json out = json::array();
+  for (std::size_t d = 0; d < z.size() && d < 3; ++d) {
+    if (z[d] <= kOnBound) out.push_back(std::string(names[d]) + " lower");
+    if (z[d] >= 1.0 - kOnBound) out.push_back(std::string(names[d]) + " upper");
+  }
+  return out;
+}
+
+json candidate_json(const CandidateResult& c, const std::vector<Target>& targets,
+                    const std::vector<double>& lab) {
+  json j = {{"effect", c.candidate.is_base() ? json(nullptr) : json(c.candidate.effect)},
+            {"rank", c.rank},
+            {"fitted", c.fitted},
+            {"confirmed", c.confirmed}};
+  if (!c.error.empty()) j["error"] = c.error;
+  std::vector<double> fit_rms;
+  for (const auto& s : c.surfaces.per_target) fit_rms.push_back(s ? s->rms : NAN);
+  j["surface_loo_rms"] = by_target(targets, fit_rms);
+  if (!c.fitted) return j;
+  j["parameter"] = parameter_json(c);
+  j["fit"] = {{"fr0", c.point.fr0_n},
+              {"fs0", c.point.fs0_n},
+              {"misfit", num(c.calibration.misfit)},
+              {"evaluations", c.calibration.evaluations},
+              {"on_bounds", on_bounds(c.calibration.z)}};
+  j["rms"] = {{"surface", rms_json(c.surface_rms)},
+              {"confirmed", c.confirmed ? rms_json(c.confirmed_rms) : json(nullptr)}};
+  j["predicted_residuals"] = by_target(targets, residuals(c.predicted, lab));
+  if (c.confirmed) j["residuals"] = by_target(targets, residuals(c.confirmed_ln, lab));
+  if (!c.candidate.is_base()) {
+    j["gap_closure"] = {{"surface", num(c.g_surface)},
+                        {"confirmed", num(c.g_confirmed)},
+                        {"value", num(c.g())},
+                        {"basis", c.confirmed ? "confirmed" : "surface"}};
+    const Identifiability& id = *c.identifiability;
+    json moved = json::array();
+    for (std::size_t i : id.moved) moved.push_back(targets[i].id);
+    j["identifiable"] = id.identifiable;
+    j["fits_calibration"] = c.fits_calibration;
+    j["moves"] = moved;
+    j["max_change"] = by_target(targets, id.max_change);
+  }
+  if (c.confirmed) {
+    json steps = json::array();
+    for (const RefineStep& step : c.refinement) {
+      json p = {{"fr0", step.point.fr0_n}, {"fs0", step.point.fs0_n}, {"misfit", num(step.misfit)}};
+      if (!c.candidate.is_base()) {
+        p["value"] = num(c.candidate.value_at ? c.candidate.value_at(step.point.s) : step.point.s);
+      }
+      steps.push_back(std::move(p));
+    }
+    j["refinement"] = std::move(steps);
+  }
+  // The winning start's best misfit after each evaluation: the calibration history.
+  j["history"] = c.calibration.history;
+  return j;
+}
+
+json observation_json(std::size_t i, const DiagnosisResult& r, const std::vector<Target>& targets,
+                      const std::vector<double>& lab) {
+  const Target& t = targets[i];
+  const double budget = r.budget.per_target[i];
+  json j = {{"id", t.id},
+            {"test", to_string(t.conditions.test)},
+            {"observable", to_string(t.observable)},
+            {"role", to_string(t.role)},
+            {"conditions", conditions_json(t.conditions)},
+            {"lab", t.value},
+            {"lab_uncertainty", t.sigma},
+            {"budget", budget},
+            {"budget_measured", bool(r.budget.measured[i])},
+            {"base_grid_failures", i < r.base_grid_failures.size() ? r.base_grid_failures[i] : 0}};
+  auto sim = [&](const CandidateResult& c) {
+    const double res = c.ln_sim()[i] - lab[i];
+    return json{{"sim", num(std::exp(c.ln_sim()[i]))},
+                {"residual", num(res)},
+                // A residual beyond budget + lab uncertainty is a gap, not noise.
+                {"significant", std::isfinite(res) && std::abs(res) > budget + t.sigma}};
+  };
+  j["base"] = sim(r.candidates[0]);
+  j["verdict"] = r.verdict.candidate >= 0 ? sim(r.candidates[r.verdict.candidate]) : json(nullptr);
+  return j;
+}
+
+json confidence_json(const Confidence& c) {
+  json winners = json::object();
+  for (const auto& [name, n] : c.winners) winners[name.empty() ? "no effect needed" : name] = n;
+  json seeds = json::array();
+  for (const SeedCheck& s : c.seeds) {
+    seeds.push_back({{"seed", s.seed},
+                     {"verdict", s.verdict.empty() ? "no effect needed" : s.verdict},
+                     {"gap_closure", s.gap_closure},
+                     {"informative", s.informative}});
+  }
+  return {{"level", c.level},
+          {"bootstrap",
+           {{"replicates", c.replicates},
+            {"agreement", c.replicates > 0 ? json(c.agreement) : json(nullptr)},
+            {"winners", winners}}},
+          {"seeds", seeds},
+          {"seeds_informative", c.seeds_informative},
+          {"seeds_identical", int(c.seeds.size()) - c.seeds_informative},
+          {"seeds_agreeing", c.seeds_agreeing},
+          {"method",
+           "bootstrap: each replicate redraws every lab value with its lab uncertainty and "
+           "numerical budget, re-fits every candidate on its surfaces (anchored to its real runs) "
+           "and replays the verdict rule; seeds: the base and confirmed effects re-run at their "
+           "fitted points on each replicate packing seed, verdict rule replayed; a seed whose runs "
+           "all equal the nominal ones (a regular packing with no seeded effect) tests nothing "
+           "and is not counted. high: >= 90% of replicates and every counted seed agree; medium: "
+           ">= 70% and most counted seeds; low otherwise"}};
+}
+
+json verdict_json(const DiagnosisResult& r) {
+  const CandidateResult& base = r.candidates[0];
+  const int v = r.verdict.candidate;
+  json j = {{"effect", v >= 0 ? json(r.candidates[v].candidate.effect) : json(nullptr)},
+            {"label", verdict_label(r.candidates, v)},
+            {"reason", r.verdict.reason}};
+  const CandidateResult& after = v >= 0 ? r.candidates[v] : base;
+  j["parameter"] = parameter_json(after);
+  j["fr0"] = after.point.fr0_n;
+  j["fs0"] = after.point.fs0_n;
+  j["gap_closure"] = v >= 0 ? num(after.g_confirmed) : json(nullptr);
+  j["gap"] = {{"calibration",
+               {{"before", num(base.confirmed_rms.calibration)},
+                {"after", num(after.confirmed_rms.calibration)}}},
+              {"held_out",
+               {{"before", num(base.confirmed_rms.held_out)},
+                {"after", num(after.confirmed_rms.held_out)}}}};
+  if (r.verdict.runner_up >= 0) {
+    const CandidateResult& u = r.candidates[r.verdict.runner_up];
+    j["runner_up"] = {{"effect", u.candidate.effect},
+                      {"parameter", u.fitted ? parameter_json(u) : json(nullptr)},
+                      {"gap_closure", num(u.g())},
+                      {"basis", u.confirmed ? "confirmed" : "surface"},
+                      {"identifiable", u.identifiability && u.identifiability->identifiable}};
+  } else {
+    j["runner_up"] = nullptr;
+  }
+  j["confidence"] = confidence_json(r.confidence);
+  return j;
+}
+
+json budget_json(const DiagnosisResult& r, const std::vector<Target>& targets, Origin origin) {
+  json variants = json::array();
+  for (std::size_t v = 0; v < r.budget.variants.size(); ++v) {
+    const BudgetVariant& b = r.budget.variants[v];
+    variants.push_back({{"name", b.name},
+                        {"seed", b.numerics.seed},
+                        {"speed_factor", b.numerics.speed_factor},
+                        {"resolution", b.numerics.resolution},
+                        {"change", by_target(targets, r.budget.change[v])}});
+  }
+  json terms = json::array();
+  for (const ErrorTerm& t : error_terms(origin)) {
+    terms.push_back({{"kind", t.kind}, {"applies", t.applies}, {"why", t.why}});
+  }
+  return {
+      {"point", {{"fr0", r.budget_point.fr0_n}, {"fs0", r.budget_point.fs0_n}}},
+      {"points", r.budget.points},
+      {"error_model", {{"origin", to_string(origin)}, {"terms", terms}}},
+      {"per_observation", by_target(targets, r.budget.per_target)},
+      // The calibrations' weights: the budget at the base model's first fit.
+      {"weights",
+       {{"point", {{"fr0", r.weight_budget_point.fr0_n}, {"fs0", r.weight_budget_point.fs0_n}}},
+        {"per_observation", by_target(targets, r.weight_budget.per_target)}}},
+      {"combined", {{"calibration", r.combined_calibration}, {"held_out", r.combined_held_out}}},
+      {"variants", variants}};
+}
+
+json gap_json(const DiagnosisResult& r, const std::vector<Target>& targets,
+              const std::vector<double>& lab) {
+  const CandidateResult& base = r.candidates[0];
+  const std::vector<double> res = residuals(base.confirmed_ln, lab);
+  json significant = json::array();
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (std::isfinite(res[i]) && std::abs(res[i]) > r.budget.per_target[i] + targets[i].sigma) {
+      significant.push_back(targets[i].id);
+    }
+  }
+  return {{"rms", rms_json(base.confirmed_rms)},
+          {"combined_budget",
+           {{"calibration", r.combined_calibration}, {"held_out", r.combined_held_out}}},
+          {"held_out_budgets", num(r.held_out_budgets)},
+          {"exceeds_budget", r.held_out_budgets.value_or(0) > kGapBudgets},
+          {"significant", significant}};
+}
+
+json ratio_json(const std::optional<LabRatio>& r, const std::vector<Target>& targets) {
+  if (!r) return nullptr;
+  return {{"uct", targets[r->uct].id}, {"btt", targets[r->btt].id},
+          {"lab", r->range.target},    {"min", r->range.min},
+          {"max", r->range.max},       {"inside", r->range.target_inside()},
+          {"runs", r->range.runs}};
+}
+
+}  // namespace
+
+json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
+  const std::vector<double> lab = ln_lab(c.targets);
+  json observations = json::array();
+  for (std::size_t i = 0; i < c.targets.size(); ++i) {
+    observations.push_back(observation_json(i, r, c.targets, lab));
+  }
+  json candidates = json::array();
+  for (const CandidateResult& k : r.candidates)
+    candidates.push_back(candidate_json(k, c.targets, lab));
+  return {{"kind", "diagnosis"},
+          {"name", c.name},
+          {"dataset", c.dataset.name},
+          {"verdict", verdict_json(r)},
+          {"gap", gap_json(r, c.targets, lab)},
+          {"observations", observations},
+          {"budget", budget_json(r, c.targets, c.dataset.origin)},
+          {"ratio", ratio_json(r.ratio, c.targets)},
+          {"candidates", candidates},
+          {"grid",
+           {{"fr0", c.grid.fr0},
+            {"fs0", c.grid.fs0},
+            {"s", c.grid.s},
+            {"bounds", {{"fr0", {c.fr0_n.lo, c.fr0_n.hi}}, {"fs0", {c.fs0_n.lo, c.fs0_n.hi}}}}}},
+          {"runs",
+           {{"model_points", r.model_points},
+            {"failed_values", r.failed_values},
+            {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
+          {"units", "model"}};
+}
+
+}  // namespace rockcal::diagnosis
