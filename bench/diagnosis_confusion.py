@@ -111,7 +111,17 @@ def main():
                 t0 = time.time()
                 truth = twin[:-len(".json")] + ".truth.json"
                 if not (a.reuse_twins and os.path.exists(twin) and os.path.exists(truth)):
-                    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+                    made = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                          text=True)
+                    if made.returncode != 0:
+                        # A twin the engine cannot make (a specimen with no peak) is recorded and
+                        # left out of the matrix, never replaced by another seed.
+                        why = (made.stderr.strip().splitlines() or ["(no message)"])[-1]
+                        rows.append({"hidden": effect, "value": value, "seed": seed,
+                                     "resolution": a.resolution, "twin_error": why})
+                        print(f"{name:26} twin could not be made: {why}", flush=True)
+                        json.dump(rows, open(os.path.join(work, "results.json"), "w"), indent=1)
+                        continue
                 t_twin = time.time() - t0
                 req = dict(base_request)
                 req["name"] = f"confusion {name}"
@@ -155,7 +165,17 @@ def main():
     write_matrix(rows, work, time.time() - t_all)
 
 
+def null_threshold(null_gaps, max_false_positive=0.10):
+    """The smallest gap threshold (held-out rms in budgets) that at most max_false_positive of the
+    null twins exceed, i.e. the decision threshold calibrated on these nulls."""
+    gaps = sorted(null_gaps, reverse=True)
+    allowed = int(max_false_positive * len(gaps))  # nulls that may lie above the threshold
+    return gaps[allowed] if allowed < len(gaps) else 0.0
+
+
 def write_matrix(rows, work, wall):
+    failed = [r for r in rows if "twin_error" in r]
+    rows = [r for r in rows if "twin_error" not in r]
     hidden = list(dict.fromkeys(r["hidden"] for r in rows))
     found = sorted(set(r["verdict"] for r in rows) | set(hidden), key=lambda e: (e != "none", e))
     lines = ["| hidden \\ verdict | " + " | ".join(found) + " |",
@@ -185,6 +205,19 @@ def write_matrix(rows, work, wall):
               f"{rows[0]['diagnosis_seconds']:.0f} s (it runs the grids, unless the job store of "
               f"an earlier run in the same --out has them), the others median "
               f"{statistics.median(r['diagnosis_seconds'] for r in rows[1:] or rows):.0f} s"]
+    null_gaps = [(r["base_gap"] or {}).get("held_out_budgets") for r in null]
+    null_gaps = [x for x in null_gaps if x is not None]
+    if null_gaps:
+        t = null_threshold(null_gaps)
+        lines += [f"- null twins' base held-out gap (rms in budgets), sorted: "
+                  + ", ".join(f"{x:.2f}" for x in sorted(null_gaps)),
+                  f"- gap threshold that at most 10% of these {len(null_gaps)} nulls exceed: "
+                  f"{t:.2f} budgets; effect twins above it: "
+                  f"{sum(1 for r in eff if ((r['base_gap'] or {}).get('held_out_budgets') or 0) > t)}"
+                  f" of {len(eff)}"]
+    if failed:
+        lines += [f"- twins that could not be made (left out): "
+                  + ", ".join(f"{r['hidden']}-{r['seed']}" for r in failed)]
     text = "\n".join(lines) + "\n"
     open(os.path.join(work, "matrix.md"), "w").write(text)
     print(text)

@@ -162,6 +162,19 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
        }},
       {"confirm", [](json& r) { r["confirm"] = 0; }},
       {"bootstrap", [](json& r) { r["bootstrap"] = -1; }},
+      {"decision.gap_budgets",
+       [](json& r) {
+         r["decision"] = {{"gap_budgets", 0}};
+       }},
+      {"decision.min_gap_closure",
+       [](json& r) {
+         r["decision"] = {{"min_gap_closure", 1}};
+       }},
+      {"decision.g",
+       [](json& r) {
+         r["decision"] = {{"g", 0.5}};
+       }},
+      {"decision", [](json& r) { r["decision"] = 2; }},
       {"colour", [](json& r) { r["colour"] = "blue"; }},
   };
   for (const auto& [field, change] : cases) {
@@ -169,6 +182,19 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
     change(r);
     EXPECT_EQ(refused_field(r), field) << r.dump();
   }
+}
+
+TEST(DiagnosisRequest, TheDecisionRuleDefaultsAndIsRead) {
+  DiagnosisCampaign c = parse_diagnosis_campaign(request());
+  EXPECT_EQ(c.decision.gap_budgets, 1.0);
+  EXPECT_EQ(c.decision.min_gap_closure, 0.3);
+  json r = request();
+  r["decision"] = {{"gap_budgets", 2.4}};
+  c = parse_diagnosis_campaign(r);
+  EXPECT_EQ(c.decision.gap_budgets, 2.4);
+  EXPECT_EQ(c.decision.min_gap_closure, 0.3);
+  r["decision"]["min_gap_closure"] = 0.5;
+  EXPECT_EQ(parse_diagnosis_campaign(r).decision.min_gap_closure, 0.5);
 }
 
 TEST(DiagnosisRequest, JobsAreCanonicalAndCarryTheEffectAndNumerics) {

@@ -80,7 +80,8 @@ TEST(Diagnosis, NullCaseNeedsNoEffect) {
   EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
   EXPECT_EQ(v["label"], "no effect needed");
   EXPECT_FALSE(r.summary["gap"]["exceeds_budget"].get<bool>()) << r.summary["gap"].dump(2);
-  EXPECT_NE(v["reason"].get<std::string>().find("within their budgets"), std::string::npos);
+  EXPECT_NE(v["reason"].get<std::string>().find("within the 1.00 budgets of the decision rule"),
+            std::string::npos);
   EXPECT_LE(r.summary["gap"]["held_out_budgets"].get<double>(), 1.0);
   EXPECT_GE(v["confidence"]["bootstrap"]["agreement"].get<double>(), 0.7);
 }
@@ -247,7 +248,7 @@ TEST(Verdict, ACandidateThatCannotFitTheCalibrationDataIsNotTheVerdict) {
   EXPECT_FALSE(c[0].fits_calibration);  // the base misses too; it is the reference, not a contender
   const std::vector<int> order = rank_effects(c);
   EXPECT_EQ(order.front(), 1);
-  const Verdict v = decide(c, order, 1.20 / 0.17, 0.17);
+  const Verdict v = decide(DecisionRule{}, c, order, 1.20 / 0.17, 0.17);
   EXPECT_EQ(v.candidate, 1);
   EXPECT_NE(v.reason.find("packing closes G = 0.41"), std::string::npos) << v.reason;
   EXPECT_NE(v.reason.find("7.06 budgets"), std::string::npos) << v.reason;
@@ -256,7 +257,7 @@ TEST(Verdict, ACandidateThatCannotFitTheCalibrationDataIsNotTheVerdict) {
   // decides.
   mark_calibration_fits(c, 0.45);
   EXPECT_TRUE(c[2].fits_calibration);
-  EXPECT_EQ(decide(c, rank_effects(c), 1.20 / 0.17, 0.17).candidate, 2);
+  EXPECT_EQ(decide(DecisionRule{}, c, rank_effects(c), 1.20 / 0.17, 0.17).candidate, 2);
 }
 
 // The gap is judged observation by observation, each residual against its own budget: with a
@@ -274,17 +275,32 @@ TEST(Verdict, AGapInAPreciseObservationIsNotHiddenByANoisyOne) {
   // ... but in budgets it is sqrt((0.125^2 + 4^2) / 2) = 2.83.
   EXPECT_NEAR(*rms_in_budgets(r, targets, budget, Role::held_out), 2.830, 1e-3);
   EXPECT_NEAR(*rms_in_budgets(r, targets, budget, Role::calibration), 0.5, 1e-12);
-  EXPECT_EQ(choose_effect(rms_in_budgets(r, targets, budget, Role::held_out), {{1, 0.8}}), 1);
+  EXPECT_EQ(
+      choose_effect(DecisionRule{}, rms_in_budgets(r, targets, budget, Role::held_out), {{1, 0.8}}),
+      1);
   // Within budgets: no gap, whatever G an effect would have.
   const std::vector<double> small{0.05, 0.7, -0.05};
   EXPECT_LT(*rms_in_budgets(small, targets, budget, Role::held_out), 1.0);
-  EXPECT_EQ(choose_effect(rms_in_budgets(small, targets, budget, Role::held_out), {{1, 0.8}}), -1);
+  EXPECT_EQ(choose_effect(DecisionRule{}, rms_in_budgets(small, targets, budget, Role::held_out),
+                          {{1, 0.8}}),
+            -1);
   // A gap, but G below 0.3 names nothing; a missing residual is left out, none at all is no gap.
-  EXPECT_EQ(choose_effect(2.83, {{1, 0.2}}), -1);
+  EXPECT_EQ(choose_effect(DecisionRule{}, 2.83, {{1, 0.2}}), -1);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NEAR(*rms_in_budgets({0.0, nan, -0.4}, targets, budget, Role::held_out), 4.0, 1e-12);
   EXPECT_FALSE(rms_in_budgets({0.0, nan, nan}, targets, budget, Role::held_out));
-  EXPECT_EQ(choose_effect(std::nullopt, {{1, 0.8}}), -1);
+  EXPECT_EQ(choose_effect(DecisionRule{}, std::nullopt, {{1, 0.8}}), -1);
+}
+
+// The rule's thresholds come from the campaign (a gap threshold calibrated on null twins): the
+// same residuals are a gap under one rule and none under a stricter one.
+TEST(Verdict, TheDecisionRuleSetsBothThresholds) {
+  const DecisionRule strict{3.0, 0.5};
+  EXPECT_EQ(choose_effect(DecisionRule{}, 2.83, {{1, 0.8}}), 1);
+  EXPECT_EQ(choose_effect(strict, 2.83, {{1, 0.8}}), -1) << "2.83 budgets is no gap under 3";
+  EXPECT_EQ(choose_effect(strict, 3.10, {{1, 0.8}}), 1);
+  EXPECT_EQ(choose_effect(strict, 3.10, {{1, 0.4}}), -1) << "G 0.4 is below 0.5";
+  EXPECT_EQ(choose_effect(DecisionRule{}, 3.10, {{1, 0.4}}), 1);
 }
 
 // A regular packing does not depend on the packing seed: its replicate seeds re-run the nominal

@@ -59,7 +59,8 @@ Objective calibration_objective(const std::vector<Target>& targets,
   return o;
 }
 
-BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidates,
+BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
+                                   const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<double>& budget,
                                    const std::vector<double>& judged, int replicates,
@@ -88,7 +89,7 @@ BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidate
       }
     }
     const int chosen =
-        choose_effect(rms_in_budgets(base, targets, judged, Role::held_out), contenders);
+        choose_effect(rule, rms_in_budgets(base, targets, judged, Role::held_out), contenders);
     ++out.winners[chosen < 0 ? "" : candidates[chosen].candidate.effect];
     ++out.replicates;
   }

@@ -25,7 +25,8 @@ struct BootstrapResult {
 
 // Deterministic: draws come from mt19937_64(seed) through Box-Muller (std's normal distribution
 // differs between standard libraries).
-BootstrapResult bootstrap_verdicts(const std::vector<CandidateResult>& candidates,
+BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
+                                   const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<double>& budget,
                                    const std::vector<double>& judged, int replicates,

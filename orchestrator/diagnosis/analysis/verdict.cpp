@@ -30,14 +30,14 @@ int group(const CandidateResult& c) {
 
 }  // namespace
 
-int choose_effect(std::optional<double> base_held_out_budgets,
+int choose_effect(const DecisionRule& rule, std::optional<double> base_held_out_budgets,
                   const std::vector<Contender>& contenders) {
-  if (!base_held_out_budgets || !(*base_held_out_budgets > kGapBudgets)) return -1;
+  if (!base_held_out_budgets || !(*base_held_out_budgets > rule.gap_budgets)) return -1;
   const Contender* best = nullptr;
   for (const Contender& c : contenders) {
     if (!best || c.g > best->g) best = &c;
   }
-  return best && best->g >= kMinGapClosure ? best->index : -1;
+  return best && best->g >= rule.min_gap_closure ? best->index : -1;
 }
 
 void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration) {
@@ -72,15 +72,15 @@ std::string verdict_label(const std::vector<CandidateResult>& candidates, int in
   return index < 0 ? "no effect needed" : candidates[index].candidate.effect;
 }
 
-Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
-               std::optional<double> gap, double combined_held_out) {
+Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& candidates,
+               const std::vector<int>& order, std::optional<double> gap, double combined_held_out) {
   Verdict v;
   std::vector<Contender> contenders;
   for (int i : order) {
     if (eligible(candidates[i])) contenders.push_back({i, *candidates[i].g_confirmed});
   }
   const auto base_rms = candidates[0].confirmed_rms.held_out;
-  v.candidate = choose_effect(gap, contenders);
+  v.candidate = choose_effect(rule, gap, contenders);
   for (int i : order) {
     if (i != v.candidate) {
       v.runner_up = i;
@@ -95,8 +95,9 @@ Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector
                            " budgets (rms of each over its own numerical budget and lab "
                            "uncertainty; held-out rms " +
                            fixed(*base_rms) + ", combined budget " + fixed(combined_held_out) + ")";
-  if (!(*gap > kGapBudgets)) {
-    v.reason = size + ": within their budgets, no gap to explain";
+  if (!(*gap > rule.gap_budgets)) {
+    v.reason = size + ": within the " + fixed(rule.gap_budgets, 2) +
+               " budgets of the decision rule, no gap to explain";
   } else if (v.candidate >= 0) {
     const CandidateResult& c = candidates[v.candidate];
     v.reason = c.candidate.effect + " closes G = " + fixed(*c.g_confirmed, 2) +
@@ -112,7 +113,7 @@ Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector
     const CandidateResult& c = candidates[contenders.front().index];
     v.reason = size + ": a gap, but the best effect, " + c.candidate.effect +
                ", closes only G = " + fixed(*c.g_confirmed, 2) + " of it (< " +
-               fixed(kMinGapClosure, 1) + "): none of the candidates explains the gap";
+               fixed(rule.min_gap_closure, 2) + "): none of the candidates explains the gap";
   }
   return v;
 }
@@ -130,7 +131,8 @@ bool same_values(const std::vector<double>& a, const std::vector<double>& b) {
 
 }  // namespace
 
-std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
+std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
+                                   const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<std::uint64_t>& seeds,
                                    const std::vector<double>& budget) {
@@ -158,8 +160,8 @@ std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidate
       check.gap_closure[c.candidate.effect] = *g;
       contenders.push_back({i, *g});
     }
-    const int chosen =
-        choose_effect(rms_in_budgets(base_residuals, targets, budget, Role::held_out), contenders);
+    const int chosen = choose_effect(
+        rule, rms_in_budgets(base_residuals, targets, budget, Role::held_out), contenders);
     check.verdict = chosen < 0 ? "" : candidates[chosen].candidate.effect;
     out.push_back(std::move(check));
   }

@@ -39,18 +39,24 @@ struct Verdict {
   std::string reason;
 };
 
-inline constexpr double kMinGapClosure = 0.3;  // docs/diagnosis.md: verdict rule
+// The verdict rule's two thresholds (docs/diagnosis.md). The defaults are the hand-set v1 values;
+// a campaign should set gap_budgets from null twins (bench/diagnosis_confusion.py prints the
+// threshold that at most 10% of its nulls exceed), since the budget's own calibration decides
+// how often a model without a hidden effect crosses it.
+struct DecisionRule {
+  double gap_budgets = 1.0;      // the base's held-out rms, in budgets, above which there is a gap
+  double min_gap_closure = 0.3;  // the least G that names an effect
+};
 
 struct Contender {
   int index;  // into the candidates
   double g;
 };
 
-// docs/diagnosis.md: the contender with the largest G if the base's held-out residuals exceed their
-// budgets (rms_in_budgets > kGapBudgets) and that G >= 0.3; otherwise -1 ("no effect needed").
-// Ties keep the earlier.
-inline constexpr double kGapBudgets = 1.0;
-int choose_effect(std::optional<double> base_held_out_budgets,
+// docs/diagnosis.md: the contender with the largest G if the base's held-out residuals exceed
+// rule.gap_budgets (rms_in_budgets) and that G >= rule.min_gap_closure; otherwise -1 ("no effect
+// needed"). Ties keep the earlier.
+int choose_effect(const DecisionRule& rule, std::optional<double> base_held_out_budgets,
                   const std::vector<Contender>& contenders);
 
 // A candidate explains the data only if it fits the calibration observations: its calibration rms
@@ -71,12 +77,13 @@ std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
 // The verdict over the confirmed identifiable effects (real runs only) and the runner-up (the
 // best-ranked effect that is not the verdict), with a sentence saying why. `gap` is the base's
 // held-out residuals in budgets (rms_in_budgets of its real runs); the combined budget is quoted.
-Verdict decide(const std::vector<CandidateResult>& candidates, const std::vector<int>& order,
-               std::optional<double> gap, double combined_held_out);
+Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& candidates,
+               const std::vector<int>& order, std::optional<double> gap, double combined_held_out);
 
 // The verdict rule replayed on each replicate seed's runs of the base and confirmed effects; a
 // seed is informative when some candidate's runs on it differ from its nominal runs.
-std::vector<SeedCheck> seed_checks(const std::vector<CandidateResult>& candidates,
+std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
+                                   const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,
                                    const std::vector<std::uint64_t>& seeds,
                                    const std::vector<double>& budget);

@@ -28,6 +28,23 @@ GridSpec parse_grid(orch::JsonFields& root) {
   return g;
 }
 
+// "decision": the verdict rule's thresholds, e.g. a gap threshold calibrated on null twins.
+DecisionRule parse_decision(orch::JsonFields& root) {
+  DecisionRule rule;
+  const json* v = root.get("decision");
+  if (!v) return rule;
+  orch::JsonFields f(*v, "decision");
+  rule.gap_budgets = f.positive("gap_budgets").value_or(rule.gap_budgets);
+  if (auto g = f.number("min_gap_closure")) {
+    if (!(*g > 0 && *g < 1)) {
+      throw orch::RequestError(f.path_of("min_gap_closure"), "must lie between 0 and 1");
+    }
+    rule.min_gap_closure = *g;
+  }
+  f.reject_unknown();
+  return rule;
+}
+
 std::vector<std::uint64_t> parse_seeds(orch::JsonFields& f, std::uint64_t template_seed) {
   const json* v = f.get("seeds");
   if (!v) return {template_seed + 1, template_seed + 2};
@@ -234,6 +251,7 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
   c.confirm = int(root.integer("confirm", 1, 16).value_or(c.confirm));
   c.refine = int(root.integer("refine", 0, 5).value_or(c.refine));
   c.bootstrap = int(root.integer("bootstrap", 0, 5000).value_or(c.bootstrap));
+  c.decision = parse_decision(root);
   c.random_seed = std::uint64_t(
       root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));
   c.candidates = parse_effects(root, model);

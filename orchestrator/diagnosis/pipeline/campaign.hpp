@@ -12,6 +12,7 @@
 #include "orchestrator/diagnosis/analysis/budget.hpp"
 #include "orchestrator/diagnosis/analysis/candidate.hpp"
 #include "orchestrator/diagnosis/analysis/observations.hpp"
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/dataset/dataset.hpp"
 
 namespace rockcal::diagnosis {
@@ -39,6 +40,7 @@ struct DiagnosisCampaign {
   int refine = 2;                 // re-fits of each confirmed candidate on run-corrected surfaces
   int bootstrap = 200;            // replicates of the lab and numerical noise for the confidence
   std::uint64_t random_seed = 1;  // the bootstrap's draws
+  DecisionRule decision;          // when a gap is one, and when an effect explains it
 };
 
 // Parses and validates the whole request: the dataset (through the dataset parser), the template

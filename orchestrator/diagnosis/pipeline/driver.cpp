@@ -309,10 +309,10 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   const std::vector<int> order = rank_effects(report.candidates);
   report.held_out_budgets = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
                                            c.targets, judged, Role::held_out);
-  report.verdict =
-      decide(report.candidates, order, report.held_out_budgets, report.combined_held_out);
+  report.verdict = decide(c.decision, report.candidates, order, report.held_out_budgets,
+                          report.combined_held_out);
   Confidence& conf = report.confidence;
-  conf.seeds = seed_checks(report.candidates, c.targets, c.budget.seeds, judged);
+  conf.seeds = seed_checks(c.decision, report.candidates, c.targets, c.budget.seeds, judged);
   const std::string verdict = report.verdict.candidate < 0
                                   ? ""
                                   : report.candidates[report.verdict.candidate].candidate.effect;
@@ -320,8 +320,8 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
     conf.seeds_informative += s.informative;
     conf.seeds_agreeing += s.informative && s.verdict == verdict;
   }
-  const BootstrapResult boot =
-      bootstrap_verdicts(report.candidates, c.targets, budget, judged, c.bootstrap, c.random_seed);
+  const BootstrapResult boot = bootstrap_verdicts(c.decision, report.candidates, c.targets, budget,
+                                                  judged, c.bootstrap, c.random_seed);
   conf.replicates = boot.replicates;
   conf.winners = boot.winners;
   if (boot.replicates > 0) {

@@ -27,7 +27,7 @@ struct DiagnosisResult {
   double combined_calibration = 0.0;
   double combined_held_out = 0.0;
   // The base model's held-out residuals (real runs) in budgets: rms_in_budgets, what the verdict
-  // calls a gap above kGapBudgets.
+  // calls a gap above the campaign's decision.gap_budgets.
   std::optional<double> held_out_budgets;
   std::vector<CandidateResult> candidates;  // [0] = the base, then the effects in request order
   std::optional<LabRatio> ratio;

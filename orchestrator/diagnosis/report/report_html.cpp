@@ -171,7 +171,8 @@ std::string closure_plot(const json& s) {
     hidden.values.push_back(identifiable ? NAN : g);
   }
   chart.series = {confirmed, surface, hidden};
-  chart.lines = {{kMinGapClosure, "G = 0.3"}};
+  const json& least = at(at(s, "decision"), "min_gap_closure");
+  if (least.is_number()) chart.lines = {{least.get<double>(), "G = " + show(least, "%.2g")}};
   return "<h2>Gap closure per effect</h2>\n" + legend_html(chart.series) + svg_bars(chart);
 }
 

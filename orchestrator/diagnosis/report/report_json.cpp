@@ -226,7 +226,7 @@ json budget_json(const DiagnosisResult& r, const std::vector<Target>& targets, O
 }
 
 json gap_json(const DiagnosisResult& r, const std::vector<Target>& targets,
-              const std::vector<double>& lab) {
+              const std::vector<double>& lab, const DecisionRule& rule) {
   const CandidateResult& base = r.candidates[0];
   const std::vector<double> res = residuals(base.confirmed_ln, lab);
   json significant = json::array();
@@ -239,7 +239,8 @@ json gap_json(const DiagnosisResult& r, const std::vector<Target>& targets,
           {"combined_budget",
            {{"calibration", r.combined_calibration}, {"held_out", r.combined_held_out}}},
           {"held_out_budgets", num(r.held_out_budgets)},
-          {"exceeds_budget", r.held_out_budgets.value_or(0) > kGapBudgets},
+          {"threshold_budgets", rule.gap_budgets},
+          {"exceeds_budget", r.held_out_budgets.value_or(0) > rule.gap_budgets},
           {"significant", significant}};
 }
 
@@ -262,25 +263,28 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
   json candidates = json::array();
   for (const CandidateResult& k : r.candidates)
     candidates.push_back(candidate_json(k, c.targets, lab));
-  return {{"kind", "diagnosis"},
-          {"name", c.name},
-          {"dataset", c.dataset.name},
-          {"verdict", verdict_json(r)},
-          {"gap", gap_json(r, c.targets, lab)},
-          {"observations", observations},
-          {"budget", budget_json(r, c.targets, c.dataset.origin)},
-          {"ratio", ratio_json(r.ratio, c.targets)},
-          {"candidates", candidates},
-          {"grid",
-           {{"fr0", c.grid.fr0},
-            {"fs0", c.grid.fs0},
-            {"s", c.grid.s},
-            {"bounds", {{"fr0", {c.fr0_n.lo, c.fr0_n.hi}}, {"fs0", {c.fs0_n.lo, c.fs0_n.hi}}}}}},
-          {"runs",
-           {{"model_points", r.model_points},
-            {"failed_values", r.failed_values},
-            {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
-          {"units", "model"}};
+  return {
+      {"kind", "diagnosis"},
+      {"name", c.name},
+      {"dataset", c.dataset.name},
+      {"verdict", verdict_json(r)},
+      {"gap", gap_json(r, c.targets, lab, c.decision)},
+      {"decision",
+       {{"gap_budgets", c.decision.gap_budgets}, {"min_gap_closure", c.decision.min_gap_closure}}},
+      {"observations", observations},
+      {"budget", budget_json(r, c.targets, c.dataset.origin)},
+      {"ratio", ratio_json(r.ratio, c.targets)},
+      {"candidates", candidates},
+      {"grid",
+       {{"fr0", c.grid.fr0},
+        {"fs0", c.grid.fs0},
+        {"s", c.grid.s},
+        {"bounds", {{"fr0", {c.fr0_n.lo, c.fr0_n.hi}}, {"fs0", {c.fs0_n.lo, c.fs0_n.hi}}}}}},
+      {"runs",
+       {{"model_points", r.model_points},
+        {"failed_values", r.failed_values},
+        {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
+      {"units", "model"}};
 }
 
 }  // namespace rockcal::diagnosis
