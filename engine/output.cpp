@@ -32,6 +32,7 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
            {"youngs_modulus", opt(r.youngs_modulus_pa)},
            {"poisson_ratio", opt(r.poisson_ratio)},
            {"peak_displacement", r.peak_displacement_m},
+           {"peak_strain", opt(r.peak_strain)},
            {"particles", r.particles},
            {"bonds", r.bonds},
            {"broken_bonds", r.broken_bonds},

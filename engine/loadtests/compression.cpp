@@ -246,8 +246,10 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   } else {
     const double area = 0.25 * M_PI * d * d;
     r.strength_pa = r.peak_load_n / area;
-    if (r.peak_reached)
+    if (r.peak_reached) {
       r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
+      r.peak_strain = r.peak_displacement_m / length;
+    }
   }
   r.steps = sim.step;
   r.broken_bonds = sim.broken_total;

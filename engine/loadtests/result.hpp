@@ -55,6 +55,10 @@ struct TestResult {
   std::optional<double> youngs_modulus_pa;  // UCT pre-peak slope, or elastic test
   std::optional<double> poisson_ratio;      // elastic test
   double peak_displacement_m = 0.0;         // platen closure from the seated state
+  // UCT / triaxial with a peak: the axial strain at peak, closure over the loaded length. Moves
+  // with packing, rate, compression coupling and interaction range where the peak load barely
+  // does once the strengths are re-fitted (docs/effects.md, "Signatures").
+  std::optional<double> peak_strain;
   std::int64_t peak_step = 0;
   std::int64_t broken_at_peak = 0;  // damage when the peak was reached
   std::int64_t particles = 0, bonds = 0, broken_bonds = 0;

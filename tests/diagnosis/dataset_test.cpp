@@ -89,6 +89,8 @@ TEST(DiagnosisDataset, ErrorsNameTheField) {
       {[](json& j) { j["observations"][1]["observable"] = "bts"; }, "observations[1].observable"},
       {[](json& j) { j["observations"][1]["observable"] = "youngs_modulus"; },
        "observations[1].observable"},
+      {[](json& j) { j["observations"][1]["observable"] = "peak_strain"; },
+       "observations[1].observable"},
       {[](json& j) { j["observations"][1]["role"] = "validation"; }, "observations[1].role"},
       {[](json& j) { j["observations"][1]["id"] = "uct-1"; }, "observations[1].id"},
       {[](json& j) { j["observations"][1]["id"] = ""; }, "observations[1].id"},
@@ -273,8 +275,21 @@ TEST(DiagnosisDataset, LabConditionsMapByTheirOwnScale) {
                                  {"value", 12e9},
                                  {"uncertainty", 1e9},
                                  {"role", "held_out"}});
+    j["observations"].push_back({{"id", "uct-strain"},
+                                 {"test", "uct"},
+                                 {"observable", "peak_strain"},
+                                 {"value", 0.004},
+                                 {"uncertainty", 0.0004},
+                                 {"role", "held_out"}});
   }
   const Dataset d = parse_dataset_json(j);
+  {
+    // A strain has no unit: the lab's 0.4% is the model's.
+    const Observation strain = to_model_units(d.observations[3], d);
+    EXPECT_EQ(strain.observable, Observable::peak_strain);
+    EXPECT_DOUBLE_EQ(strain.value, 0.004);
+    EXPECT_DOUBLE_EQ(strain.uncertainty, 0.0004);
+  }
   const Observation ucs = to_model_units(d.observations[0], d);
   EXPECT_DOUBLE_EQ(ucs.value, 133.5e6 * s.stress);
   EXPECT_DOUBLE_EQ(*ucs.conditions.diameter_m, 0.05446 * s.length);

@@ -95,7 +95,7 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   const std::int64_t first_runs = jobs_run();
 
   // Every observation has its budget, lab uncertainty and base residual from a real run.
-  ASSERT_EQ(s["observations"].size(), 8u);
+  ASSERT_EQ(s["observations"].size(), 9u);  // the twin design's, uct-peak-strain included
   for (const json& o : s["observations"]) {
     EXPECT_TRUE(o["budget"].is_number()) << o.dump();
     EXPECT_NEAR(o["lab_uncertainty"].get<double>(), 0.02, 1e-9) << o.dump();

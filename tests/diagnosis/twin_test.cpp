@@ -26,9 +26,14 @@ json formula_result(const json& job) {
   const double d = job["sample"]["diameter"];
   const double p = job["loading"].value("confining_pressure", 0.0);
   const double load = std::sqrt(fr0 * fs0) * d * d + 5 * p * d * d;
-  return {
-      {"test", job["test"]},      {"peak_load", load},    {"strength", load / (M_PI * d * d / 4)},
-      {"youngs_modulus", 1000.0}, {"peak_reached", true}, {"engine_version", "formula"}};
+  const bool axial = job["test"] != "btt";
+  return {{"test", job["test"]},
+          {"peak_load", load},
+          {"strength", load / (M_PI * d * d / 4)},
+          {"youngs_modulus", 1000.0},
+          {"peak_strain", axial ? json(0.01 * std::sqrt(fr0 / fs0)) : json(nullptr)},
+          {"peak_reached", true},
+          {"engine_version", "formula"}};
 }
 
 RunJobs formula_engine(std::vector<json>* seen = nullptr) {
@@ -63,12 +68,12 @@ TEST(DiagnosisTwin, DesignFollowsTheTemplate) {
   EXPECT_DOUBLE_EQ(round_to_two_digits(48.55), 49);
   EXPECT_DOUBLE_EQ(round_to_two_digits(0.014563), 0.015);
 
-  ASSERT_EQ(d.observations.size(), 8u);
+  ASSERT_EQ(d.observations.size(), 9u);
   const auto& o = d.observations;
   const auto role = [&](const std::string& id) { return find(o, id).role; };
   for (const char* id : {"uct-peak", "uct-modulus", "btt-peak", "tri-low"})
     EXPECT_EQ(role(id), Role::calibration) << id;
-  for (const char* id : {"tri-high", "uct-large", "btt-large", "uct-fast"})
+  for (const char* id : {"tri-high", "uct-large", "btt-large", "uct-fast", "uct-peak-strain"})
     EXPECT_EQ(role(id), Role::held_out) << id;
   EXPECT_EQ(find(o, "uct-modulus").observable, Observable::youngs_modulus);
   EXPECT_EQ(find(o, "tri-low").test, TestKind::triaxial);
@@ -142,8 +147,8 @@ TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
   const Twin other = make_twin(d, {"heterogeneity", 3, 12, 0.05}, formula_engine());
   EXPECT_NE(a.truth["fr0"], other.truth["fr0"]);
 
-  // The UCT's peak and modulus share a run: 7 distinct jobs, each with the hidden effect, drawn
-  // with the twin's own seed (not the model's 1 or the budget's 2 and 3).
+  // The UCT's peak, modulus and peak strain share a run: 7 distinct jobs, each with the hidden
+  // effect, drawn with the twin's own seed (not the model's 1 or the budget's 2 and 3).
   EXPECT_EQ(jobs.size(), 7u);
   for (const json& job : jobs) {
     EXPECT_EQ(job["effects"]["heterogeneity"]["weibull_m"], 3.0);
@@ -226,7 +231,7 @@ TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
     EXPECT_GT(o.value, 0) << o.id;
   }
   EXPECT_EQ(calibration, 4);
-  EXPECT_EQ(held_out, 4);
+  EXPECT_EQ(held_out, 5);  // uct-peak-strain shares the base UCT run: still 1 + 7 runs
   // The same seed again: the engine is deterministic, so is the noise.
   const Twin b = make_twin(design, {"none", 0, 5, 0.02}, run);
   EXPECT_EQ(to_json(a.dataset), to_json(b.dataset));
@@ -245,7 +250,11 @@ TEST_F(DiagnosisTwinEngine, CommandWritesTheDatasetAndItsTruth) {
                               " > " + (work_ / "stdout").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << std::ifstream(work_ / "stdout").rdbuf();
   const Dataset d = read_dataset_file(out);
-  EXPECT_EQ(d.observations.size(), 8u);
+  EXPECT_EQ(d.observations.size(), 9u);
+  // The engine's strain at the UCT's peak: a few per cent on a bonded packing, within max_strain.
+  const Observation& strain = find(d.observations, "uct-peak-strain");
+  EXPECT_GT(strain.value, 1e-3);
+  EXPECT_LT(strain.value, demo_twin_template()["loading"]["max_strain"].get<double>());
   const json truth = json::parse(std::ifstream(work_ / "twin.truth.json"));
   EXPECT_EQ(truth["effect"], "heterogeneity");
   EXPECT_EQ(truth["value"], 3.0);

@@ -37,18 +37,21 @@ TestKind parse_test(orch::JsonFields& f) {
 
 Observable parse_observable(orch::JsonFields& f, TestKind test) {
   const std::string name = required_string(f, "observable");
-  for (Observable o : {Observable::peak_load, Observable::strength, Observable::youngs_modulus}) {
+  for (Observable o : {Observable::peak_load, Observable::strength, Observable::youngs_modulus,
+                       Observable::peak_strain}) {
     if (name != to_string(o)) continue;
-    // The engine measures E on the compressed cylinder only (the pre-peak slope).
-    if (o == Observable::youngs_modulus && test == TestKind::btt) {
+    // The engine measures E (the pre-peak slope) and the strain at peak on the compressed
+    // cylinder only.
+    const bool axial = o == Observable::youngs_modulus || o == Observable::peak_strain;
+    if (axial && test == TestKind::btt) {
       throw orch::RequestError(f.path_of("observable"),
-                               "youngs_modulus is measured by uct or triaxial");
+                               std::string(to_string(o)) + " is measured by uct or triaxial");
     }
     return o;
   }
-  throw orch::RequestError(
-      f.path_of("observable"),
-      "unknown observable '" + name + "' (known: peak_load, strength, youngs_modulus)");
+  throw orch::RequestError(f.path_of("observable"),
+                           "unknown observable '" + name +
+                               "' (known: peak_load, strength, youngs_modulus, peak_strain)");
 }
 
 Role parse_role(orch::JsonFields& f) {
@@ -208,6 +211,8 @@ const char* to_string(Observable o) {
       return "strength";
     case Observable::youngs_modulus:
       return "youngs_modulus";
+    case Observable::peak_strain:
+      return "peak_strain";
   }
   return "?";
 }

@@ -19,7 +19,8 @@ namespace rockcal::diagnosis {
 // An invalid dataset; `field` is the path of the offending key ("observations[3].uncertainty").
 // The calibration's error type, because the lab block is parsed by the calibration's own code.
 
-enum class Observable { peak_load, strength, youngs_modulus };
+// peak_strain: the axial strain at the peak of a UCT or triaxial test (dimensionless).
+enum class Observable { peak_load, strength, youngs_modulus, peak_strain };
 // Who made the numbers decides which numerical errors separate them from the model's runs
 // (budget.hpp, error_terms): a lab or a finer model differ from the model by its resolution and
 // its loading speed; a twin made by the same model at the same resolution and speed differs only

@@ -6,8 +6,18 @@
 namespace rockcal::diagnosis {
 
 double model_per_lab(Observable o, const Scaling& scaling) {
-  // A peak load is a force; a strength and a modulus are stresses (force / length^2).
-  return o == Observable::peak_load ? scaling.force : scaling.stress;
+  // A peak load is a force; a strength and a modulus are stresses (force / length^2); a strain
+  // has no unit.
+  switch (o) {
+    case Observable::peak_load:
+      return scaling.force;
+    case Observable::strength:
+    case Observable::youngs_modulus:
+      return scaling.stress;
+    case Observable::peak_strain:
+      return 1.0;
+  }
+  return 1.0;
 }
 
 Observation to_model_units(const Observation& o, const Dataset& d) {

@@ -116,6 +116,11 @@ TwinDesign make_twin_design(const json& job_template, const RunJobs& run) {
   d.observations.push_back(planned("uct-large", TestKind::uct, large, peak_load, held_out));
   d.observations.push_back(planned("btt-large", TestKind::btt, large_disc, peak_load, held_out));
   d.observations.push_back(planned("uct-fast", TestKind::uct, fast, peak_load, held_out));
+  // The strain at the UCT's peak: read from the base UCT's run (no job of its own), and the
+  // observable that packing, rate, compression coupling and interaction range move most once the
+  // strengths are re-fitted (docs/effects.md, "Signatures").
+  d.observations.push_back(
+      planned("uct-peak-strain", TestKind::uct, cylinder, peak_strain, held_out));
   return d;
 }
 
