@@ -13,6 +13,12 @@ docs/effects.md), seeds 1, 2, 3; the null case with seeds 1, 2, 3.
   bench/diagnosis_confusion.py [--build build] [--out DIR] [--effects a,b] [--twins 3]
                                [--request examples/diagnose_twin.json]
 
+Also printed: the gap threshold (held-out rms in budgets) that at most 10% of the null twins
+exceed, to be set as the request's "decision": {"gap_budgets": ...} for that template; and per
+effect the share identified at each hidden value and its detection limit (the smallest value
+identified in >= 80% of >= 5 twins; --twins 15 gives 5 per value). A twin the engine cannot make
+(a specimen with no peak) is recorded and left out, not replaced.
+
 On demand only (tens of minutes on 2 cores); it builds nothing. Writes DIR/results.json (one row
 per twin, with the campaign summary's verdict, gap and candidates) and DIR/matrix.md.
 """
@@ -173,6 +179,29 @@ def null_threshold(null_gaps, max_false_positive=0.10):
     return gaps[allowed] if allowed < len(gaps) else 0.0
 
 
+# The walk fractions of VALUES: twin k of an effect hides VALUES[effect][k % 3], at s = 0.5, 0.75, 1.
+WALK = [0.5, 0.75, 1.0]
+
+
+def detection_limits(eff):
+    """Per effect: the share of its twins identified at each hidden value, and its detection limit,
+    the smallest value identified in >= 80% of its twins there (with >= 5 twins at that value for
+    the limit to count; fewer are shown but not taken as a limit)."""
+    lines = []
+    for effect in dict.fromkeys(r["hidden"] for r in eff):
+        per_value = []
+        for i, value in enumerate(VALUES.get(effect, [])):
+            twins = [r for r in eff if r["hidden"] == effect and r["value"] == value]
+            if twins:
+                hits = sum(1 for r in twins if r["verdict"] == effect)
+                per_value.append((WALK[i], value, hits, len(twins)))
+        limit = next((f"{v:g} (s = {w:g} of the walk from neutral to strong)" for w, v, h, n in per_value
+                      if n >= 5 and h >= 0.8 * n), "none among the values tested")
+        shown = ", ".join(f"{v:g}: {h}/{n}" for w, v, h, n in per_value)
+        lines.append(f"- {effect}: identified {shown}; detection limit {limit}")
+    return lines
+
+
 def write_matrix(rows, work, wall):
     failed = [r for r in rows if "twin_error" in r]
     rows = [r for r in rows if "twin_error" not in r]
@@ -215,6 +244,7 @@ def write_matrix(rows, work, wall):
                   f"{t:.2f} budgets; effect twins above it: "
                   f"{sum(1 for r in eff if ((r['base_gap'] or {}).get('held_out_budgets') or 0) > t)}"
                   f" of {len(eff)}"]
+    lines += detection_limits(eff)
     if failed:
         lines += [f"- twins that could not be made (left out): "
                   + ", ".join(f"{r['hidden']}-{r['seed']}" for r in failed)]
