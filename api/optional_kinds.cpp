@@ -5,6 +5,7 @@
 #endif
 #ifdef ROCKCAL_WITH_DIAGNOSIS
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
+#include "orchestrator/diagnosis/twin/twin_kind.hpp"
 #endif
 
 namespace rockcal::api {
@@ -15,6 +16,7 @@ void register_optional_kinds([[maybe_unused]] orch::JobService& service) {
 #endif
 #ifdef ROCKCAL_WITH_DIAGNOSIS
   service.kinds().add(rockcal::diagnosis::diagnosis_kind());
+  service.kinds().add(rockcal::diagnosis::twin_kind());
 #endif
 }
 

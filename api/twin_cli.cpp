@@ -5,12 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <thread>
 
 #include "api/serve.hpp"
 #include "engine/json_input.hpp"
-#include "orchestrator/diagnosis/twin/engine_runs.hpp"
-#include "orchestrator/diagnosis/twin/twin.hpp"
-#include "orchestrator/diagnosis/twin/twin_design.hpp"
+#include "orchestrator/diagnosis/twin/twin_kind.hpp"
+#include "orchestrator/job_service.hpp"
+#include "orchestrator/local_executor.hpp"
 
 namespace rockcal::api {
 namespace {
@@ -39,37 +40,66 @@ void write_json(const json& j, const fs::path& file) {
 
 int run_twin(const TwinOptions& o, const std::string& argv0) {
   using namespace rockcal::diagnosis;
-  if (o.effect != "none" && !o.value_given) {
-    throw std::runtime_error("--value is required with --effect " + o.effect);
-  }
-  const TwinRequest request{o.effect, o.value, o.seed, o.noise, o.resolution};
-  check_twin_request(request);  // a request no twin can be made of fails before any run
+  json request = {{"kind", "twin"},   {"effect", o.effect},         {"seed", o.seed},
+                  {"noise", o.noise}, {"resolution", o.resolution}, {"job", read_template(o.job)}};
+  if (o.value_given) request["value"] = o.value;
+  parse_twin_campaign(request);  // a request no twin can be made of fails before any run
   // rockcal-dem runs as an MPI singleton; Open MPI refuses root without these.
   setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
   setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
 
+  // The twin's runs go through a service of its own (store and pool in <out>.runs/), the same
+  // batch of jobs a server's twin, calibration or diagnosis campaign runs.
   const fs::path runs = o.out + ".runs";
-  EngineRunner runner({o.engine.empty() ? default_engine(argv0) : o.engine, o.parallel, runs});
-  const RunJobs run = [&](const std::vector<json>& jobs) { return runner.run(jobs); };
-  const TwinDesign design = make_twin_design(read_template(o.job), run);
-  const Twin twin = make_twin(design, request, run);
-
-  write_dataset_file(twin.dataset, o.out);
+  orch::ServiceConfig config;
+  config.db_path = runs / "twin.db";
+  config.workers = std::max(1, o.parallel);
+  config.max_attempts = 1;  // the engine is deterministic: a failed run fails again
+  orch::LocalExecutorConfig local;
+  local.engine = o.engine.empty() ? default_engine(argv0) : o.engine;
+  local.ranks = 0;
+  json summary;
+  std::int64_t engine_runs = 0;
+  {
+    fs::create_directories(runs);
+    orch::JobService service(config, std::make_unique<orch::LocalExecutor>(local));
+    service.kinds().add(twin_kind());
+    service.start();
+    const std::int64_t id = service.create_campaign(request);
+    std::optional<db::CampaignRow> c;
+    for (;;) {
+      c = service.store().campaign(id);
+      if (c->driver_status == "done" || c->driver_status == "failed") break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    engine_runs = service.store().durations(id).count;
+    service.stop();
+    summary = json::parse(c->summary.value_or("null"));
+    if (c->driver_status == "failed") {
+      throw std::runtime_error("the twin could not be made: " +
+                               summary.value("error", std::string("(no reason recorded)")) +
+                               "\n(runs kept in " + runs.string() + ")");
+    }
+  }
+  const Dataset dataset = parse_dataset_json(summary.at("dataset"));
+  write_dataset_file(dataset, o.out);
   const std::string truth_file = truth_file_for(o.out);
-  write_json(twin.truth, truth_file);
+  write_json(summary.at("truth"), truth_file);
   if (!o.keep_runs) fs::remove_all(runs);
 
-  std::printf("%-12s %-9s %-15s %-12s %14s %12s\n", "id", "test", "observable", "role", "value",
+  std::printf("%-16s %-9s %-15s %-12s %14s %12s\n", "id", "test", "observable", "role", "value",
               "uncertainty");
-  for (const Observation& obs : twin.dataset.observations) {
-    std::printf("%-12s %-9s %-15s %-12s %14.6g %12.4g\n", obs.id.c_str(), to_string(obs.test),
+  for (const Observation& obs : dataset.observations) {
+    std::printf("%-16s %-9s %-15s %-12s %14.6g %12.4g\n", obs.id.c_str(), to_string(obs.test),
                 to_string(obs.observable), to_string(obs.role), obs.value, obs.uncertainty);
   }
-  std::printf("confining pressures %g and %g Pa (%g and %g of the template's UCS %g Pa)\n",
-              design.p_low_pa, design.p_high_pa, kLowConfinement, kHighConfinement,
-              design.base_ucs_pa);
-  std::printf("%d engine runs; dataset %s, truth %s (not shown)%s\n", runner.runs_started(),
-              o.out.c_str(), truth_file.c_str(),
+  const json& design = summary.at("design");
+  const double ucs = design.at("base_ucs");
+  const double p_low = design.at("p_low"), p_high = design.at("p_high");
+  std::printf("confining pressures %g and %g Pa (%g and %g of the template's UCS %g Pa)\n", p_low,
+              p_high, kLowConfinement, kHighConfinement, ucs);
+  std::printf("%lld engine runs; dataset %s, truth %s (not shown)%s\n",
+              static_cast<long long>(engine_runs), o.out.c_str(), truth_file.c_str(),
               o.keep_runs ? (", runs in " + runs.string()).c_str() : "");
   return 0;
 }

@@ -1,4 +1,4 @@
-// End to end on the real engine: a twin with a hidden effect (rockcal-dem, in-process runner),
+// End to end on the real engine: a twin with a hidden effect made by the "twin" kind, then
 // diagnosed by the "diagnosis" kind inside the real service (JobService, SQLite store, local
 // executor running rockcal-dem), at a tiny resolution so that it takes a couple of minutes on two
 // cores. Then the same diagnosis again: every run comes from the job store.
@@ -9,11 +9,12 @@
 #include <filesystem>
 #include <thread>
 
+#include "engine_service.hpp"
+#include "orchestrator/diagnosis/dataset/dataset.hpp"
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
-#include "orchestrator/diagnosis/twin/engine_runs.hpp"
-#include "orchestrator/diagnosis/twin/twin.hpp"
 #include "orchestrator/diagnosis/twin/twin_design.hpp"
+#include "orchestrator/diagnosis/twin/twin_kind.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 
@@ -38,30 +39,14 @@ class EngineTwinDiagnosis : public ::testing::Test {
   }
 
   void start() {
-    orch::ServiceConfig cfg;
-    cfg.db_path = dir_ / "svc.db";
-    cfg.workers = 2;
-    orch::LocalExecutorConfig exec;
-    exec.engine = ROCKCAL_DEM;
-    exec.ranks = 0;
-    service_ = std::make_unique<orch::JobService>(cfg, std::make_unique<orch::LocalExecutor>(exec));
+    service_ = test::engine_service(dir_ / "svc.db", ROCKCAL_DEM);
     service_->kinds().add(diagnosis_kind());
+    service_->kinds().add(twin_kind());
     service_->start();
   }
 
   json run_to_summary(const json& request, std::chrono::seconds timeout) {
-    const std::int64_t id = service_->create_campaign(request);
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < end) {
-      const auto c = service_->store().campaign(id);
-      if (c->driver_status == "done" || c->driver_status == "failed") {
-        EXPECT_EQ(*c->driver_status, "done") << c->summary.value_or("");
-        return json::parse(*c->summary);
-      }
-      std::this_thread::sleep_for(200ms);
-    }
-    ADD_FAILURE() << "diagnosis " << id << " did not finish in " << timeout.count() << " s";
-    return nullptr;
+    return test::run_to_summary(*service_, request, timeout);
   }
 
   std::int64_t jobs_run() { return service_->store().durations().count; }
@@ -72,11 +57,17 @@ class EngineTwinDiagnosis : public ::testing::Test {
 
 TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   const auto t0 = std::chrono::steady_clock::now();
-  // The twin: strong heterogeneity (Weibull modulus 2.5) hidden at seeded bond strengths.
-  EngineRunner runner({ROCKCAL_DEM, 2, dir_ / "twin"});
-  const RunJobs run = [&](const std::vector<json>& jobs) { return runner.run(jobs); };
-  const TwinDesign design = make_twin_design(demo_twin_template(), run);
-  const Twin twin = make_twin(design, {"heterogeneity", 2.5, 3, 0.02}, run);
+  // The twin: strong heterogeneity (Weibull modulus 2.5) hidden at seeded bond strengths, made
+  // by the service's "twin" kind: 1 + 7 runs.
+  start();
+  const json made = run_to_summary(
+      {{"kind", "twin"}, {"effect", "heterogeneity"}, {"value", 2.5}, {"seed", 3}}, 120s);
+  ASSERT_TRUE(made.is_object());
+  const std::int64_t twin_runs = jobs_run();
+  EXPECT_EQ(twin_runs, 1 + 7);
+  const Dataset dataset = parse_dataset_json(made["dataset"]);
+  EXPECT_EQ(dataset.origin, Origin::same_resolution_model);
+  EXPECT_EQ(made["truth"]["effect"], "heterogeneity");
   const auto t1 = std::chrono::steady_clock::now();
 
   // Two candidates and a 3 x 3 (x 3) grid: 9 + 2 x 18 grid points, 4 budget, then per confirmed
@@ -84,15 +75,14 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   const json request = {{"kind", "diagnosis"},
                         {"name", "engine twin"},
                         {"job", demo_twin_template()},
-                        {"dataset", to_json(twin.dataset)},
+                        {"dataset", made["dataset"]},
                         {"effects", {"heterogeneity", "rate"}},
                         {"grid", {{"fr0", 3}, {"fs0", 3}, {"s", 3}}},
                         {"budget", {{"seeds", {2}}}}};
-  start();
   const json s = run_to_summary(request, 280s);
   ASSERT_TRUE(s.is_object());
   const auto t2 = std::chrono::steady_clock::now();
-  const std::int64_t first_runs = jobs_run();
+  const std::int64_t first_runs = jobs_run() - twin_runs;
 
   // Every observation has its budget, lab uncertainty and base residual from a real run.
   ASSERT_EQ(s["observations"].size(), 9u);  // the twin design's, uct-peak-strain included
@@ -130,14 +120,14 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
 
   // The same diagnosis again: the job store answers every run.
   const json again = run_to_summary(request, 60s);
-  EXPECT_EQ(jobs_run(), first_runs);
+  EXPECT_EQ(jobs_run() - twin_runs, first_runs);
   EXPECT_EQ(again.dump(), s.dump());
   const auto t3 = std::chrono::steady_clock::now();
   auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
   std::printf(
       "twin %.0f s (%d runs); diagnosis %.0f s (%lld engine runs, %d model points); again %.1f "
       "s\nverdict %s: %s\nbudget %s\nheterogeneity G %s, rate G %s\n",
-      secs(t0, t1), runner.runs_started(), secs(t1, t2), static_cast<long long>(first_runs),
+      secs(t0, t1), static_cast<int>(twin_runs), secs(t1, t2), static_cast<long long>(first_runs),
       s["runs"]["model_points"].get<int>(), secs(t2, t3), v["label"].get<std::string>().c_str(),
       reason.c_str(), s["budget"]["per_observation"].dump().c_str(),
       s["candidates"][1]["gap_closure"].dump().c_str(),

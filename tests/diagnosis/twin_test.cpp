@@ -1,6 +1,6 @@
 // The synthetic twin: its design for a template, the seeded truth and noise (with a formula
 // standing in for the engine), and the real thing: rockcal-dem runs on a tiny sample, through the
-// library and through `rockcal twin`.
+// "twin" campaign kind on a service of its own and through `rockcal twin`.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,10 +8,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
-#include "orchestrator/diagnosis/twin/engine_runs.hpp"
+#include "engine_service.hpp"
 #include "orchestrator/diagnosis/twin/twin.hpp"
 #include "orchestrator/diagnosis/twin/twin_design.hpp"
+#include "orchestrator/diagnosis/twin/twin_kind.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -136,6 +138,33 @@ TEST(DiagnosisTwin, BadTemplatesAndRequestsAreRefused) {
   EXPECT_THROW(make_twin(d, {"none", 0, 1, 0.0}, formula_engine()), orch::RequestError);
 }
 
+// The "twin" campaign is refused before any run, naming the field as `rockcal twin` names it.
+TEST(DiagnosisTwin, TwinCampaignsAreRefusedNamingTheField) {
+  const auto refusal = [](const json& r) -> std::string {
+    try {
+      parse_twin_campaign(r);
+    } catch (const orch::RequestError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  const json good = {{"kind", "twin"}, {"effect", "rate"}, {"value", 4}, {"seed", 2}};
+  EXPECT_EQ(refusal(good), "(accepted)");
+  EXPECT_EQ(parse_twin_campaign(good).job_template, demo_twin_template());
+  EXPECT_EQ(refusal({{"kind", "twin"}}), "effect: is required (an effect or \"none\")");
+  EXPECT_EQ(refusal({{"kind", "twin"}, {"effect", "rate"}}), "value: is required with effect rate");
+  EXPECT_EQ(refusal({{"kind", "twin"}, {"effect", "none"}, {"colour", 1}}),
+            "colour: unknown field");
+  EXPECT_EQ(refusal({{"kind", "twin"}, {"effect", "none"}, {"seed", -1}}),
+            "seed: must be in [0, 9223372036854775807]");
+  EXPECT_EQ(refusal({{"kind", "twin"}, {"effect", "none"}, {"resolution", 4}}),
+            "resolution: must be in [1, 3] (1 = the template's own)");
+  json bad = good;
+  bad["job"] = demo_twin_template();
+  bad["job"]["sample"]["diameter"] = -1;
+  EXPECT_EQ(refusal(bad).rfind("job.sample.diameter: ", 0), 0u) << refusal(bad);
+}
+
 TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
   const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
   std::vector<json> jobs;
@@ -210,20 +239,39 @@ class DiagnosisTwinEngine : public ::testing::Test {
     work_ = fs::temp_directory_path() / ("rockcal-dtwin-" + std::to_string(getpid()));
     fs::create_directories(work_);
   }
-  void TearDown() override { fs::remove_all(work_); }
+  void TearDown() override {
+    if (service_) service_->stop();
+    service_.reset();
+    fs::remove_all(work_);
+  }
+
+  void start() {
+    service_ = test::engine_service(work_ / "svc.db", ROCKCAL_DEM);
+    service_->kinds().add(twin_kind());
+    service_->start();
+  }
+
+  json make(const json& request) {
+    return test::run_to_summary(*service_, request, std::chrono::seconds(120));
+  }
+
+  std::int64_t runs() { return service_->store().durations().count; }
+
   fs::path work_;
+  std::unique_ptr<orch::JobService> service_;
 };
 
-// The null case on the real engine: a dataset any diagnosis can read, with calibration and
-// held-out observations, the same for the same seed.
+// The null case on the real engine, made by the "twin" kind: a dataset any diagnosis can read,
+// with calibration and held-out observations, the same for the same seed, and made again from
+// the job store without a run.
 TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
-  EngineRunner runner({ROCKCAL_DEM, 2, work_ / "runs"});
-  const RunJobs run = [&](const std::vector<json>& jobs) { return runner.run(jobs); };
-  const TwinDesign design = make_twin_design(demo_twin_template(), run);
-  EXPECT_GT(design.p_low_pa, 0);
-  const Twin a = make_twin(design, {"none", 0, 5, 0.02}, run);
-  EXPECT_EQ(runner.runs_started(), 1 + 7);
-  const Dataset parsed = parse_dataset_json(to_json(a.dataset));
+  start();
+  const json request = {{"kind", "twin"}, {"effect", "none"}, {"seed", 5}};
+  const json made = make(request);
+  ASSERT_TRUE(made.is_object());
+  EXPECT_GT(made["design"]["p_low"].get<double>(), 0);
+  EXPECT_EQ(runs(), 1 + 7);
+  const Dataset parsed = parse_dataset_json(made["dataset"]);
   EXPECT_EQ(to_json(parse_dataset_csv(to_csv(parsed))), to_json(parsed));
   int calibration = 0, held_out = 0;
   for (const Observation& o : parsed.observations) {
@@ -232,12 +280,13 @@ TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
   }
   EXPECT_EQ(calibration, 4);
   EXPECT_EQ(held_out, 5);  // uct-peak-strain shares the base UCT run: still 1 + 7 runs
-  // The same seed again: the engine is deterministic, so is the noise.
-  const Twin b = make_twin(design, {"none", 0, 5, 0.02}, run);
-  EXPECT_EQ(to_json(a.dataset), to_json(b.dataset));
-  EXPECT_EQ(a.truth["observations"], b.truth["observations"]);
+  // The same seed again: the job store answers every run, and the noise is the seed's.
+  const json again = make(request);
+  EXPECT_EQ(runs(), 1 + 7);
+  EXPECT_EQ(again["dataset"], made["dataset"]);
+  EXPECT_EQ(again["truth"]["observations"], made["truth"]["observations"]);
   // A larger specimen carries more load; a confined one too.
-  const auto value = [&](const std::string& id) { return find(a.dataset.observations, id).value; };
+  const auto value = [&](const std::string& id) { return find(parsed.observations, id).value; };
   EXPECT_GT(value("uct-large"), value("uct-peak"));
   EXPECT_GT(value("tri-high"), value("tri-low"));
 }

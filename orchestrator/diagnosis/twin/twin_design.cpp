@@ -20,9 +20,13 @@ namespace {
 using nlohmann::json;
 using orch::RequestError;
 
-// The template through the engine's own validation for the tests the twin runs; errors name the
-// field under "job." as a calibration campaign's do.
-JobSpec validate_template(const json& job_template) {
+Observation planned(std::string id, TestKind test, Conditions c, Observable observable, Role role) {
+  return {std::move(id), test, c, observable, 0.0, 0.0, role};
+}
+
+}  // namespace
+
+JobSpec check_twin_template(const json& job_template) {
   if (!job_template.is_object()) throw orch::RequestError("job", "must be a JSON object");
   for (const char* key : {"test", "effects"}) {
     if (job_template.contains(key)) {
@@ -43,12 +47,6 @@ JobSpec validate_template(const json& job_template) {
     throw orch::under("job", e);
   }
 }
-
-Observation planned(std::string id, TestKind test, Conditions c, Observable observable, Role role) {
-  return {std::move(id), test, c, observable, 0.0, 0.0, role};
-}
-
-}  // namespace
 
 double round_to_two_digits(double x) {
   if (!(x > 0) || !std::isfinite(x)) return x;
@@ -75,7 +73,7 @@ json observation_job(const json& job_template, const Observation& o, double fr0_
 TwinDesign make_twin_design(const json& job_template, const RunJobs& run) {
   TwinDesign d;
   d.job_template = job_template;
-  d.model = validate_template(job_template);
+  d.model = check_twin_template(job_template);
   const double D = d.model.sample.diameter_m;
   const double H = d.model.sample.height_m;
   const double t = d.model.sample.btt_thickness();

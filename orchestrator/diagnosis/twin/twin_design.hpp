@@ -35,8 +35,13 @@ nlohmann::json demo_twin_template();
 // Throws when a run fails.
 using RunJobs = std::function<std::vector<nlohmann::json>(const std::vector<nlohmann::json>&)>;
 
-// Checks the template (the engine's validation for every test; no "test" or "effects": the twin
-// sets them), runs its base UCT once through `run` for the UCS, and lays out the design:
+// The template through the engine's own validation for every test the twin runs (no "test" or
+// "effects": the twin sets them; "bond" optional), parsed as a UCT. Throws orch::RequestError
+// naming the field under "job." as a calibration campaign's errors do.
+JobSpec check_twin_template(const nlohmann::json& job_template);
+
+// Checks the template (check_twin_template), runs its base UCT once through `run` for the UCS, and
+// lays out the design:
 //   calibration: UCT peak load and Young's modulus (D, H); BTT peak load (D, t); triaxial peak
 //                load at p_low (D, H)
 //   held out:    triaxial at p_high (D, H); UCT at 1.5 D x 1.5 H; BTT at 1.5 D x 1.5 t; UCT at

@@ -1,0 +1,81 @@
+#include "orchestrator/diagnosis/twin/twin_kind.hpp"
+
+#include <limits>
+#include <stdexcept>
+
+#include "orchestrator/job_batch.hpp"
+#include "orchestrator/json_fields.hpp"
+#include "orchestrator/request_error.hpp"
+#include "orchestrator/request_fields.hpp"
+
+namespace rockcal::diagnosis {
+
+using nlohmann::json;
+
+TwinCampaign parse_twin_campaign(const json& request) {
+  orch::JsonFields f(request, "");
+  f.get("kind");
+  TwinCampaign c;
+  c.name = orch::campaign_name(request, "twin");
+  f.get("name");
+  c.twin.effect = f.string("effect").value_or("");
+  if (c.twin.effect.empty())
+    throw orch::RequestError("effect", "is required (an effect or \"none\")");
+  const auto value = f.number("value");
+  if (!value && c.twin.effect != "none") {
+    throw orch::RequestError("value", "is required with effect " + c.twin.effect);
+  }
+  c.twin.value = value.value_or(0.0);
+  c.twin.seed =
+      std::uint64_t(f.integer("seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));
+  c.twin.noise = f.number("noise").value_or(c.twin.noise);
+  c.twin.resolution = f.number("resolution").value_or(c.twin.resolution);
+  const json* job = f.get("job");
+  c.job_template = job ? *job : demo_twin_template();
+  f.reject_unknown();
+  check_twin_request(c.twin);
+  check_twin_template(c.job_template);
+  return c;
+}
+
+RunJobs pool_run_jobs(orch::JobService& service, std::int64_t campaign_id, std::stop_token stop) {
+  return [&service, campaign_id, stop](const std::vector<json>& jobs) {
+    const auto outcomes = orch::run_batch(service, campaign_id, jobs, stop);
+    if (!outcomes) throw TwinCancelled();
+    std::vector<json> results;
+    for (const orch::JobOutcome& o : *outcomes) {
+      if (o.state != "succeeded" || !o.result) {
+        throw std::runtime_error("twin job " + std::to_string(o.job_id) + " " + o.state + ": " +
+                                 o.error.value_or("(no error recorded)"));
+      }
+      results.push_back(json::parse(o.result->result));
+    }
+    return results;
+  };
+}
+
+orch::CampaignKind twin_kind() {
+  orch::CampaignKind kind;
+  kind.name = "twin";
+  kind.plan = [](const json& request, const orch::Limits&) {
+    return orch::CampaignPlan{parse_twin_campaign(request).name, {}};
+  };
+  kind.driver = [](orch::DriverContext& ctx) {
+    const TwinCampaign c = parse_twin_campaign(ctx.request);
+    const RunJobs run = pool_run_jobs(ctx.service, ctx.campaign_id, ctx.stop);
+    const TwinDesign design = make_twin_design(c.job_template, run);
+    const Twin twin = make_twin(design, c.twin, run);
+    return json{{"kind", "twin"},
+                {"name", c.name},
+                {"dataset", to_json(twin.dataset)},
+                {"truth", twin.truth},
+                {"design",
+                 {{"base_ucs", design.base_ucs_pa},
+                  {"p_low", design.p_low_pa},
+                  {"p_high", design.p_high_pa},
+                  {"units", "model"}}}};
+  };
+  return kind;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,42 @@
+// The "twin" campaign kind: a synthetic twin made on the service's pool. Its runs go through the
+// one batch of jobs every campaign uses (orch::run_batch), so they are cached like any job, a
+// twin re-made after a crash or with a new noise seed replays the runs it has, and a diagnosis in
+// the same store finds the twin's runs too.
+//
+// Request: {"kind": "twin", "name"?, "effect", "value" (unless "none"), "seed"?, "noise"?,
+//           "resolution"?, "job"? (the template; default demo_twin_template())}
+// Summary: {"kind": "twin", "dataset": {...}, "truth": {...}, "design": {...}}
+#pragma once
+
+#include <cstdint>
+#include <stop_token>
+
+#include <nlohmann/json.hpp>
+
+#include "orchestrator/campaign_kinds.hpp"
+#include "orchestrator/diagnosis/twin/twin.hpp"
+#include "orchestrator/diagnosis/twin/twin_design.hpp"
+#include "orchestrator/job_service.hpp"
+
+namespace rockcal::diagnosis {
+
+struct TwinCampaign {
+  std::string name;
+  TwinRequest twin;
+  nlohmann::json job_template;
+};
+
+// Throws orch::RequestError naming the field ("effect", "value", "noise", "job.sample.radius").
+TwinCampaign parse_twin_campaign(const nlohmann::json& request);
+
+// Runs jobs as one batch of the campaign and returns each run's result.json, in order. Throws
+// std::runtime_error with the job's id and error for a failed run (a run without a peak fails),
+// TwinCancelled when `stop` is requested or the campaign is cancelled.
+struct TwinCancelled : std::runtime_error {
+  TwinCancelled() : std::runtime_error("twin cancelled") {}
+};
+RunJobs pool_run_jobs(orch::JobService& service, std::int64_t campaign_id, std::stop_token stop);
+
+orch::CampaignKind twin_kind();
+
+}  // namespace rockcal::diagnosis
