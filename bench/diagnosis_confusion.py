@@ -11,7 +11,7 @@ Values: by default each effect at s = 0.5, 0.75 and 1 of its diagnosis walk (neu
 docs/effects.md), seeds 1, 2, 3; the null case with seeds 1, 2, 3.
 
   bench/diagnosis_confusion.py [--build build] [--out DIR] [--effects a,b] [--twins 3]
-                               [--request examples/diagnose_twin.json]
+                               [--request examples/diagnose_twin.json] [--gap-budgets X]
 
 Also printed: the gap threshold (held-out rms in budgets) that at most 10% of the null twins
 exceed, to be set as the request's "decision": {"gap_budgets": ...} for that template; and per
@@ -86,6 +86,8 @@ def main():
     ap.add_argument("--resolution", type=float, default=1.0,
                     help="twins made by a model this many times finer (1: same-resolution twins)")
     ap.add_argument("--request", default=os.path.join(ROOT, "examples", "diagnose_twin.json"))
+    ap.add_argument("--gap-budgets", type=float, default=None,
+                    help="the request's decision.gap_budgets (e.g. the threshold a null run printed)")
     ap.add_argument("--reuse-twins", action="store_true",
                     help="keep twin files already in --out (e.g. a copy of an earlier run's, with its job store)")
     a = ap.parse_args()
@@ -94,6 +96,8 @@ def main():
     rockcal = os.path.join(a.build, "api", "rockcal")
     base_request = json.load(open(a.request))
     base_request.pop("dataset_file", None)
+    if a.gap_budgets is not None:
+        base_request.setdefault("decision", {})["gap_budgets"] = a.gap_budgets
     # The twins are made on the request's template, so that a larger template (--request with
     # another "job") gets twins of its own resolution.
     template = os.path.join(work, "template.json")
