@@ -224,7 +224,7 @@ def write_matrix(rows, work, wall):
     g_all = [x for x in g_all if x is not None]
     over = [r for r in eff if (r["base_gap"] or {}).get("exceeds_budget")]
     lines += ["",
-              f"- twins whose base held-out gap exceeds the numerical budget: {len(over)} of "
+              f"- twins whose base held-out gap exceeds the decision threshold: {len(over)} of "
               f"{len(eff)}; identified among those: "
               f"{sum(1 for r in over if r['verdict'] == r['hidden'])}",
               f"- top-1 identification: {len(hits)} of {len(eff)}"

@@ -48,6 +48,12 @@ std::optional<double> JsonFields::positive(const std::string& key) {
   return x;
 }
 
+double JsonFields::required_positive(const std::string& key) {
+  const auto x = positive(key);
+  if (!x) throw RequestError(path_of(key), "is required");
+  return *x;
+}
+
 std::optional<std::int64_t> JsonFields::integer(const std::string& key, std::int64_t lo,
                                                 std::int64_t hi) {
   const nlohmann::json* v = get(key);

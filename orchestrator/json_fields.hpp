@@ -23,6 +23,7 @@ class JsonFields {
 
   std::optional<double> number(const std::string& key);
   std::optional<double> positive(const std::string& key);
+  double required_positive(const std::string& key);  // "is required" when absent
   std::optional<std::int64_t> integer(const std::string& key, std::int64_t lo, std::int64_t hi);
   std::optional<std::string> string(const std::string& key);
   std::optional<bool> boolean(const std::string& key);

@@ -9,15 +9,9 @@ namespace {
 
 using nlohmann::json;
 
-double required_positive(orch::JsonFields& f, const std::string& key) {
-  auto x = f.positive(key);
-  if (!x) throw orch::RequestError(f.path_of(key), "is required");
-  return *x;
-}
-
 Specimen parse_lab_specimen(orch::JsonFields& lab) {
   orch::JsonFields s(lab.require("specimen"), lab.path_of("specimen"));
-  Specimen specimen{required_positive(s, "diameter"), required_positive(s, "height"), 0.0};
+  Specimen specimen{s.required_positive("diameter"), s.required_positive("height"), 0.0};
   // A Brazilian disc of t = D/2 unless stated (examples/datasets/seed_paper/README.md; ISRM
   // proportion).
   specimen.thickness_m = s.positive("thickness").value_or(0.5 * specimen.diameter_m);
@@ -27,8 +21,8 @@ Specimen parse_lab_specimen(orch::JsonFields& lab) {
 
 LabMaterial parse_lab_material(orch::JsonFields& lab) {
   orch::JsonFields m(lab.require("material"), lab.path_of("material"));
-  LabMaterial material{required_positive(m, "youngs_modulus"), 0.0, required_positive(m, "density"),
-                       required_positive(m, "grain_radius")};
+  LabMaterial material{m.required_positive("youngs_modulus"), 0.0, m.required_positive("density"),
+                       m.required_positive("grain_radius")};
   const auto nu = m.number("nu");
   if (!nu) throw orch::RequestError(m.path_of("nu"), "is required");
   if (!(*nu > -1.0 && *nu < 0.5)) throw orch::RequestError(m.path_of("nu"), "must be in (-1, 0.5)");

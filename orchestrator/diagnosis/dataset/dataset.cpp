@@ -10,19 +10,12 @@ namespace rockcal::diagnosis {
 namespace {
 
 using nlohmann::json;
-using orch::JsonFields;
 
 std::string required_string(orch::JsonFields& f, const std::string& key) {
   auto s = f.string(key);
   if (!s) throw orch::RequestError(f.path_of(key), "is required");
   if (s->empty()) throw orch::RequestError(f.path_of(key), "must not be empty");
   return *s;
-}
-
-double required_positive(orch::JsonFields& f, const std::string& key) {
-  auto x = f.positive(key);
-  if (!x) throw orch::RequestError(f.path_of(key), "is required");
-  return *x;
 }
 
 TestKind parse_test(orch::JsonFields& f) {
@@ -106,8 +99,8 @@ Observation parse_observation(const json& j, const std::string& path) {
   o.test = parse_test(f);
   o.conditions = parse_conditions(f, o.test);
   o.observable = parse_observable(f, o.test);
-  o.value = required_positive(f, "value");
-  o.uncertainty = required_positive(f, "uncertainty");
+  o.value = f.required_positive("value");
+  o.uncertainty = f.required_positive("uncertainty");
   o.role = parse_role(f);
   f.reject_unknown();
   return o;

@@ -9,7 +9,9 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <stop_token>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -29,12 +31,13 @@ struct TwinCampaign {
 // Throws orch::RequestError naming the field ("effect", "value", "noise", "job.sample.radius").
 TwinCampaign parse_twin_campaign(const nlohmann::json& request);
 
-// Runs jobs as one batch of the campaign and returns each run's result.json, in order. Throws
-// std::runtime_error with the job's id and error for a failed run (a run without a peak fails),
-// TwinCancelled when `stop` is requested or the campaign is cancelled.
 struct TwinCancelled : std::runtime_error {
   TwinCancelled() : std::runtime_error("twin cancelled") {}
 };
+
+// Runs jobs as one batch of the campaign and returns each run's result.json, in order. Throws
+// std::runtime_error with the job's id and error for a failed run (a run without a peak fails),
+// TwinCancelled when `stop` is requested or the campaign is cancelled.
 RunJobs pool_run_jobs(orch::JobService& service, std::int64_t campaign_id, std::stop_token stop);
 
 orch::CampaignKind twin_kind();
