@@ -79,6 +79,15 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
   EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + 3 * 5) * 4u);
   EXPECT_EQ(budget_runs_per_point(c2.budget), 6u);  // reference, 2 seeds, speed, 2 resolutions
+  // The local design: the 3 x 3 base grid, its star, 4 points per effect (both continuous at
+  // neutral); the step is read.
+  json local = request();
+  local["grid"] = {{"design", "local"}, {"fr0", 3}, {"fs0", 3}, {"step", 0.15}};
+  const DiagnosisCampaign c3 = parse_diagnosis_campaign(local);
+  EXPECT_EQ(c3.grid.design, Design::local);
+  EXPECT_EQ(c3.grid.step, 0.15);
+  EXPECT_EQ(planned_jobs(c3), (9 + 5 + 2 * 4 + 2 * 5 * 5 + 3 * 5) * 4u);
+  EXPECT_EQ(c.grid.design, Design::global);
   // Without "effects", every registered effect is a candidate.
   json all = request();
   all.erase("effects");
@@ -102,6 +111,8 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
        }},
       {"grid.s", [](json& r) { r["grid"]["s"] = 2; }},
       {"grid.fr0", [](json& r) { r["grid"]["fr0"] = 1.5; }},
+      {"grid.design", [](json& r) { r["grid"]["design"] = "adaptive"; }},
+      {"grid.step", [](json& r) { r["grid"]["step"] = 0.5; }},
       {"effects[1]",
        [](json& r) {
          r["effects"] = {"heterogeneity", "gremlins"};

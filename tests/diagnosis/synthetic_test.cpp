@@ -12,6 +12,7 @@
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "synthetic_model.hpp"
 
@@ -73,6 +74,34 @@ INSTANTIATE_TEST_SUITE_P(Synthetic, HiddenEffect,
                          ::testing::Values(std::pair{"size", 0.8}, std::pair{"confinement", 0.6},
                                            std::pair{"rate", 0.7}),
                          [](const auto& info) { return std::string(info.param.first); });
+
+// The local design finds what the global grids find, from a fraction of their runs: the base
+// grid, a star at its fit and four runs per effect there (local_design.hpp).
+TEST_P(HiddenEffect, TheLocalDesignFindsItFromFewerRuns) {
+  const auto [effect, s] = GetParam();
+  Diagnosed global = diagnose(effect, s);
+  Diagnosed r{twin_campaign(effect, s), {}, {}};
+  r.campaign.grid.design = Design::local;
+  r.campaign.grid.fr0 = r.campaign.grid.fs0 = 3;
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  const json& v = r.summary["verdict"];
+  EXPECT_EQ(v["effect"], effect) << v.dump(2);
+  EXPECT_NEAR(v["parameter"]["value"].get<double>(), s, 0.2) << v.dump(2);
+  EXPECT_GE(v["gap_closure"].get<double>(), 0.6);
+  EXPECT_NEAR(std::log(v["fr0"].get<double>() / 60), 0, 0.25);
+  EXPECT_NEAR(std::log(v["fs0"].get<double>() / 120), 0, 0.25);
+  // 3 x 3 + 5 base runs, 4 per effect (5 effects): 34 before budget and confirmation.
+  EXPECT_EQ(grid_points(r.campaign), 34);
+  EXPECT_EQ(r.summary["grid"]["design"], "local");
+  const int local_runs = r.summary["runs"]["model_points"].get<int>();
+  const int global_runs = global.summary["runs"]["model_points"].get<int>();
+  EXPECT_LT(local_runs, global_runs / 2) << local_runs << " vs " << global_runs;
+  EXPECT_EQ(r.summary["runs"]["jobs"].get<int>() % local_runs, 0);
+  std::printf("%s at s = %.2f, local design: G = %.3f, %d model points (global grids: %d)\n",
+              effect, s, v["gap_closure"].get<double>(), local_runs, global_runs);
+}
 
 TEST(Diagnosis, NullCaseNeedsNoEffect) {
   const Diagnosed r = diagnose("", 0.0);

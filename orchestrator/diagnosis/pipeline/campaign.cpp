@@ -20,6 +20,19 @@ GridSpec parse_grid(orch::JsonFields& root) {
   const json* v = root.get("grid");
   if (!v) return g;
   orch::JsonFields f(*v, "grid");
+  if (auto d = f.string("design")) {
+    if (*d == "local") {
+      g.design = Design::local;
+    } else if (*d != "global") {
+      throw orch::RequestError(f.path_of("design"), "must be \"global\" or \"local\"");
+    }
+  }
+  if (auto h = f.number("step")) {
+    if (!(*h > 0 && *h <= 0.25)) {
+      throw orch::RequestError(f.path_of("step"), "must lie in (0, 0.25] (unit-cube half-width)");
+    }
+    g.step = *h;
+  }
   // Three values per axis is the least a quadratic can be fitted to.
   g.fr0 = int(f.integer("fr0", 3, 12).value_or(g.fr0));
   g.fs0 = int(f.integer("fs0", 3, 12).value_or(g.fs0));

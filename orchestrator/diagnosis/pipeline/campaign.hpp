@@ -17,12 +17,19 @@
 
 namespace rockcal::diagnosis {
 
-// Grid of the response surfaces: values of ln F_r0 and ln F_s0 spread evenly over the bounds
-// (ends included), and of s over [0, 1] per effect. Three per axis is the least a quadratic needs.
+// Where the response surfaces' runs lie. "global": a grid of ln F_r0 and ln F_s0 spread evenly
+// over the bounds (ends included), and of s over [0, 1], for every effect. "local"
+// (local_design.hpp): the grid for the base model only, a star of half-width `step` (unit cube)
+// around its fit, and each effect's s levels at that fit. Three per axis is the least a quadratic
+// needs.
+enum class Design { global, local };
+
 struct GridSpec {
+  Design design = Design::global;
   int fr0 = 4;
   int fs0 = 4;
   int s = 3;
+  double step = 0.1;  // local design: a tenth of the box, x1.32 in a strength on the default bounds
 };
 
 struct DiagnosisCampaign {

@@ -12,6 +12,7 @@
 #include "orchestrator/diagnosis/analysis/trust_region.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
+#include "orchestrator/diagnosis/pipeline/local_design.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -236,9 +237,10 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   const std::vector<double> lab = ln_lab(c.targets);
   DiagnosisResult report;
 
-  // 1. Every grid, one batch.
+  // 1. Every candidate's response-surface runs: every grid in one batch, or the local design.
   phase(options, "grid", 1, grid_points(c));
-  const std::vector<Samples> samples = run_grids(c, evaluator);
+  const std::vector<Samples> samples =
+      c.grid.design == Design::local ? run_local_design(c, evaluator) : run_grids(c, evaluator);
   report.candidates.resize(1 + c.candidates.size());
   for (std::size_t k = 0; k < report.candidates.size(); ++k) {
     CandidateResult& r = report.candidates[k];

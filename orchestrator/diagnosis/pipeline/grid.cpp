@@ -25,6 +25,15 @@ int grid_levels(const Candidate& candidate, int s_values) {
 }
 
 int grid_points(const DiagnosisCampaign& c) {
+  if (c.grid.design == Design::local) {
+    // The base grid and its star; per effect its s levels at the fit and two arms at s = 1, or a
+    // star at each level for an effect that jumps at neutral.
+    int points = c.grid.fr0 * c.grid.fs0 + 5;
+    for (const Candidate& k : c.candidates) {
+      points += k.shares_base_grid() ? c.grid.s - 1 + 2 : 5 * c.grid.s;
+    }
+    return points;
+  }
   int levels = 1;
   for (const Candidate& k : c.candidates) levels += grid_levels(k, c.grid.s);
   return c.grid.fr0 * c.grid.fs0 * levels;
@@ -43,7 +52,6 @@ std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator)
       owner.push_back(0);
     }
   }
-  const std::size_t base_runs = requests.size();
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
     const Candidate& candidate = c.candidates[k];
     for (double s : grid_axis(c.grid.s)) {
@@ -61,17 +69,20 @@ std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator)
   const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
   for (std::size_t r = 0; r < outcomes.size(); ++r)
     samples[owner[r]].outcomes.push_back(outcomes[r]);
-  // The s = 0 slice of every effect continuous at neutral is the base grid.
+  share_base_slice(samples, c);
+  return samples;
+}
+
+void share_base_slice(std::vector<Samples>& samples, const DiagnosisCampaign& c) {
   for (std::size_t k = 1; k < samples.size(); ++k) {
     if (!c.candidates[k - 1].shares_base_grid()) continue;
-    for (std::size_t r = 0; r < base_runs; ++r) {
+    for (std::size_t r = 0; r < samples[0].z.size(); ++r) {
       std::vector<double> z = samples[0].z[r];
       z.push_back(0.0);
       samples[k].z.push_back(std::move(z));
-      samples[k].outcomes.push_back(outcomes[r]);
+      samples[k].outcomes.push_back(samples[0].outcomes[r]);
     }
   }
-  return samples;
 }
 
 SurfaceSet fit_surfaces(const Samples& samples, int dims, std::size_t targets) {

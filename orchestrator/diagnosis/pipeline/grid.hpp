@@ -21,7 +21,8 @@ ModelPoint model_point(const DiagnosisCampaign& c, const Candidate& candidate,
 
 // The s levels a candidate's own grid runs: all but u = 0 when it shares the base grid.
 int grid_levels(const Candidate& candidate, int s_values);
-// Model points of every grid together (the base grid counted once).
+// Model points of every candidate's surfaces together, under the campaign's design (the base grid
+// counted once).
 int grid_points(const DiagnosisCampaign& c);
 
 // The runs behind one candidate's surfaces.
@@ -35,6 +36,10 @@ struct Samples {
 // the base model), so it is run once and shared; an effect that jumps at neutral runs its own
 // u = 0 slice. Result: [0] = base, then one per campaign candidate.
 std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator);
+
+// The s = 0 slice of every effect continuous at neutral is the base model's samples: appended to
+// theirs (samples[0] = the base, then one per campaign candidate).
+void share_base_slice(std::vector<Samples>& samples, const DiagnosisCampaign& c);
 
 // One response surface per target through the successful runs.
 SurfaceSet fit_surfaces(const Samples& samples, int dims, std::size_t targets);

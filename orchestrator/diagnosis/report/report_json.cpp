@@ -3,6 +3,7 @@
 
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
+#include "orchestrator/diagnosis/pipeline/jobs.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 
 namespace rockcal::diagnosis {
@@ -276,12 +277,16 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
       {"ratio", ratio_json(r.ratio, c.targets)},
       {"candidates", candidates},
       {"grid",
-       {{"fr0", c.grid.fr0},
+       {{"design", c.grid.design == Design::local ? "local" : "global"},
+        {"step", c.grid.design == Design::local ? json(c.grid.step) : json(nullptr)},
+        {"fr0", c.grid.fr0},
         {"fs0", c.grid.fs0},
         {"s", c.grid.s},
         {"bounds", {{"fr0", {c.fr0_n.lo, c.fr0_n.hi}}, {"fs0", {c.fs0_n.lo, c.fs0_n.hi}}}}}},
       {"runs",
        {{"model_points", r.model_points},
+        // One engine job per distinct test condition of a model point.
+        {"jobs", r.model_points * int(plan_runs(c.targets).runs.size())},
         {"failed_values", r.failed_values},
         {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
       {"units", "model"}};

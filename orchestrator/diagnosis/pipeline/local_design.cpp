@@ -1,0 +1,96 @@
+#include "orchestrator/diagnosis/pipeline/local_design.hpp"
+
+#include <algorithm>
+
+#include "orchestrator/diagnosis/analysis/bootstrap.hpp"
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+std::vector<double> inside(std::span<const double> z, double h) {
+  std::vector<double> c(z.begin(), z.begin() + 2);
+  for (double& x : c) x = std::clamp(x, h, 1.0 - h);
+  return c;
+}
+
+// The base model's calibration on the surfaces of its runs so far, on lab uncertainties alone
+// (the budget is measured at this fit later). With no surface for any calibration observation the
+// centre of the box: the driver then refuses the diagnosis with the base grid's first failure.
+std::vector<double> base_fit(const DiagnosisCampaign& c, const Samples& base) {
+  const SurfaceSet surfaces = fit_surfaces(base, 2, c.targets.size());
+  const Objective objective = calibration_objective(
+      c.targets, std::vector<double>(c.targets.size(), 0.0), surfaces, ln_lab(c.targets));
+  if (std::none_of(objective.weight.begin(), objective.weight.end(),
+                   [](double w) { return w > 0; })) {
+    return {0.5, 0.5};
+  }
+  return calibrate_on_surfaces(surfaces, objective, lattice_starts(2, 3)).z;
+}
+
+struct Point {
+  std::size_t owner;  // 0 = the base, k = campaign candidate k - 1
+  std::vector<double> z;
+};
+
+void run_into(std::vector<Samples>& samples, const std::vector<Point>& points,
+              const DiagnosisCampaign& c, Evaluator& evaluator) {
+  const Candidate base;
+  const Numerics nominal{c.sample_seed, 1.0, 1.0};
+  std::vector<RunRequest> requests;
+  for (const Point& p : points) {
+    requests.push_back(
+        {model_point(c, p.owner == 0 ? base : c.candidates[p.owner - 1], p.z), nominal});
+  }
+  const std::vector<RunOutcome> outcomes = evaluator.run_batch(requests);
+  for (std::size_t r = 0; r < points.size(); ++r) {
+    samples[points[r].owner].z.push_back(points[r].z);
+    samples[points[r].owner].outcomes.push_back(outcomes[r]);
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> star(std::span<const double> z, double h) {
+  const std::vector<double> c = inside(z, h);
+  return {c, {c[0] + h, c[1]}, {c[0] - h, c[1]}, {c[0], c[1] + h}, {c[0], c[1] - h}};
+}
+
+std::vector<Samples> run_local_design(const DiagnosisCampaign& c, Evaluator& evaluator) {
+  const double h = c.grid.step;
+  std::vector<Samples> samples(1 + c.candidates.size());
+  std::vector<Point> grid;
+  for (double x : grid_axis(c.grid.fr0)) {
+    for (double y : grid_axis(c.grid.fs0)) grid.push_back({0, {x, y}});
+  }
+  run_into(samples, grid, c, evaluator);
+
+  std::vector<Point> around;
+  for (std::vector<double>& z : star(base_fit(c, samples[0]), h)) around.push_back({0, z});
+  run_into(samples, around, c, evaluator);
+
+  // The fit on grid and star: the star's runs pin the surfaces' slope and curvature there.
+  const std::vector<double> z0 = inside(base_fit(c, samples[0]), h);
+  std::vector<Point> effects;
+  for (std::size_t k = 0; k < c.candidates.size(); ++k) {
+    const std::size_t owner = k + 1;
+    if (c.candidates[k].shares_base_grid()) {
+      for (double s : grid_axis(c.grid.s)) {
+        if (s > kEffectOffBelow) effects.push_back({owner, {z0[0], z0[1], s}});
+      }
+      effects.push_back({owner, {z0[0] + h, z0[1], 1.0}});
+      effects.push_back({owner, {z0[0], z0[1] + h, 1.0}});
+    } else {
+      // No base slice to lean on (its u = 0 is not the base model): a star at every level.
+      for (double u : grid_axis(c.grid.s)) {
+        for (const std::vector<double>& z : star(z0, h))
+          effects.push_back({owner, {z[0], z[1], u}});
+      }
+    }
+  }
+  run_into(samples, effects, c, evaluator);
+  share_base_slice(samples, c);
+  return samples;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,28 @@
+// The local design (grid.design = "local"): runs where the calibration will look, not over the
+// whole strength box. A global grid spends 25 runs per s level on every effect, nearly all far from
+// any fit the lab data allow; that cost is what kept specimens at toy sizes. Here the base model's
+// coarse grid locates its fit, a star around that fit refines it, and each effect then runs only at
+// the refined fit: its s levels there, plus two arms at s = 1 that measure how the effect changes
+// the strengths' leverage. With the base model's runs as every effect's s = 0 slice, that is the
+// least a full quadratic in (ln F_r0, ln F_s0, s) needs: 4 runs per effect instead of 50 on a
+// 5 x 5 x 3 grid. The surfaces are then exact near the fit and extrapolate beyond it; the
+// confirmation's real runs (driver.cpp) correct them where the candidates' fits land.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
+
+namespace rockcal::diagnosis {
+
+// z and its four arms z +- h along each strength axis, the centre moved inwards so every arm lies
+// in the unit square.
+std::vector<std::vector<double>> star(std::span<const double> z, double h);
+
+// Three batches, each in parallel on the pool: the base grid; the star at the base fit on it; every
+// effect's points at the base fit on grid and star. Result as run_grids: [0] = the base, then one
+// per campaign candidate.
+std::vector<Samples> run_local_design(const DiagnosisCampaign& c, Evaluator& evaluator);
+
+}  // namespace rockcal::diagnosis
