@@ -25,10 +25,11 @@ orch::CampaignKind diagnosis_kind() {
   kind.plan = [](const nlohmann::json& request, const orch::Limits& limits) {
     const DiagnosisCampaign c = parse_diagnosis_campaign(request);
     if (planned_jobs(c) > limits.max_jobs_per_campaign) {
-      throw orch::RequestError("grid", "the diagnosis may need " + std::to_string(planned_jobs(c)) +
-                                           " jobs, above the server's cap of " +
-                                           std::to_string(limits.max_jobs_per_campaign) +
-                                           " per campaign: a smaller grid or fewer effects");
+      throw orch::RequestError(
+          "grid", "the diagnosis may need " + std::to_string(planned_jobs(c)) +
+                      " jobs, above the server's cap of " +
+                      std::to_string(limits.max_jobs_per_campaign) +
+                      " per campaign: a smaller grid, grid.design \"local\" or fewer effects");
     }
     return orch::CampaignPlan{c.name, {}};
   };
