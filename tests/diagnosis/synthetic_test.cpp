@@ -103,6 +103,23 @@ TEST_P(HiddenEffect, TheLocalDesignFindsItFromFewerRuns) {
               effect, s, v["gap_closure"].get<double>(), local_runs, global_runs);
 }
 
+// An effect that jumps at neutral has no base slice to lean on: its own points must determine a
+// full quadratic, the strengths' cross term included (a star alone leaves it undetermined).
+TEST(Diagnosis, TheLocalDesignFitsAnEffectThatJumpsAtNeutral) {
+  Diagnosed r{twin_campaign("size", 0.8), {}, {}};
+  r.campaign.grid.design = Design::local;
+  r.campaign.grid.fr0 = r.campaign.grid.fs0 = 3;
+  for (Candidate& k : r.campaign.candidates) {
+    if (k.effect == "size") k.s_floor = kDiscontinuousFloor;
+  }
+  EXPECT_EQ(grid_points(r.campaign), 9 + 5 + 4 * 4 + 3 * 5 + 1);
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  const CandidateResult& size = candidate(r.report, "size");
+  ASSERT_TRUE(size.fitted) << size.error;
+  EXPECT_EQ(verdict_label(r.report.candidates, r.report.verdict.candidate), "size");
+}
+
 TEST(Diagnosis, NullCaseNeedsNoEffect) {
   const Diagnosed r = diagnose("", 0.0);
   const json& v = r.summary["verdict"];

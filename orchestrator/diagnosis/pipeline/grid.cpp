@@ -27,10 +27,10 @@ int grid_levels(const Candidate& candidate, int s_values) {
 int grid_points(const DiagnosisCampaign& c) {
   if (c.grid.design == Design::local) {
     // The base grid and its star; per effect its s levels at the fit and two arms at s = 1, or a
-    // star at each level for an effect that jumps at neutral.
+    // star at each level and a corner for an effect that jumps at neutral.
     int points = c.grid.fr0 * c.grid.fs0 + 5;
     for (const Candidate& k : c.candidates) {
-      points += k.shares_base_grid() ? c.grid.s - 1 + 2 : 5 * c.grid.s;
+      points += k.shares_base_grid() ? c.grid.s - 1 + 2 : 5 * c.grid.s + 1;
     }
     return points;
   }

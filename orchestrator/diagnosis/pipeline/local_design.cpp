@@ -81,11 +81,14 @@ std::vector<Samples> run_local_design(const DiagnosisCampaign& c, Evaluator& eva
       effects.push_back({owner, {z0[0] + h, z0[1], 1.0}});
       effects.push_back({owner, {z0[0], z0[1] + h, 1.0}});
     } else {
-      // No base slice to lean on (its u = 0 is not the base model): a star at every level.
+      // No base slice to lean on (its u = 0 is not the base model): a star at every level, and
+      // one corner, without which the strengths' cross term is undetermined (on a star's points
+      // (x - x0)(y - y0) is 0 throughout).
       for (double u : grid_axis(c.grid.s)) {
         for (const std::vector<double>& z : star(z0, h))
           effects.push_back({owner, {z[0], z[1], u}});
       }
+      effects.push_back({owner, {z0[0] + h, z0[1] + h, 0.5}});
     }
   }
   run_into(samples, effects, c, evaluator);

@@ -5,7 +5,7 @@
 // the refined fit: its s levels there, plus two arms at s = 1 that measure how the effect changes
 // the strengths' leverage. With the base model's runs as every effect's s = 0 slice, that is the
 // least a full quadratic in (ln F_r0, ln F_s0, s) needs: 4 runs per effect instead of 50 on a
-// 5 x 5 x 3 grid. The surfaces are then exact near the fit and extrapolate beyond it; the
+// 5 x 5 x 3 grid (an effect that jumps at neutral has no base slice: 5 per level and a corner). The surfaces are then exact near the fit and extrapolate beyond it; the
 // confirmation's real runs (driver.cpp) correct them where the candidates' fits land.
 #pragma once
 
