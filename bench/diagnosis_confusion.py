@@ -10,7 +10,7 @@ false-positive rate, the median held-out gap closure G of the correct verdicts, 
 Values: by default each effect at s = 0.5, 0.75 and 1 of its diagnosis walk (neutral -> strong,
 docs/effects.md), seeds 1, 2, 3; the null case with seeds 1, 2, 3.
 
-  bench/diagnosis_confusion.py [--build build] [--out DIR] [--effects a,b] [--twins 3]
+  bench/diagnosis_confusion.py [--build build] [--out DIR] [--effects a,b] [--twins 3] [--values x,y]
                                [--request examples/diagnose_twin.json] [--gap-budgets X]
 
 Also printed: the gap threshold (held-out rms in budgets) that at most 10% of the null twins
@@ -83,6 +83,9 @@ def main():
     ap.add_argument("--effects", default=",".join(["none"] + list(VALUES)))
     ap.add_argument("--twins", type=int, default=3)
     ap.add_argument("--first-seed", type=int, default=1)
+    ap.add_argument("--values", default=None,
+                    help="comma-separated hidden values, cycled over each effect's twins "
+                         "(default: the effect's s = 0.5, 0.75, 1 values above)")
     ap.add_argument("--resolution", type=float, default=1.0,
                     help="twins made by a model this many times finer (1: same-resolution twins)")
     ap.add_argument("--request", default=os.path.join(ROOT, "examples", "diagnose_twin.json"))
@@ -116,7 +119,9 @@ def main():
                        "--resolution", str(a.resolution)]
                 value = None
                 if effect != "none":
-                    value = VALUES[effect][k % len(VALUES[effect])]
+                    values = ([float(x) for x in a.values.split(",")] if a.values
+                              else VALUES[effect])
+                    value = values[k % len(values)]
                     cmd += ["--value", str(value)]
                 t0 = time.time()
                 truth = twin[:-len(".json")] + ".truth.json"
