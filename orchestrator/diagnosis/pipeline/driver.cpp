@@ -251,17 +251,15 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
 
   // 2. The budget, at the base model's fit with lab uncertainties alone (the budget is not known
   // yet); later fits weight each residual by lab uncertainty and budget together.
-  const std::vector<double> no_budget(n, 0.0);
-  const Objective first =
-      calibration_objective(c.targets, no_budget, report.candidates[0].surfaces, lab);
-  if (!has_weight(first)) {
+  const std::optional<SurfaceCalibration> fitted_first =
+      fit_base_on_lab(c, report.candidates[0].surfaces);
+  if (!fitted_first) {
     throw std::runtime_error(
         "the base model has no response surface for any calibration "
         "observation: its grid runs failed (" +
         first_error(samples[0]) + ")");
   }
-  const SurfaceCalibration base_first =
-      calibrate_on_surfaces(report.candidates[0].surfaces, first, lattice_starts(2, 3));
+  const SurfaceCalibration& base_first = *fitted_first;
   report.weight_budget_point = model_point(c, report.candidates[0].candidate, base_first.z);
   const int runs_per_point = int(budget_runs_per_point(c.budget, c.dataset.origin));
   phase(options, "budget", 2, int(budget_offsets(c.budget.points).size()) * runs_per_point);

@@ -1,6 +1,10 @@
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "orchestrator/diagnosis/analysis/bootstrap.hpp"
+#include "orchestrator/diagnosis/analysis/gap.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -100,6 +104,17 @@ SurfaceSet fit_surfaces(const Samples& samples, int dims, std::size_t targets) {
     set.per_target.push_back(fit_surface(z, y));
   }
   return set;
+}
+
+std::optional<SurfaceCalibration> fit_base_on_lab(const DiagnosisCampaign& c,
+                                                  const SurfaceSet& base) {
+  const Objective objective = calibration_objective(
+      c.targets, std::vector<double>(c.targets.size(), 0.0), base, ln_lab(c.targets));
+  if (std::none_of(objective.weight.begin(), objective.weight.end(),
+                   [](double w) { return w > 0; })) {
+    return std::nullopt;
+  }
+  return calibrate_on_surfaces(base, objective, lattice_starts(2, 3));
 }
 
 }  // namespace rockcal::diagnosis

@@ -2,6 +2,7 @@
 // grid (one batch, so the pool runs them all in parallel), and the surfaces fitted to them.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -43,5 +44,11 @@ void share_base_slice(std::vector<Samples>& samples, const DiagnosisCampaign& c)
 
 // One response surface per target through the successful runs.
 SurfaceSet fit_surfaces(const Samples& samples, int dims, std::size_t targets);
+
+// The base model calibrated on its surfaces with lab uncertainties alone (before the budget is
+// known): where the budget is measured first, and where the local design centres its runs.
+// nullopt when no calibration observation has a surface (the base runs failed).
+std::optional<SurfaceCalibration> fit_base_on_lab(const DiagnosisCampaign& c,
+                                                  const SurfaceSet& base);
 
 }  // namespace rockcal::diagnosis

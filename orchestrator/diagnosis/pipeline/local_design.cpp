@@ -2,9 +2,6 @@
 
 #include <algorithm>
 
-#include "orchestrator/diagnosis/analysis/bootstrap.hpp"
-#include "orchestrator/diagnosis/analysis/gap.hpp"
-
 namespace rockcal::diagnosis {
 namespace {
 
@@ -14,18 +11,11 @@ std::vector<double> inside(std::span<const double> z, double h) {
   return c;
 }
 
-// The base model's calibration on the surfaces of its runs so far, on lab uncertainties alone
-// (the budget is measured at this fit later). With no surface for any calibration observation the
-// centre of the box: the driver then refuses the diagnosis with the base grid's first failure.
+// The base model's fit on its runs so far; the centre of the box without one (the driver then
+// refuses the diagnosis with the base runs' first failure).
 std::vector<double> base_fit(const DiagnosisCampaign& c, const Samples& base) {
-  const SurfaceSet surfaces = fit_surfaces(base, 2, c.targets.size());
-  const Objective objective = calibration_objective(
-      c.targets, std::vector<double>(c.targets.size(), 0.0), surfaces, ln_lab(c.targets));
-  if (std::none_of(objective.weight.begin(), objective.weight.end(),
-                   [](double w) { return w > 0; })) {
-    return {0.5, 0.5};
-  }
-  return calibrate_on_surfaces(surfaces, objective, lattice_starts(2, 3)).z;
+  const auto fit = fit_base_on_lab(c, fit_surfaces(base, 2, c.targets.size()));
+  return fit ? fit->z : std::vector<double>{0.5, 0.5};
 }
 
 struct Point {
