@@ -112,8 +112,16 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
     if (c["confirmed"].get<bool>()) {
       EXPECT_EQ(c["gap_closure"]["basis"], "confirmed");
     }
-    // Not identifiable means it moved nothing beyond budget + lab uncertainty.
-    EXPECT_EQ(c["identifiable"].get<bool>(), !c["moves"].empty()) << c["effect"];
+    // Identifiable means it moved a calibration observation beyond budget + lab uncertainty
+    // (which is what fixes its parameter); the reason says which it moved.
+    bool moves_calibration = false;
+    for (const json& id : c["moves"]) {
+      for (const json& o : s["observations"]) {
+        moves_calibration |= o["id"] == id && o["role"] == "calibration";
+      }
+    }
+    EXPECT_EQ(c["identifiable"].get<bool>(), moves_calibration) << c["effect"];
+    EXPECT_FALSE(c["identifiable_reason"].get<std::string>().empty());
   }
   const std::string html = report_html(s);
   EXPECT_NE(html.find("<svg"), std::string::npos);

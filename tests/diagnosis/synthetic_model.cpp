@@ -54,33 +54,88 @@ std::vector<Candidate> synthetic_candidates() {
   return out;
 }
 
+Marks measured_marks() {
+  // The rate column is the change of d ln UCS / d ln speed: at the design's 4x speed, x ln 4.
+  const double ln4 = std::log(4.0);
+  return {
+      {"packing",
+       {{"uct-modulus", -1.171},
+        {"tri-low", -0.915},
+        {"tri-high", -1.143},
+        {"uct-fast", 0.147 * ln4},
+        {"uct-peak-strain", 0.733}}},
+      {"rate",
+       {{"uct-modulus", -0.152},
+        {"tri-low", 0.376},
+        {"uct-fast", 0.273 * ln4},
+        {"uct-peak-strain", 0.446}}},
+      {"compression_coupling",
+       {{"uct-modulus", 0.128},
+        {"tri-low", -0.778},
+        {"tri-high", -0.609},
+        {"uct-peak-strain", -0.608}}},
+      {"interaction_range",
+       {{"uct-modulus", 0.948},
+        {"tri-low", 0.511},
+        {"tri-high", 0.575},
+        {"uct-fast", 0.069 * ln4},
+        {"uct-peak-strain", -0.527}}},
+      {"heterogeneity", {{"uct-peak-strain", -0.104}}},
+      {"flaws", {{"uct-modulus", 0.107}}},
+      {"post_break_friction", {{"uct-fast", -0.033 * ln4}}},
+      // Below 2 standard errors everywhere (rolling resistance 0.3), or on the disc only (flats:
+      // the UCT-family cells of its row are the re-fit's scatter), or not measured with the
+      // strengths re-fitted (platen friction 0.5 hardened to the strain limit without a peak).
+      {"rolling_resistance", {}},
+      {"brazilian_flats", {}},
+      {"platen_friction", {}},
+  };
+}
+
 std::vector<double> SyntheticModel::values(const RunRequest& r) const {
   const ModelPoint& p = r.point;
   const double s = effect_on(p) ? p.s : 0.0;
   auto on = [&](const char* name) { return p.effect == name ? s : 0.0; };
   const double lr = std::log(p.fr0_n), ls = std::log(p.fs0_n);
+  const auto measured = marks.find(p.effect);
+  // ln(peak load) of a run under conditions c.
+  auto peak = [&](const RunConditions& c) {
+    const double size = std::log(c.diameter_m / kD);
+    const double speed = std::log(c.platen_velocity_m_s * r.numerics.speed_factor / kV);
+    // UCT ~ fr0^0.3 fs0^0.7 and BTT ~ fr0^0.8 fs0^0.2 on the base specimen; load ~ D^2.
+    const bool disc = c.test == TestKind::btt;
+    double ln = disc ? std::log(40.0) + 0.8 * lr + 0.2 * ls : std::log(300.0) + 0.3 * lr + 0.7 * ls;
+    ln += 2 * size + 0.02 * speed;
+    // On the unconfined strength, like a change of the bond strengths; "uniform" is exactly
+    // that, so the strengths absorb it.
+    ln += -0.6 * on("size") * size + 0.3 * on("rate") * speed - 0.3 * on("uniform");
+    if (c.confining_pressure_pa > 0) {
+      // The frictional gain of the confined cylinder: a force scale of its own.
+      const double area = M_PI * c.diameter_m * c.diameter_m / 4;
+      const double ucs = std::exp(ln) / area;
+      ln += (1.0 + 2.0 * on("confinement")) * std::log(1 + 3 * c.confining_pressure_pa / ucs);
+    }
+    return ln;
+  };
+  const double modulus =
+      std::log(5e3) + 0.01 * ls - 0.2 * on("modulus") - 0.1 * on("size") + 0.1 * on("rate");
   std::vector<double> out;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const RunConditions& c = targets[i].conditions;
-    const double size = std::log(c.diameter_m / kD);
-    const double speed = std::log(c.platen_velocity_m_s * r.numerics.speed_factor / kV);
     double ln;
-    if (targets[i].observable == Observable::youngs_modulus) {
-      ln = std::log(5e3) + 0.01 * ls - 0.2 * on("modulus") - 0.1 * on("size") + 0.1 * on("rate");
-    } else {
-      // UCT ~ fr0^0.3 fs0^0.7 and BTT ~ fr0^0.8 fs0^0.2 on the base specimen; load ~ D^2.
-      const bool disc = c.test == TestKind::btt;
-      ln = disc ? std::log(40.0) + 0.8 * lr + 0.2 * ls : std::log(300.0) + 0.3 * lr + 0.7 * ls;
-      ln += 2 * size + 0.02 * speed;
-      // On the unconfined strength, like a change of the bond strengths; "uniform" is exactly
-      // that, so the strengths absorb it.
-      ln += -0.6 * on("size") * size + 0.3 * on("rate") * speed - 0.3 * on("uniform");
-      if (c.confining_pressure_pa > 0) {
-        // The frictional gain of the confined cylinder: a force scale of its own.
-        const double area = M_PI * c.diameter_m * c.diameter_m / 4;
-        const double ucs = std::exp(ln) / area;
-        ln += (1.0 + 2.0 * on("confinement")) * std::log(1 + 3 * c.confining_pressure_pa / ucs);
-      }
+    switch (targets[i].observable) {
+      case Observable::youngs_modulus:
+        ln = modulus;
+        break;
+      case Observable::peak_strain:  // about 1.5 x UCS / E: the curve bends before the peak
+        ln = std::log(1.5) + peak(c) - std::log(M_PI * c.diameter_m * c.diameter_m / 4) - modulus;
+        break;
+      default:
+        ln = peak(c);
+    }
+    if (measured != marks.end()) {
+      const auto mark = measured->second.find(targets[i].id);
+      if (mark != measured->second.end()) ln += s * mark->second;
     }
     ln += 0.01 * std::log(r.numerics.resolution);
     ln += numerical_noise * hash_unit(r, i);
@@ -100,6 +155,25 @@ std::vector<RunOutcome> SyntheticModel::run_batch(std::span<const RunRequest> re
   return out;
 }
 
+namespace {
+
+// Lab values: the noise-free model at the truth (60, 120) with the hidden effect, times
+// exp(noise x N(0,1)).
+void draw_lab_values(DiagnosisCampaign& c, const Marks& marks, const std::string& effect, double s,
+                     double noise, std::uint64_t seed) {
+  SyntheticModel truth(c.targets);
+  truth.numerical_noise = 0;
+  truth.marks = marks;
+  const std::vector<double> v = truth.values({{60.0, 120.0, effect, s}, {1, 1.0, 1.0}});
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;  // a test fixture: library differences do not matter
+  for (std::size_t i = 0; i < c.targets.size(); ++i) {
+    c.targets[i].value = v[i] * std::exp(noise * normal(rng));
+  }
+}
+
+}  // namespace
+
 DiagnosisCampaign twin_campaign(const std::string& effect, double s, double noise,
                                 std::uint64_t seed) {
   DiagnosisCampaign c;
@@ -107,14 +181,20 @@ DiagnosisCampaign twin_campaign(const std::string& effect, double s, double nois
   c.targets = twin_targets();
   c.candidates = synthetic_candidates();
   c.budget.seeds = {2, 3};
-  SyntheticModel truth(c.targets);
-  truth.numerical_noise = 0;
-  const std::vector<double> v = truth.values({{60.0, 120.0, effect, s}, {1, 1.0, 1.0}});
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal;  // a test fixture: library differences do not matter
-  for (std::size_t i = 0; i < c.targets.size(); ++i) {
-    c.targets[i].value = v[i] * std::exp(noise * normal(rng));
-  }
+  draw_lab_values(c, {}, effect, s, noise, seed);
+  return c;
+}
+
+DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, double noise,
+                                         std::uint64_t seed) {
+  DiagnosisCampaign c;
+  c.name = "measured-mark twin: " + (effect.empty() ? std::string("none") : effect);
+  c.targets = twin_targets();
+  c.targets.push_back(
+      target("uct-peak-strain", TestKind::uct, Observable::peak_strain, Role::held_out, kD, 0, kV));
+  c.candidates = registry_candidates(JobSpec{});
+  c.budget.seeds = {2, 3};
+  draw_lab_values(c, measured_marks(), effect, s, noise, seed);
   return c;
 }
 

@@ -12,8 +12,12 @@
 //               identifiable)
 //   modulus     only the UCT's Young's modulus moves, as under size: it fits the calibration
 //               observations as well as size does and predicts nothing held out
+// Besides these, `marks` can hold the engine's registered effects as they were measured
+// (measured_marks): per target, the change of ln(value) at s = 1 with the strengths re-fitted,
+// applied as s x mark.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,10 +32,20 @@ std::vector<Target> twin_targets();
 
 std::vector<Candidate> synthetic_candidates();  // size, confinement, rate, uniform, modulus
 
+// effect -> target id -> change of ln(value) at s = 1 (0 where absent).
+using Marks = std::map<std::string, std::map<std::string, double>>;
+
+// The registered effects' marks on the twin design (twin_targets plus uct-peak-strain) at their
+// "strong" value, from the signature table of docs/effects.md (D/R 20, 3 seeds, the strengths
+// re-fitted to the UCS and BTS): the cells beyond 2 standard errors on an observable the effect can
+// reach. The calibration peaks carry none: the re-fit absorbed them.
+Marks measured_marks();
+
 struct SyntheticModel : Evaluator {
   std::vector<Target> targets;
   double numerical_noise = 0.005;  // seed-to-seed scatter, relative
   int runs = 0;                    // model points run
+  Marks marks;                     // effects beyond the formula ones (measured_marks)
 
   explicit SyntheticModel(std::vector<Target> t) : targets(std::move(t)) {}
   std::vector<double> values(const RunRequest& r) const;
@@ -42,5 +56,10 @@ struct SyntheticModel : Evaluator {
 // ("" = none), times lab noise exp(noise x N(0,1)) drawn from `seed`, uncertainty 2%.
 DiagnosisCampaign twin_campaign(const std::string& effect, double s, double noise = 0.01,
                                 std::uint64_t seed = 7);
+
+// The same twin on the design with the UCT's peak strain held out, whose candidates are the
+// engine's registered effects (registry_candidates) leaving measured_marks.
+DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, double noise = 0.01,
+                                         std::uint64_t seed = 7);
 
 }  // namespace rockcal::diagnosis::testing

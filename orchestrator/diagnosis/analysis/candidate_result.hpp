@@ -22,6 +22,8 @@ struct RmsByRole {
 // Whether the data can see an effect at all: with the bond strengths re-fitted to the calibration
 // targets at each s in [0, 1], how far does each observation move from its s = 0 value?
 struct Identifiability {
+  // Some target in `moved` is a calibration observation, so fitting them fixes the effect's
+  // parameter (identifiability.hpp).
   bool identifiable = false;
   std::vector<double> max_change;  // per target, |ln| (NaN without a surface)
   std::vector<std::size_t> moved;  // targets moved beyond budget + lab uncertainty

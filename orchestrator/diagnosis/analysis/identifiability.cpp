@@ -36,8 +36,30 @@ Identifiability identifiability(const SurfaceSet& surfaces, const Objective& obj
     // Budget and lab uncertainty added, not in quadrature: the effect must clear both.
     if (out.max_change[i] > budget[i] + targets[i].sigma) out.moved.push_back(i);
   }
-  out.identifiable = !out.moved.empty();
+  out.identifiable = std::any_of(out.moved.begin(), out.moved.end(), [&](std::size_t i) {
+    return targets[i].role == Role::calibration;
+  });
   return out;
+}
+
+std::string identifiability_reason(const Identifiability& id, const std::vector<Target>& targets) {
+  if (id.moved.empty()) {
+    return "moves no observation beyond its budget + lab uncertainty once the strengths are "
+           "re-fitted: the strengths absorb it";
+  }
+  std::string calibration, held_out;
+  for (std::size_t i : id.moved) {
+    std::string& list = targets[i].role == Role::calibration ? calibration : held_out;
+    list += (list.empty() ? "" : ", ") + targets[i].id;
+  }
+  if (calibration.empty()) {
+    return "moves only held-out observations (" + held_out +
+           "): the calibration observations cannot fix its parameter, so what it closes at its "
+           "fitted value is a choice, not a prediction";
+  }
+  return "moves calibration observations (" + calibration + "), which fix its parameter" +
+         (held_out.empty() ? std::string(", and no held-out one")
+                           : ", and held-out ones (" + held_out + ")");
 }
 
 }  // namespace rockcal::diagnosis

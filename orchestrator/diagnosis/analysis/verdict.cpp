@@ -109,6 +109,18 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
     v.reason = size +
                ": a gap, but no candidate effect is both identifiable from these observations and "
                "able to fit the calibration observations";
+    std::string unfixed;
+    for (int i : order) {
+      const auto& id = candidates[i].identifiability;
+      if (id && !id->identifiable && !id->moved.empty()) {
+        unfixed += (unfixed.empty() ? "" : ", ") + candidates[i].candidate.effect;
+      }
+    }
+    if (!unfixed.empty()) {
+      v.reason += " (" + unfixed +
+                  " move only held-out observations: a calibration observation that they move "
+                  "would fix their parameters)";
+    }
   } else {
     const CandidateResult& c = candidates[contenders.front().index];
     v.reason = size + ": a gap, but the best effect, " + c.candidate.effect +

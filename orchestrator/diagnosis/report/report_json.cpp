@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/identifiability.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
@@ -93,6 +94,7 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
     json moved = json::array();
     for (std::size_t i : id.moved) moved.push_back(targets[i].id);
     j["identifiable"] = id.identifiable;
+    j["identifiable_reason"] = identifiability_reason(id, targets);
     j["fits_calibration"] = c.fits_calibration;
     j["moves"] = moved;
     j["max_change"] = by_target(targets, id.max_change);
