@@ -62,6 +62,12 @@ TEST_P(RegisteredEffectTwin, IsNamedOnlyWhenItsMarkIsResolved) {
     const json& c = *mine;
     EXPECT_EQ(c["identifiable"].get<bool>(), twin.mark == Mark::calibration_only) << c.dump(2);
     EXPECT_EQ(c["moves"].empty(), twin.mark == Mark::absorbed) << c.dump(2);
+    if (twin.mark == Mark::held_out_only) {
+      // The user is told why, in the verdict and on the page.
+      const std::string why = "move only held-out observations";
+      EXPECT_NE(v["reason"].get<std::string>().find(why), std::string::npos) << v["reason"];
+      EXPECT_NE(report_html(summary).find("moves only held-out observations"), std::string::npos);
+    }
     return;
   }
   ASSERT_EQ(v["effect"], twin.effect) << v.dump(2);

@@ -21,6 +21,23 @@ bool eligible(const CandidateResult& c) {
          c.fits_calibration && c.g_confirmed.has_value();
 }
 
+// The effects that would need a calibration observation to be judged: they move held-out ones
+// only (identifiability.hpp).
+std::string unfixed_note(const std::vector<CandidateResult>& candidates,
+                         const std::vector<int>& order) {
+  std::string names;
+  for (int i : order) {
+    const auto& id = candidates[i].identifiability;
+    if (id && !id->identifiable && !id->moved.empty()) {
+      names += (names.empty() ? "" : ", ") + candidates[i].candidate.effect;
+    }
+  }
+  return names.empty() ? ""
+                       : " (" + names +
+                             " move only held-out observations: a calibration observation that "
+                             "they move would fix their parameters)";
+}
+
 int group(const CandidateResult& c) {
   if (!c.fitted) return 4;
   if (!c.identifiability || !c.identifiability->identifiable) return 3;
@@ -108,24 +125,14 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
   } else if (contenders.empty()) {
     v.reason = size +
                ": a gap, but no candidate effect is both identifiable from these observations and "
-               "able to fit the calibration observations";
-    std::string unfixed;
-    for (int i : order) {
-      const auto& id = candidates[i].identifiability;
-      if (id && !id->identifiable && !id->moved.empty()) {
-        unfixed += (unfixed.empty() ? "" : ", ") + candidates[i].candidate.effect;
-      }
-    }
-    if (!unfixed.empty()) {
-      v.reason += " (" + unfixed +
-                  " move only held-out observations: a calibration observation that they move "
-                  "would fix their parameters)";
-    }
+               "able to fit the calibration observations" +
+               unfixed_note(candidates, order);
   } else {
     const CandidateResult& c = candidates[contenders.front().index];
     v.reason = size + ": a gap, but the best effect, " + c.candidate.effect +
                ", closes only G = " + fixed(*c.g_confirmed, 2) + " of it (< " +
-               fixed(rule.min_gap_closure, 2) + "): none of the candidates explains the gap";
+               fixed(rule.min_gap_closure, 2) + "): none of the candidates explains the gap" +
+               unfixed_note(candidates, order);
   }
   return v;
 }

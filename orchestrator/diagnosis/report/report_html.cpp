@@ -211,8 +211,11 @@ std::string candidates_table(const json& s) {
     std::string moves;
     for (const json& m : at(c, "moves")) moves += (moves.empty() ? "" : ", ") + show(m);
     out += "<tr><td>" + (c["effect"].is_string() ? show(at(c, "rank")) : "") + "</td><td>" +
-           escape_html(effect_name(c)) + "</td><td>" + show(at(c, "identifiable")) + "</td><td>" +
-           show(at(c, "fits_calibration")) + "</td><td>" + moves + "</td><td>" +
+           escape_html(effect_name(c)) + "</td><td>" + show(at(c, "identifiable")) +
+           (at(c, "identifiable_reason").is_string()
+                ? "<br><small>" + show(at(c, "identifiable_reason")) + "</small>"
+                : "") +
+           "</td><td>" + show(at(c, "fits_calibration")) + "</td><td>" + moves + "</td><td>" +
            (p.is_object() ? show(at(p, "name")) + " = " + show(at(p, "value")) : "") + "</td><td>" +
            show(at(at(c, "fit"), "fr0")) + "</td><td>" + show(at(at(c, "fit"), "fs0")) +
            "</td><td>" + show(at(at(c, "gap_closure"), "value"), "%.2f") + "</td><td>" +
