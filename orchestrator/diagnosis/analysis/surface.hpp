@@ -1,8 +1,8 @@
 // Response surfaces: ln(observable) as a function of the unit-cube coordinates z (ln F_r0 and
 // ln F_s0 mapped to [0, 1] over the bounds, plus the effect's s for a candidate), built from the
 // grid runs. A global quadratic is too stiff for a box spanning a factor of 16 in each strength
-// (measured on D = 16 twins: 0.1-0.47 rms misfit at the grid points, as large as the effects it
-// should resolve), so the surface is a cubic radial basis function interpolant on top of a
+// (its misfit at the grid points was as large as the effects it should resolve; docs/diagnosis.md),
+// so the surface is a cubic radial basis function interpolant on top of a
 // quadratic polynomial: s(z) = sum_k w_k |z - z_k|^3 + quadratic(z), with sum_k w_k q(z_k) = 0
 // for every quadratic q. It reproduces quadratics exactly and passes through the runs; a
 // smoothing term, chosen by leave-one-out cross-validation, lets it average over run-to-run
