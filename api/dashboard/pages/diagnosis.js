@@ -128,7 +128,8 @@ function candidateSection(s, width) {
     {label: 'fitted parameter', value: (c) => (c.parameter ? `${c.parameter.name} = ${num(c.parameter.value)} ${c.parameter.unit || ''}` : '')},
     {label: 'F_r0, F_s0 (N)', value: (c) => (c.fit ? `${num(c.fit.fr0)}, ${num(c.fit.fs0)}` : '')},
     {label: 'rms held out', num: true, value: (c) => num(c.rms && (c.rms.confirmed || c.rms.surface).held_out, 3)},
-    {label: 'identifiable', value: (c) => (c.identifiable === undefined ? '' : c.identifiable ? 'yes' : 'no')},
+    {label: 'identifiable', value: (c) => (c.identifiable === undefined ? ''
+      : (c.identifiable ? 'yes' : 'no') + (c.identifiable_reason ? `: ${c.identifiable_reason}` : ''))},
     {label: 'on bounds', value: (c) => (c.fit && c.fit.on_bounds && c.fit.on_bounds.length ? c.fit.on_bounds.join(', ') : '')},
     {label: 'error', value: (c) => c.error || ''},
   ], all);
