@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "engine/effects/effect.hpp"
 #include "orchestrator/diagnosis/analysis/budget.hpp"
@@ -390,6 +391,50 @@ TEST(DiagnosisBudget, ChargesOnlyTheErrorsTheDataCarry) {
     ASSERT_EQ(terms.size(), 3u);
     for (const ErrorTerm& t : terms) EXPECT_FALSE(t.why.empty()) << t.kind;
   }
+}
+
+// A refinement that moves every observation the way a change of the strengths would is absorbed
+// when the model is calibrated: it is a shared bias, not an error of a calibrated prediction.
+// What the re-fit cannot follow (a move of a held-out observation alone) is charged in full; the
+// seed and speed variants are never re-fitted.
+TEST(DiagnosisBudget, AResolutionShiftTheStrengthsAbsorbIsNoError) {
+  // Targets 0, 1 calibration, 2 held out. d ln / dz: target 0 on F_r0, 1 on F_s0, 2 on both.
+  const std::vector<std::array<double, 2>> jacobian{{1.0, 0.0}, {0.0, 1.0}, {0.5, 0.5}};
+  const std::vector<double> weight{2500, 2500, 0};
+  // 0.2 everywhere is dz = (0.2, 0.2): nothing left.
+  for (double left : change_after_refit({0.2, 0.2, 0.2}, jacobian, weight)) {
+    EXPECT_NEAR(left, 0.0, 1e-12);
+  }
+  // A held-out move the calibration targets do not see stays whole.
+  const auto held_out_only = change_after_refit({0.0, 0.0, 0.3}, jacobian, weight);
+  EXPECT_NEAR(held_out_only[0], 0.0, 1e-12);
+  EXPECT_NEAR(held_out_only[2], 0.3, 1e-12);
+  // Calibration moves (0.1, 0.3) re-fit exactly; the held-out target keeps what its own response
+  // does not explain: 0.5 - (0.5 x 0.1 + 0.5 x 0.3) = 0.3.
+  EXPECT_NEAR(change_after_refit({0.1, 0.3, 0.5}, jacobian, weight)[2], 0.3, 1e-12);
+  // One calibration direction (both calibration targets respond to F_r0 alone): the re-fit moves
+  // F_r0 only, and a missing change stays missing.
+  const std::vector<std::array<double, 2>> one_direction{{1.0, 0.0}, {2.0, 0.0}, {1.0, 1.0}};
+  const auto rank_one = change_after_refit({0.1, 0.2, std::numeric_limits<double>::quiet_NaN()},
+                                           one_direction, weight);
+  EXPECT_NEAR(rank_one[0], 0.0, 1e-12);
+  EXPECT_NEAR(rank_one[1], 0.0, 1e-12);
+  EXPECT_TRUE(std::isnan(rank_one[2]));
+
+  // In the budget: one point; the seed and the resolution both move every target by e^0.2.
+  const auto run = [](std::vector<std::optional<double>> v) { return RunOutcome{v, ""}; };
+  const std::vector<RunOutcome> refs{run({100.0, 50.0, 70.0})};
+  const double e = std::exp(0.2);
+  const std::vector<std::vector<RunOutcome>> changed{
+      {run({100.0 * e, 50.0 * e, 70.0 * e}), run({100.0 * e, 50.0 * e, 70.0 * e})}};
+  const StrengthResponse response{{jacobian}, weight};
+  const Budget b = numerical_budget(
+      {{"seed 2", {2, 1, 1}, "seed"}, {"resolution x1.25", {1, 1, 1.25}, "resolution"}}, refs,
+      changed, &response);
+  EXPECT_EQ(b.refitted, (std::vector<bool>{false, true}));
+  EXPECT_NEAR(b.change[0][2], 0.2, 1e-12);
+  EXPECT_NEAR(b.change[1][2], 0.0, 1e-12);
+  EXPECT_NEAR(b.per_target[2], 0.2, 1e-12);  // the seed's, not the absorbed resolution's
 }
 
 TEST(DiagnosisRefinement, AWorseRunHalvesTheNextStepTowardsTheSameFit) {

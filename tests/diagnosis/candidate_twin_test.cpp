@@ -64,7 +64,7 @@ TEST_P(RegisteredEffectTwin, IsNamedOnlyWhenItsMarkIsResolved) {
     EXPECT_EQ(c["moves"].empty(), twin.mark == Mark::absorbed) << c.dump(2);
     if (twin.mark == Mark::held_out_only) {
       // The user is told why, in the verdict and on the page.
-      const std::string why = "move only held-out observations";
+      const std::string why = "only held-out observations: a calibration observation";
       EXPECT_NE(v["reason"].get<std::string>().find(why), std::string::npos) << v["reason"];
       EXPECT_NE(report_html(summary).find("moves only held-out observations"), std::string::npos);
     }

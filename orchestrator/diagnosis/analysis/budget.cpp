@@ -21,7 +21,10 @@ std::vector<ErrorTerm> error_terms(Origin origin) {
       {"resolution", !model_made,
        model_made ? "the data were made at the model's own resolution: they share its lattice cut"
                   : "the data come from a finer specimen than the model's (a lab's grains or a "
-                    "finer model), so the model's resolution error is between them"}};
+                    "finer model), so the model's resolution error is between them; only the "
+                    "part of a refinement's change that re-fitting the strengths to the "
+                    "calibration observations leaves is charged (the rest is a bias the "
+                    "calibration absorbs)"}};
 }
 
 std::vector<BudgetVariant> budget_variants(const BudgetSpec& spec, std::uint64_t template_seed,
@@ -73,9 +76,53 @@ std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int
   return out;
 }
 
+std::vector<double> change_after_refit(const std::vector<double>& change,
+                                       const std::vector<std::array<double, 2>>& jacobian,
+                                       const std::vector<double>& weight) {
+  const std::size_t n = change.size();
+  auto usable = [&](std::size_t i) {
+    return std::isfinite(change[i]) && std::isfinite(jacobian[i][0]) &&
+           std::isfinite(jacobian[i][1]);
+  };
+  // Normal equations of min sum_i w_i (change_i - J_i dz)^2 over the calibration targets:
+  // [p q; q r] dz = b.
+  double p = 0, q = 0, r = 0, b0 = 0, b1 = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(weight[i] > 0) || !usable(i)) continue;
+    const auto& j = jacobian[i];
+    p += weight[i] * j[0] * j[0];
+    q += weight[i] * j[0] * j[1];
+    r += weight[i] * j[1] * j[1];
+    b0 += weight[i] * change[i] * j[0];
+    b1 += weight[i] * change[i] * j[1];
+  }
+  const double det = p * r - q * q, trace = p + r;
+  double dz0 = 0, dz1 = 0;
+  if (trace > 0 && det > 1e-9 * trace * trace) {
+    dz0 = (r * b0 - q * b1) / det;
+    dz1 = (p * b1 - q * b0) / det;
+  } else if (trace > 0) {
+    // One calibration direction (e.g. a single calibration condition): the minimum-norm re-fit
+    // along it, the matrix's one non-zero eigenvector.
+    double v0 = p >= r ? p : q, v1 = p >= r ? q : r;
+    const double norm = std::hypot(v0, v1);
+    v0 /= norm;
+    v1 /= norm;
+    const double along = (v0 * b0 + v1 * b1) / trace;
+    dz0 = along * v0;
+    dz1 = along * v1;
+  }
+  std::vector<double> out(n, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (usable(i)) out[i] = change[i] - jacobian[i][0] * dz0 - jacobian[i][1] * dz1;
+  }
+  return out;
+}
+
 Budget numerical_budget(std::vector<BudgetVariant> variants,
                         const std::vector<RunOutcome>& references,
-                        const std::vector<std::vector<RunOutcome>>& outcomes) {
+                        const std::vector<std::vector<RunOutcome>>& outcomes,
+                        const StrengthResponse* response) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::size_t n = references.empty() ? 0 : references.front().values.size();
   Budget b;
@@ -84,23 +131,31 @@ Budget numerical_budget(std::vector<BudgetVariant> variants,
   b.per_target.assign(n, 0.0);
   b.measured.assign(n, false);
   for (std::size_t v = 0; v < b.variants.size(); ++v) {
-    std::vector<double> change(n, nan);
-    for (std::size_t i = 0; i < n; ++i) {
-      double sum = 0.0;
-      int count = 0;
-      for (std::size_t p = 0; p < references.size(); ++p) {
+    const bool refit = response && b.variants[v].kind == "resolution";
+    std::vector<double> sum(n, 0.0);
+    std::vector<int> count(n, 0);
+    for (std::size_t p = 0; p < references.size(); ++p) {
+      std::vector<double> c(n, nan);
+      for (std::size_t i = 0; i < n; ++i) {
         const auto& ref = references[p].values[i];
         const auto& var = outcomes[p][v].values[i];
-        if (!ref || !var) continue;
-        const double c = std::log(*var / *ref);
-        sum += c * c;
-        ++count;
+        if (ref && var) c[i] = std::log(*var / *ref);
       }
-      if (count == 0) continue;
-      change[i] = std::sqrt(sum / count);
+      if (refit) c = change_after_refit(c, response->jacobian[p], response->weight);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!std::isfinite(c[i])) continue;
+        sum[i] += c[i] * c[i];
+        ++count[i];
+      }
+    }
+    std::vector<double> change(n, nan);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (count[i] == 0) continue;
+      change[i] = std::sqrt(sum[i] / count[i]);
       b.measured[i] = true;
     }
     b.change.push_back(std::move(change));
+    b.refitted.push_back(refit);
   }
   std::set<std::string> kinds;
   for (const BudgetVariant& v : b.variants) kinds.insert(v.kind);

@@ -3,6 +3,7 @@
 // gap, and an effect that moves nothing beyond it cannot be told apart from numerical noise.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -63,17 +64,40 @@ std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int
 struct Budget {
   std::vector<BudgetVariant> variants;
   std::vector<std::vector<double>> change;  // [variant][target] rms over points of |ln change|, NaN
+  std::vector<bool> refitted;               // [variant]: the change left after a re-fit (below)
   std::vector<double> per_target;           // the largest change; see numerical_budget
   std::vector<bool> measured;               // false where no variant measured the target
   int points = 0;                           // model points the changes were averaged over
 };
 
+// A finer resolution moves every observation of a bonded model together (the peaks fall or rise
+// with the lattice cut and the bond count per area), and the strengths are calibrated on the data:
+// the part of that move which re-fitting them absorbs is a bias shared by calibration and held-out
+// observations, not an error of a calibrated model's prediction. What a calibrated model carries is
+// the rest, the move's component the strengths cannot follow. To measure it the budget re-fits the
+// strengths to the refined run's calibration values, linearly: jacobian[p][i] is d ln(target i) /
+// d(unit-cube F_r0, F_s0) of the base model at budget point p, weight[i] the target's calibration
+// weight (1 / sigma^2; 0 for held out).
+struct StrengthResponse {
+  std::vector<std::vector<std::array<double, 2>>> jacobian;  // [point][target]
+  std::vector<double> weight;                                // [target]
+};
+
+// The change of each target left after the strengths' best linear re-fit to the calibration
+// targets' changes (weighted least squares; NaN changes are left out and stay NaN).
+std::vector<double> change_after_refit(const std::vector<double>& change,
+                                       const std::vector<std::array<double, 2>>& jacobian,
+                                       const std::vector<double>& weight);
+
 // Per variant and target the rms over the points of |ln(variant / reference)|; per kind the rms
 // over its variants; per target the largest over the kinds. outcomes[p][v] is variant v at point p,
-// references[p] the point's nominal run. A target no variant measured (every run failed) gets the
-// largest budget of the others: unknown noise is not counted as no noise.
+// references[p] the point's nominal run. With `response`, a resolution variant's change at each
+// point is first reduced to what re-fitting the strengths leaves (StrengthResponse). A target no
+// variant measured (every run failed) gets the largest budget of the others: unknown noise is not
+// counted as no noise.
 Budget numerical_budget(std::vector<BudgetVariant> variants,
                         const std::vector<RunOutcome>& references,
-                        const std::vector<std::vector<RunOutcome>>& outcomes);
+                        const std::vector<std::vector<RunOutcome>>& outcomes,
+                        const StrengthResponse* response = nullptr);
 
 }  // namespace rockcal::diagnosis

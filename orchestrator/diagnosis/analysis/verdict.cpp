@@ -26,16 +26,20 @@ bool eligible(const CandidateResult& c) {
 std::string unfixed_note(const std::vector<CandidateResult>& candidates,
                          const std::vector<int>& order) {
   std::string names;
+  int count = 0;
   for (int i : order) {
     const auto& id = candidates[i].identifiability;
     if (id && !id->identifiable && !id->moved.empty()) {
       names += (names.empty() ? "" : ", ") + candidates[i].candidate.effect;
+      ++count;
     }
   }
-  return names.empty() ? ""
-                       : " (" + names +
-                             " move only held-out observations: a calibration observation that "
-                             "they move would fix their parameters)";
+  if (count == 0) return "";
+  return " (" + names +
+         (count == 1 ? " moves only held-out observations: a calibration observation that it "
+                       "moves would fix its parameter)"
+                     : " move only held-out observations: a calibration observation that they "
+                       "move would fix their parameters)");
 }
 
 int group(const CandidateResult& c) {
