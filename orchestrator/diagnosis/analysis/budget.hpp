@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "orchestrator/diagnosis/analysis/evaluator.hpp"
+#include "orchestrator/diagnosis/analysis/observations.hpp"
+#include "orchestrator/diagnosis/analysis/surface_fit.hpp"
 #include "orchestrator/diagnosis/dataset/dataset.hpp"
 
 namespace rockcal::diagnosis {
@@ -82,6 +84,11 @@ struct StrengthResponse {
   std::vector<std::vector<std::array<double, 2>>> jacobian;  // [point][target]
   std::vector<double> weight;                                // [target]
 };
+
+// The base model's StrengthResponse at each unit-cube point, from its surfaces (central
+// differences, one-sided at a face of the cube), with the targets' calibration weights.
+StrengthResponse strength_response(const SurfaceSet& base, const std::vector<Target>& targets,
+                                   const std::vector<std::vector<double>>& points);
 
 // The change of each target left after the strengths' best linear re-fit to the calibration
 // targets' changes (weighted least squares; NaN changes are left out and stay NaN).

@@ -187,32 +187,6 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
   candidates[0].g_confirmed.reset();
 }
 
-// The base model's response to its strengths at each budget point, from its surfaces (central
-// differences in the unit cube, one-sided at a face), and the calibration weights: what a
-// resolution variant's change is re-fitted with (StrengthResponse).
-StrengthResponse strength_response(const DiagnosisCampaign& c, const CandidateResult& base,
-                                   const std::vector<std::vector<double>>& points) {
-  constexpr double h = 0.02;
-  StrengthResponse r;
-  for (const Target& t : c.targets) {
-    r.weight.push_back(t.role == Role::calibration ? 1.0 / std::max(t.sigma * t.sigma, 1e-6) : 0.0);
-  }
-  for (const std::vector<double>& at : points) {
-    std::vector<std::array<double, 2>> jacobian(c.targets.size());
-    for (int d = 0; d < 2; ++d) {
-      std::vector<double> lo = at, hi = at;
-      lo[d] = std::max(0.0, at[d] - h);
-      hi[d] = std::min(1.0, at[d] + h);
-      const std::vector<double> up = predict(base.surfaces, hi), down = predict(base.surfaces, lo);
-      for (std::size_t i = 0; i < jacobian.size(); ++i) {
-        jacobian[i][d] = (up[i] - down[i]) / (hi[d] - lo[d]);
-      }
-    }
-    r.jacobian.push_back(std::move(jacobian));
-  }
-  return r;
-}
-
 // Every variant at the base fit and its neighbours (budget_points), one batch.
 Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
                       const std::vector<double>& z, Evaluator& evaluator) {
@@ -232,7 +206,7 @@ Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
     references.push_back(outcomes[k]);
     changed.emplace_back(outcomes.begin() + k + 1, outcomes.begin() + k + per_point);
   }
-  const StrengthResponse response = strength_response(c, base, points);
+  const StrengthResponse response = strength_response(base.surfaces, c.targets, points);
   return numerical_budget(std::move(variants), references, changed, &response);
 }
 
