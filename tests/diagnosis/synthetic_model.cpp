@@ -65,22 +65,25 @@ Marks measured_marks() {
         {"uct-fast", 0.147 * ln4},
         {"uct-peak-strain", 0.733}}},
       {"rate",
-       {{"uct-modulus", -0.152},
+       {{"uct-squat", 0.411},
+        {"uct-modulus", -0.152},
         {"tri-low", 0.376},
         {"uct-fast", 0.273 * ln4},
         {"uct-peak-strain", 0.446}}},
       {"compression_coupling",
-       {{"uct-modulus", 0.128},
+       {{"uct-squat", -0.558},
+        {"uct-modulus", 0.128},
         {"tri-low", -0.778},
         {"tri-high", -0.609},
         {"uct-peak-strain", -0.608}}},
       {"interaction_range",
-       {{"uct-modulus", 0.948},
+       {{"uct-squat", 0.203},
+        {"uct-modulus", 0.948},
         {"tri-low", 0.511},
         {"tri-high", 0.575},
         {"uct-fast", 0.069 * ln4},
         {"uct-peak-strain", -0.527}}},
-      {"heterogeneity", {{"uct-peak-strain", -0.104}}},
+      {"heterogeneity", {{"uct-peak-strain", -0.104}, {"uct-squat", -0.122}}},
       {"flaws", {{"uct-modulus", 0.107}}},
       {"post_break_friction", {{"uct-fast", -0.033 * ln4}}},
       // Below 2 standard errors everywhere (rolling resistance 0.3), or on the disc only (flats:
@@ -189,7 +192,14 @@ DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, do
                                          std::uint64_t seed) {
   DiagnosisCampaign c;
   c.name = "measured-mark twin: " + (effect.empty() ? std::string("none") : effect);
+  // The real twin design's observations (twin_design.hpp): the UCT at H/D = 1 instead of the
+  // formula design's 1.5x cylinder, and the peak strain.
   c.targets = twin_targets();
+  for (Target& t : c.targets) {
+    if (t.id != "uct-large") continue;
+    t = target("uct-squat", TestKind::uct, Observable::peak_load, Role::held_out, kD, 0, kV);
+    t.conditions.height_m = kD;
+  }
   c.targets.push_back(
       target("uct-peak-strain", TestKind::uct, Observable::peak_strain, Role::held_out, kD, 0, kV));
   c.candidates = registry_candidates(JobSpec{});

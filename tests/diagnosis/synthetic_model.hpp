@@ -35,10 +35,11 @@ std::vector<Candidate> synthetic_candidates();  // size, confinement, rate, unif
 // effect -> target id -> change of ln(value) at s = 1 (0 where absent).
 using Marks = std::map<std::string, std::map<std::string, double>>;
 
-// The registered effects' marks on the twin design (twin_targets plus uct-peak-strain) at their
+// The registered effects' marks on the real twin design (registry_twin_campaign) at their
 // "strong" value, from the signature table of docs/effects.md (D/R 20, 3 seeds, the strengths
 // re-fitted to the UCS and BTS): the cells beyond 2 standard errors on an observable the effect can
-// reach. The calibration peaks carry none: the re-fit absorbed them.
+// reach (packing's H/D = 1 cell has no standard error and is left out). The calibration peaks
+// carry none: the re-fit absorbed them.
 Marks measured_marks();
 
 struct SyntheticModel : Evaluator {
@@ -57,8 +58,9 @@ struct SyntheticModel : Evaluator {
 DiagnosisCampaign twin_campaign(const std::string& effect, double s, double noise = 0.01,
                                 std::uint64_t seed = 7);
 
-// The same twin on the design with the UCT's peak strain held out, whose candidates are the
-// engine's registered effects (registry_candidates) leaving measured_marks.
+// The same twin on the real twin design (the UCT at H/D = 1 for the 1.5x cylinder, the UCT's peak
+// strain held out), whose candidates are the engine's registered effects (registry_candidates)
+// leaving measured_marks.
 DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, double noise = 0.01,
                                          std::uint64_t seed = 7);
 

@@ -75,14 +75,14 @@ TEST(DiagnosisTwin, DesignFollowsTheTemplate) {
   const auto role = [&](const std::string& id) { return find(o, id).role; };
   for (const char* id : {"uct-peak", "uct-modulus", "btt-peak", "tri-low"})
     EXPECT_EQ(role(id), Role::calibration) << id;
-  for (const char* id : {"tri-high", "uct-large", "btt-large", "uct-fast", "uct-peak-strain"})
+  for (const char* id : {"tri-high", "uct-squat", "btt-large", "uct-fast", "uct-peak-strain"})
     EXPECT_EQ(role(id), Role::held_out) << id;
   EXPECT_EQ(find(o, "uct-modulus").observable, Observable::youngs_modulus);
   EXPECT_EQ(find(o, "tri-low").test, TestKind::triaxial);
   EXPECT_EQ(find(o, "tri-low").conditions.confining_pressure_pa, d.p_low_pa);
   EXPECT_EQ(find(o, "tri-high").conditions.confining_pressure_pa, d.p_high_pa);
-  EXPECT_EQ(*find(o, "uct-large").conditions.diameter_m, 12);
-  EXPECT_EQ(*find(o, "uct-large").conditions.height_m, 24);
+  EXPECT_EQ(*find(o, "uct-squat").conditions.diameter_m, 8);  // H/D = 1
+  EXPECT_EQ(*find(o, "uct-squat").conditions.height_m, 8);
   EXPECT_EQ(*find(o, "btt-peak").conditions.thickness_m, 3);
   EXPECT_EQ(*find(o, "btt-large").conditions.thickness_m, 4.5);
   EXPECT_EQ(*find(o, "uct-fast").conditions.loading_rate_m_s, 0.2);
@@ -285,10 +285,17 @@ TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
   EXPECT_EQ(runs(), 1 + 7);
   EXPECT_EQ(again["dataset"], made["dataset"]);
   EXPECT_EQ(again["truth"]["observations"], made["truth"]["observations"]);
-  // A larger specimen carries more load; a confined one too.
+  // A confined specimen carries more load; the squat UCT ran on a cylinder as high as it is wide.
   const auto value = [&](const std::string& id) { return find(parsed.observations, id).value; };
-  EXPECT_GT(value("uct-large"), value("uct-peak"));
   EXPECT_GT(value("tri-high"), value("tri-low"));
+  int squat = 0;
+  for (const json& o : made["truth"]["observations"]) {
+    if (o["id"] != "uct-squat") continue;
+    const json& job = made["truth"]["jobs"].at(o["job"].get<std::size_t>());
+    EXPECT_EQ(job["sample"]["height"], job["sample"]["diameter"]) << job.dump();
+    ++squat;
+  }
+  EXPECT_EQ(squat, 1);
 }
 
 // `rockcal twin` end to end, with an effect on: the files it writes and what they hide.

@@ -96,11 +96,15 @@ TwinDesign make_twin_design(const json& job_template, const RunJobs& run) {
   d.p_low_pa = round_to_two_digits(kLowConfinement * d.base_ucs_pa);
   d.p_high_pa = round_to_two_digits(kHighConfinement * d.base_ucs_pa);
 
-  Conditions low = cylinder, high = cylinder, large = cylinder, large_disc = disc, fast = cylinder;
+  Conditions low = cylinder, high = cylinder, squat = cylinder, large_disc = disc, fast = cylinder;
   low.confining_pressure_pa = d.p_low_pa;
   high.confining_pressure_pa = d.p_high_pa;
-  large.diameter_m = 1.5 * D;
-  large.height_m = 1.5 * H;
+  // H/D = 1: the platens constrain the whole specimen, so an effect on how it fails in shear
+  // (compression coupling, rate, the interaction range, heterogeneity) moves its strength apart
+  // from the slender UCT's (docs/effects.md, "Signatures"). It replaced a 1.5x cylinder, the
+  // dearest run of a model point and the observation that varied most between null twins
+  // (docs/diagnosis.md).
+  squat.height_m = D;
   large_disc.diameter_m = 1.5 * D;
   large_disc.thickness_m = 1.5 * t;
   fast.loading_rate_m_s = 4 * v;
@@ -111,7 +115,7 @@ TwinDesign make_twin_design(const json& job_template, const RunJobs& run) {
                     planned("btt-peak", TestKind::btt, disc, peak_load, calibration)};
   d.observations.push_back(planned("tri-low", TestKind::triaxial, low, peak_load, calibration));
   d.observations.push_back(planned("tri-high", TestKind::triaxial, high, peak_load, held_out));
-  d.observations.push_back(planned("uct-large", TestKind::uct, large, peak_load, held_out));
+  d.observations.push_back(planned("uct-squat", TestKind::uct, squat, peak_load, held_out));
   d.observations.push_back(planned("btt-large", TestKind::btt, large_disc, peak_load, held_out));
   d.observations.push_back(planned("uct-fast", TestKind::uct, fast, peak_load, held_out));
   // The strain at the UCT's peak: read from the base UCT's run (no job of its own), and the
