@@ -209,7 +209,7 @@ json budget_json(const DiagnosisResult& r, const std::vector<Target>& targets, O
                         {"seed", b.numerics.seed},
                         {"speed_factor", b.numerics.speed_factor},
                         {"resolution", b.numerics.resolution},
-                        {"refitted", v < r.budget.refitted.size() && r.budget.refitted[v]},
+                        {"refitted", bool(r.budget.refitted[v])},
                         {"change", by_target(targets, r.budget.change[v])}});
   }
   json terms = json::array();
