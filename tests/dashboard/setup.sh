@@ -21,8 +21,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 node_major="$(node -p 'process.versions.node.split(".")[0]')"
-if [ "$node_major" -lt 20 ]; then
-  echo "dashboard test: playwright-core needs Node.js 20 or newer; this machine has $(node --version)" >&2
+if [ "$node_major" -lt 18 ]; then
+  echo "dashboard test: playwright-core needs Node.js 18 or newer (Debian 12's own); this machine has $(node --version)" >&2
   exit 1
 fi
 
