@@ -1,0 +1,206 @@
+#include "orchestrator/inference/emulator/gp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include <nlopt.hpp>
+
+namespace rockcal::inference {
+namespace {
+
+Eigen::VectorXd trend_row(const Eigen::VectorXd& x, int terms) {
+  Eigen::VectorXd h(terms);
+  h(0) = 1.0;
+  for (int k = 1; k < terms; ++k) h(k) = x(k - 1);
+  return h;
+}
+
+Eigen::MatrixXd trend_matrix(const Eigen::MatrixXd& x, int terms) {
+  Eigen::MatrixXd h(x.rows(), terms);
+  for (int i = 0; i < x.rows(); ++i) h.row(i) = trend_row(x.row(i).transpose(), terms).transpose();
+  return h;
+}
+
+// A linear trend needs a few points beyond its d + 1 coefficients to leave the GP anything.
+int trend_terms_for(const GpData& d) {
+  const int dims = int(d.x.cols());
+  return d.x.rows() >= 2 * (dims + 1) ? dims + 1 : 1;
+}
+
+void check(const GpData& d) {
+  const auto n = d.x.rows();
+  if (n < 2) throw std::invalid_argument("emulator: at least 2 points are needed");
+  if (d.y.size() != n || d.noise_var.size() != n)
+    throw std::invalid_argument("emulator: x, y and noise_var differ in length");
+  if (!d.x.allFinite() || !d.y.allFinite() || !d.noise_var.allFinite())
+    throw std::invalid_argument("emulator: a non-finite value in the data");
+  if (d.x.minCoeff() < -1e-12 || d.x.maxCoeff() > 1 + 1e-12)
+    throw std::invalid_argument("emulator: a coordinate outside [0, 1]");
+  if (d.noise_var.minCoeff() < 0) throw std::invalid_argument("emulator: a negative noise_var");
+}
+
+// Factorises at `hyper`; returns false when K is not positive definite.
+bool factorise(Gp& gp) {
+  const GpData& d = gp.data;
+  const int n = int(d.x.rows());
+  Eigen::MatrixXd k(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      k(i, j) = k(j, i) = gp.hyper.signal_var *
+                          matern52(d.x.row(i).transpose(), d.x.row(j).transpose(), gp.hyper.length);
+    }
+    k(i, i) += d.noise_var(i) + gp.hyper.nugget + 1e-10 * gp.hyper.signal_var;
+  }
+  gp.chol.compute(k);
+  if (gp.chol.info() != Eigen::Success) return false;
+  gp.trend = trend_matrix(d.x, gp.trend_terms);
+  const Eigen::MatrixXd& h = gp.trend;
+  const Eigen::MatrixXd kinv_h = gp.chol.solve(h);
+  const Eigen::MatrixXd hkh = h.transpose() * kinv_h;
+  Eigen::LDLT<Eigen::MatrixXd> hkh_f(hkh);
+  if (hkh_f.info() != Eigen::Success || !(hkh_f.vectorD().minCoeff() > 0)) return false;
+  gp.h_kinv_h_inv = hkh_f.solve(Eigen::MatrixXd::Identity(hkh.rows(), hkh.cols()));
+  gp.beta = gp.h_kinv_h_inv * (kinv_h.transpose() * d.y);
+  const Eigen::VectorXd r = d.y - h * gp.beta;
+  gp.alpha = gp.chol.solve(r);
+  const Eigen::MatrixXd l = gp.chol.matrixL();
+  const double log_det_k = 2.0 * l.diagonal().array().log().sum();
+  const double log_det_hkh = hkh_f.vectorD().array().log().sum();
+  const int p = gp.trend_terms;
+  gp.log_likelihood = -0.5 * (r.dot(gp.alpha) + log_det_k + log_det_hkh +
+                              (n - p) * std::log(2.0 * std::numbers::pi));
+  return std::isfinite(gp.log_likelihood);
+}
+
+struct Search {
+  Gp* gp;
+  int dims;
+};
+
+// theta = (ln length_1..d, ln signal_var, ln nugget)
+double negative_likelihood(unsigned, const double* theta, double*, void* data) {
+  auto* s = static_cast<Search*>(data);
+  for (int k = 0; k < s->dims; ++k) s->gp->hyper.length(k) = std::exp(theta[k]);
+  s->gp->hyper.signal_var = std::exp(theta[s->dims]);
+  s->gp->hyper.nugget = std::exp(theta[s->dims + 1]);
+  if (!factorise(*s->gp)) return 1e30;
+  return -s->gp->log_likelihood;
+}
+
+}  // namespace
+
+double matern52(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                const Eigen::VectorXd& length) {
+  const double r = std::sqrt(((a - b).array() / length.array()).square().sum());
+  const double s5r = std::sqrt(5.0) * r;
+  return (1.0 + s5r + 5.0 * r * r / 3.0) * std::exp(-s5r);
+}
+
+Gp condition_gp(GpData data, const GpHyper& hyper) {
+  check(data);
+  Gp gp;
+  gp.trend_terms = trend_terms_for(data);
+  gp.data = std::move(data);
+  gp.hyper = hyper;
+  if (!factorise(gp)) throw std::runtime_error("emulator: the covariance is not positive definite");
+  return gp;
+}
+
+Gp fit_gp(GpData data, const GpOptions& options) {
+  check(data);
+  const int dims = int(data.x.cols());
+  Gp gp;
+  gp.trend_terms = trend_terms_for(data);
+  gp.data = std::move(data);
+  gp.hyper.length = Eigen::VectorXd::Constant(dims, 0.5);
+  // The scale of what the trend leaves: the signal variance is searched around it.
+  const Eigen::MatrixXd h = trend_matrix(gp.data.x, gp.trend_terms);
+  const Eigen::VectorXd coef = h.colPivHouseholderQr().solve(gp.data.y);
+  const double spread = std::max(1e-6, (gp.data.y - h * coef).squaredNorm() / gp.data.y.size() +
+                                           1e-4 * gp.data.y.array().square().mean());
+  std::vector<double> lo, hi;
+  for (int k = 0; k < dims; ++k) {
+    lo.push_back(std::log(options.min_length));
+    hi.push_back(std::log(options.max_length));
+  }
+  lo.push_back(std::log(1e-4 * spread));
+  hi.push_back(std::log(1e2 * spread));
+  lo.push_back(std::log(options.min_nugget));
+  hi.push_back(std::log(10 * spread));
+
+  Search search{&gp, dims};
+  nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(dims + 2));
+  opt.set_lower_bounds(lo);
+  opt.set_upper_bounds(hi);
+  opt.set_min_objective(negative_likelihood, &search);
+  opt.set_xtol_rel(1e-4);
+  opt.set_maxeval(300);
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<double> best_theta;
+  const double starts[] = {0.5, 0.2, 1.5, 4.0};
+  for (int s = 0; s <= std::min(options.restarts, 3); ++s) {
+    std::vector<double> theta(dims + 2);
+    for (int k = 0; k < dims; ++k) theta[k] = std::clamp(std::log(starts[s]), lo[k], hi[k]);
+    theta[dims] = std::log(spread);
+    theta[dims + 1] = std::clamp(std::log(1e-2 * spread), lo[dims + 1], hi[dims + 1]);
+    double value = 0.0;
+    try {
+      opt.optimize(theta, value);
+    } catch (const std::exception&) {
+      value = negative_likelihood(0, theta.data(), nullptr, &search);
+    }
+    if (value < best) best = value, best_theta = theta;
+  }
+  if (best_theta.empty() || !(best < 1e29))
+    throw std::runtime_error("emulator: no hyperparameters give a positive-definite covariance");
+  negative_likelihood(0, best_theta.data(), nullptr, &search);
+  return gp;
+}
+
+Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a,
+                                 const Eigen::MatrixXd& b) {
+  Eigen::MatrixXd k(a.rows(), b.rows());
+  for (int i = 0; i < a.rows(); ++i) {
+    for (int j = 0; j < b.rows(); ++j) {
+      k(i, j) = gp.hyper.signal_var *
+                matern52(a.row(i).transpose(), b.row(j).transpose(), gp.hyper.length);
+    }
+  }
+  return k;
+}
+
+void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& mean,
+                  Eigen::VectorXd& var) {
+  const Eigen::MatrixXd k = cross_covariance(gp, gp.data.x, points);  // n x m
+  const Eigen::MatrixXd kinv_k = gp.chol.solve(k);
+  const Eigen::MatrixXd h = trend_matrix(points, gp.trend_terms);  // m x p
+  const Eigen::MatrixXd u = h.transpose() - gp.trend.transpose() * kinv_k;  // p x m
+  mean = h * gp.beta + k.transpose() * gp.alpha;
+  var.resize(points.rows());
+  for (int i = 0; i < points.rows(); ++i) {
+    var(i) = std::max(0.0, gp.hyper.signal_var - k.col(i).dot(kinv_k.col(i)) +
+                               u.col(i).dot(gp.h_kinv_h_inv * u.col(i)));
+  }
+}
+
+Prediction predict(const Gp& gp, const Eigen::VectorXd& x) {
+  Eigen::VectorXd mean, var;
+  predict_many(gp, x.transpose(), mean, var);
+  return {mean(0), var(0)};
+}
+
+double posterior_cov(const Gp& gp, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const int n = int(gp.data.x.rows());
+  Eigen::VectorXd ka(n), kb(n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::VectorXd xi = gp.data.x.row(i).transpose();
+    ka(i) = gp.hyper.signal_var * matern52(a, xi, gp.hyper.length);
+    kb(i) = gp.hyper.signal_var * matern52(b, xi, gp.hyper.length);
+  }
+  return gp.hyper.signal_var * matern52(a, b, gp.hyper.length) - ka.dot(gp.chol.solve(kb));
+}
+
+}  // namespace rockcal::inference

@@ -1,0 +1,81 @@
+// A Gaussian-process emulator of one observable over normalised parameters (the unit cube).
+//
+// Why: a DEM run is dear and noisy (each packing's peak load scatters by tens of per cent at small
+// specimens), so no single run says what a point's mean load is. The emulator pools every run:
+// its mean is the best estimate of the ensemble-mean observable anywhere in the box and its
+// variance says how well the runs so far pin it, which is what a posterior needs to be honest.
+//
+// The model (universal kriging): y(x) = h(x)'beta + f(x) + noise, with
+//   h(x) = (1, x_1, ..., x_d): a linear trend, which in log space is the measured homogeneity of
+//          the loads in the strengths (ln load ~ a + sum_k p_k ln F_k), fitted by generalised least
+//          squares and its uncertainty carried into the predictive variance;
+//   f ~ GP(0, s2 * Matern52_ARD(x, x'; lengths)): the departure from it;
+//   noise_i ~ N(0, noise_var_i + nugget): noise_var_i is the point's own ensemble noise (the
+//          packings' scatter over its realisations, heteroscedastic), the nugget what is left.
+// Hyperparameters (lengths, s2, nugget) maximise the restricted likelihood (NLopt, bounded).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace rockcal::inference {
+
+// The training data: one row per distinct point. y is the mean of the observable over the point's
+// realisations and noise_var the variance of that mean (0 when unknown: the nugget carries it).
+struct GpData {
+  Eigen::MatrixXd x;          // n x d, each coordinate in [0, 1]
+  Eigen::VectorXd y;          // n
+  Eigen::VectorXd noise_var;  // n, >= 0
+};
+
+struct GpHyper {
+  Eigen::VectorXd length;  // d correlation lengths, in units of the box
+  double signal_var = 1.0;
+  double nugget = 1e-6;
+};
+
+struct GpOptions {
+  double min_length = 0.05;
+  double max_length = 3.0;  // longer is a straight line over the box: the trend's job
+  double min_nugget = 1e-8;
+  int restarts = 3;  // extra starts of the likelihood search beyond the default one
+};
+
+struct Prediction {
+  double mean = 0.0;
+  double var = 0.0;  // of the latent mean (noise excluded), with the trend's uncertainty
+};
+
+// A fitted emulator: the data, the hyperparameters and the factorised covariance.
+struct Gp {
+  GpData data;
+  GpHyper hyper;
+  int trend_terms = 1;  // 1 (a constant) or d + 1 (linear), by how many points there are
+  Eigen::MatrixXd trend;             // H: n x trend_terms
+  Eigen::LLT<Eigen::MatrixXd> chol;  // of K = s2 R + diag(noise_var + nugget)
+  Eigen::VectorXd beta;              // the trend's GLS coefficients
+  Eigen::VectorXd alpha;             // K^-1 (y - H beta)
+  Eigen::MatrixXd h_kinv_h_inv;      // (H' K^-1 H)^-1
+  double log_likelihood = 0.0;       // the restricted log-likelihood at the hyperparameters
+};
+
+double matern52(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& length);
+
+// Fits the hyperparameters and factorises. Needs at least 2 points; throws std::invalid_argument
+// on mismatched sizes, coordinates outside [0, 1] or non-finite values.
+Gp fit_gp(GpData data, const GpOptions& options = {});
+// Factorises at given hyperparameters (no search): what fantasies and tests use.
+Gp condition_gp(GpData data, const GpHyper& hyper);
+
+Prediction predict(const Gp& gp, const Eigen::VectorXd& x);
+// The same at every row of `points` (m x d) at once: means and variances, m each.
+void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& mean,
+                  Eigen::VectorXd& var);
+// The prior covariance matrix between the rows of a (m x d) and of b (p x d).
+Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+// The latent posterior covariance between a and b (the simple-kriging part: without the trend's
+// uncertainty), what a design uses to value a run at b for a prediction at a.
+double posterior_cov(const Gp& gp, const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+
+}  // namespace rockcal::inference

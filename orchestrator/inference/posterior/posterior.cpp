@@ -1,0 +1,97 @@
+#include "orchestrator/inference/posterior/posterior.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rockcal::inference {
+namespace {
+
+void check(const std::vector<const Gp*>& emulators, const std::vector<Target>& targets) {
+  if (emulators.empty() || emulators.size() != targets.size())
+    throw std::invalid_argument("posterior: one emulator per target is needed");
+  const auto dims = emulators.front()->data.x.cols();
+  for (const Gp* gp : emulators) {
+    if (gp->data.x.cols() != dims)
+      throw std::invalid_argument("posterior: the emulators differ in dimension");
+  }
+  for (const Target& t : targets) {
+    if (!(t.sd > 0) || !(t.discrepancy_sd >= 0) || !std::isfinite(t.value))
+      throw std::invalid_argument("posterior: a target needs a finite value and sd > 0");
+  }
+}
+
+double term(const Target& t, double mean, double var) {
+  const double v = t.sd * t.sd + t.discrepancy_sd * t.discrepancy_sd + var;
+  const double r = t.value - mean;
+  return -0.5 * (r * r / v + std::log(v));
+}
+
+}  // namespace
+
+int default_cells_per_dim(int dims) {
+  switch (dims) {
+    case 1:
+      return 100;
+    case 2:
+      return 81;
+    default:
+      return 25;
+  }
+}
+
+std::vector<int> cell_indices(const PosteriorGrid& grid, int cell) {
+  std::vector<int> idx(grid.dims);
+  for (int k = 0; k < grid.dims; ++k) {
+    idx[k] = cell % grid.per_dim;
+    cell /= grid.per_dim;
+  }
+  return idx;
+}
+
+PosteriorGrid posterior_on_grid(const std::vector<const Gp*>& emulators,
+                                const std::vector<Target>& targets, int per_dim) {
+  check(emulators, targets);
+  PosteriorGrid g;
+  g.dims = int(emulators.front()->data.x.cols());
+  if (g.dims > 3) throw std::invalid_argument("posterior: at most 3 parameters on a grid");
+  g.per_dim = per_dim > 0 ? per_dim : default_cells_per_dim(g.dims);
+  int cells = 1;
+  for (int k = 0; k < g.dims; ++k) cells *= g.per_dim;
+  g.points.resize(cells, g.dims);
+  for (int c = 0; c < cells; ++c) {
+    const std::vector<int> idx = cell_indices(g, c);
+    for (int k = 0; k < g.dims; ++k) g.points(c, k) = (idx[k] + 0.5) / g.per_dim;
+  }
+  const int n_targets = int(targets.size());
+  g.mean.resize(cells, n_targets);
+  g.var.resize(cells, n_targets);
+  for (int j = 0; j < n_targets; ++j) {
+    Eigen::VectorXd m, v;
+    predict_many(*emulators[j], g.points, m, v);
+    g.mean.col(j) = m;
+    g.var.col(j) = v;
+  }
+  g.log_density.resize(cells);
+  for (int c = 0; c < cells; ++c) {
+    double l = 0.0;
+    for (int j = 0; j < n_targets; ++j) l += term(targets[j], g.mean(c, j), g.var(c, j));
+    g.log_density(c) = l;
+  }
+  const double top = g.log_density.maxCoeff();
+  g.weight = (g.log_density.array() - top).exp();
+  g.weight /= g.weight.sum();
+  return g;
+}
+
+double log_density(const std::vector<const Gp*>& emulators, const std::vector<Target>& targets,
+                   const Eigen::VectorXd& x) {
+  check(emulators, targets);
+  double l = 0.0;
+  for (std::size_t j = 0; j < targets.size(); ++j) {
+    const Prediction p = predict(*emulators[j], x);
+    l += term(targets[j], p.mean, p.var);
+  }
+  return l;
+}
+
+}  // namespace rockcal::inference

@@ -1,0 +1,80 @@
+// Focus: the posterior and its credible region. With emulators that know the function, the region
+// holds the truth, is bounded inside the box, shrinks with the lab's uncertainty and reaches the
+// box's edge (not bounded) when a target lies beyond what the box can reach.
+#include <gtest/gtest.h>
+
+#include "orchestrator/inference/posterior/region.hpp"
+#include "test_functions.hpp"
+
+namespace rockcal::inference {
+namespace {
+
+using testing::latin_square;
+using testing::ln_btt;
+using testing::ln_uct;
+
+struct Pair {
+  Gp uct, btt;
+  std::vector<const Gp*> both() const { return {&uct, &btt}; }
+};
+
+Pair exact_emulators() {
+  const Eigen::MatrixXd x = latin_square(40, 11);
+  GpData u{x, Eigen::VectorXd(40), Eigen::VectorXd::Constant(40, 1e-6)}, b = u;
+  for (int i = 0; i < 40; ++i) {
+    u.y(i) = ln_uct(x.row(i).transpose());
+    b.y(i) = ln_btt(x.row(i).transpose());
+  }
+  return {fit_gp(u), fit_gp(b)};
+}
+
+std::vector<Target> targets_at(const Eigen::VectorXd& truth, double sd) {
+  return {{ln_uct(truth), sd, 0.0}, {ln_btt(truth), sd, 0.0}};
+}
+
+TEST(Posterior, TheRegionHoldsTheTruthAndIsBoundedInsideTheBox) {
+  const Pair e = exact_emulators();
+  const Eigen::Vector2d truth(0.45, 0.6);
+  const std::vector<Target> t = targets_at(truth, 0.05);
+  const PosteriorGrid g = posterior_on_grid(e.both(), t);
+  EXPECT_EQ(g.points.rows(), 81 * 81);
+  EXPECT_NEAR(g.weight.sum(), 1.0, 1e-9);
+  const Region r = credible_region(g, 0.9);
+  EXPECT_TRUE(in_region(g, r, truth));
+  EXPECT_TRUE(r.bounded());
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT(r.marginal_lo(k), truth(k));
+    EXPECT_GT(r.marginal_hi(k), truth(k));
+  }
+  const Eigen::VectorXd peak = density_peak(g, e.both(), t);
+  EXPECT_NEAR(peak(0), truth(0), 0.02);
+  EXPECT_NEAR(peak(1), truth(1), 0.02);
+}
+
+TEST(Posterior, TheRegionShrinksWithTheLabsUncertainty) {
+  const Pair e = exact_emulators();
+  const Eigen::Vector2d truth(0.5, 0.5);
+  const Region wide = credible_region(posterior_on_grid(e.both(), targets_at(truth, 0.10)));
+  const Region narrow = credible_region(posterior_on_grid(e.both(), targets_at(truth, 0.02)));
+  EXPECT_LT(narrow.mass_fraction_of_box, 0.5 * wide.mass_fraction_of_box);
+}
+
+TEST(Posterior, ATargetBeyondTheBoxPutsTheRegionOnItsEdge) {
+  const Pair e = exact_emulators();
+  // Both loads far above what the strongest bonds in the box give.
+  const std::vector<Target> t = {{ln_uct(Eigen::Vector2d(1, 1)) + 1.0, 0.05, 0.0},
+                                 {ln_btt(Eigen::Vector2d(1, 1)) + 1.0, 0.05, 0.0}};
+  const Region r = credible_region(posterior_on_grid(e.both(), t));
+  EXPECT_FALSE(r.bounded());
+  EXPECT_TRUE(r.at_upper[0] || r.at_upper[1]);
+}
+
+TEST(Posterior, MismatchedInputsAreRefused) {
+  const Pair e = exact_emulators();
+  EXPECT_THROW(posterior_on_grid(e.both(), {{0.0, 0.05, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(posterior_on_grid(e.both(), {{0.0, 0.0, 0.0}, {0.0, 0.05, 0.0}}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rockcal::inference
