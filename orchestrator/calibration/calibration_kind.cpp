@@ -98,7 +98,8 @@ orch::CampaignKind calibration_kind() {
       pace.add(record);
       publish();
     };
-    nlohmann::json report = to_json(run_calibration(c, evaluator, {ctx.stop, on_evaluation}), c);
+    nlohmann::json report = to_json(
+        run_calibration(c, evaluator, {ctx.stop, on_evaluation, ctx.service.config().workers}), c);
     report["pace"] = pace.to_json();
     return report;
   };

@@ -76,7 +76,8 @@ Strategy parse_strategy(orch::JsonFields& root) {
   if (name == "auto") return Strategy::automatic;
   if (name == "ratio_scale") return Strategy::ratio_scale;
   if (name == "direct_2d") return Strategy::direct_2d;
-  throw orch::RequestError("strategy", "must be auto, ratio_scale or direct_2d");
+  if (name == "bayes") return Strategy::bayes;
+  throw orch::RequestError("strategy", "must be auto, ratio_scale, direct_2d or bayes");
 }
 
 std::vector<std::uint64_t> parse_seeds(orch::JsonFields& root) {
@@ -137,6 +138,42 @@ void parse_realisations(orch::JsonFields& root, const JobSpec& model, Calibratio
         "give \"realisations\" (every evaluation an ensemble) or \"seeds\" (the "
         "best point re-run on other packings), not both");
   }
+}
+
+// "inference": {"lab_uncertainty": {"uct": 0.05, "btt": 0.05}, "discrepancy": 0, "level": 0.9,
+// "unique_width": 1.5, "batch": n}, only beside "strategy": "bayes".
+void parse_inference(orch::JsonFields& root, CalibrationCampaign& c) {
+  const json* v = root.get("inference");
+  if (!v) return;
+  if (c.strategy != Strategy::bayes)
+    throw orch::RequestError("inference", "only with \"strategy\": \"bayes\"");
+  if (!v->is_object()) throw orch::RequestError("inference", "must be an object");
+  orch::JsonFields f(*v, "inference");
+  InferenceSettings& s = c.inference;
+  if (const json* lab = f.get("lab_uncertainty")) {
+    if (!lab->is_object()) throw orch::RequestError("inference.lab_uncertainty", "must be an object");
+    orch::JsonFields l(*lab, "inference.lab_uncertainty");
+    s.lab_uct = l.positive("uct").value_or(s.lab_uct);
+    s.lab_btt = l.positive("btt").value_or(s.lab_btt);
+    l.reject_unknown();
+    if (s.lab_uct >= 1 || s.lab_btt >= 1)
+      throw orch::RequestError("inference.lab_uncertainty", "must be below 1 (a relative sd)");
+    s.lab_stated = true;
+  }
+  if (f.get("discrepancy")) {
+    const double d = f.number("discrepancy").value_or(0.0);
+    if (!(d >= 0 && d < 1))
+      throw orch::RequestError("inference.discrepancy", "must be in [0, 1) (a relative sd)");
+    s.discrepancy = d;
+  }
+  s.level = f.positive("level").value_or(s.level);
+  if (s.level < 0.5 || s.level >= 1)
+    throw orch::RequestError("inference.level", "must be in [0.5, 1)");
+  s.unique_width = f.positive("unique_width").value_or(s.unique_width);
+  if (s.unique_width <= 1)
+    throw orch::RequestError("inference.unique_width", "must be above 1 (a factor hi/lo)");
+  s.batch = int(f.integer("batch", 1, 64).value_or(0));
+  f.reject_unknown();
 }
 
 }  // namespace
@@ -204,6 +241,9 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
                              "unknown algorithm '" + c.algorithm + "' (known: " + known + ")");
   }
   c.strategy = parse_strategy(root);
+  parse_inference(root, c);
+  if (c.strategy == Strategy::bayes && !c.fine_patch.is_null())
+    throw orch::RequestError("fidelity", "not with \"strategy\": \"bayes\" (one specimen)");
   c.initial_points = int(root.integer("initial_points", 0, 64).value_or(c.initial_points));
   c.random_seed = std::uint64_t(
       root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));
@@ -211,6 +251,13 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
       root.positive("homogeneity_tolerance").value_or(c.homogeneity_tolerance);
   c.scatter_seeds = parse_seeds(root);
   parse_realisations(root, model, c);
+  if (c.strategy == Strategy::bayes && (c.auto_realisations || c.realisations > 1))
+    throw orch::RequestError("realisations",
+                             "not with \"strategy\": \"bayes\" (its design allocates packings)");
+  if (c.strategy == Strategy::bayes && !c.scatter_seeds.empty())
+    throw orch::RequestError(
+        "seeds", "not with \"strategy\": \"bayes\" (every run is on a packing of its own)");
+  c.seed_matters = seed_matters(model);
   c.consistency_evaluations =
       int(root.integer("consistency_evaluations", 0, 1'000).value_or(c.consistency_evaluations));
   c.suggest = root.boolean("suggest").value_or(c.suggest);
@@ -226,6 +273,8 @@ const char* to_string(Strategy strategy) {
       return "ratio_scale";
     case Strategy::direct_2d:
       return "direct_2d";
+    case Strategy::bayes:
+      return "bayes";
   }
   return "?";
 }

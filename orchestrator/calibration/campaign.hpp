@@ -13,8 +13,23 @@
 
 namespace rockcal::calibration {
 
-// auto: ratio-then-scale when the measured homogeneity holds, else the 2-D search.
-enum class Strategy { automatic, ratio_scale, direct_2d };
+// auto: ratio-then-scale when the measured homogeneity holds, else the 2-D search. bayes: the
+// inference core (emulators of both loads over the log box, batches of runs where they most shrink
+// the posterior, a credible region as the answer; bayes/search.hpp).
+enum class Strategy { automatic, ratio_scale, direct_2d, bayes };
+
+// What the "bayes" strategy needs beyond the targets ("inference": {...}).
+struct InferenceSettings {
+  // Relative standard deviation of each lab mean (a target known to 5% is ln-normal with sd
+  // about 0.05); `stated` says whether the request gave it or the default stands.
+  double lab_uct = 0.05;
+  double lab_btt = 0.05;
+  bool lab_stated = false;
+  double discrepancy = 0.0;   // relative sd of the model's stated discrepancy on both loads
+  double level = 0.9;         // of the credible region
+  double unique_width = 1.5;  // pinned: each strength's interval spans at most this factor
+  int batch = 0;              // runs per round; 0: the pool's workers (at least 2)
+};
 
 struct Range {
   double lo;
@@ -30,6 +45,7 @@ struct CalibrationCampaign {
   nlohmann::json job_template;    // the "job" block: no "test", no "bond" (the search sets both)
   Specimen model_specimen;        // the template's sample, for strengths in model units
   std::uint64_t sample_seed = 1;  // the template's packing seed, used by the search
+  bool seed_matters = true;       // other seeds give other specimens (engine's seed_matters)
   int realisations = 1;  // packings per evaluation: seeds sample_seed, sample_seed + 1, ...
   // "realisations": "auto" (ensemble_size.hpp): the size comes from a pilot's scatter, at most
   // this.
@@ -44,6 +60,7 @@ struct CalibrationCampaign {
   double weight_btt = 1.0;
   std::string algorithm = "bobyqa";
   Strategy strategy = Strategy::automatic;
+  InferenceSettings inference;
   int initial_points = 4;                    // Latin hypercube points of the space-filling start
   std::uint64_t random_seed = 1;             // Latin hypercube and nlopt::srand
   double homogeneity_tolerance = 0.1;        // accepted |exponent_uct - exponent_btt|

@@ -6,6 +6,7 @@
 
 #include <nlopt.hpp>
 
+#include "orchestrator/calibration/bayes/search.hpp"
 #include "orchestrator/calibration/ensemble_size.hpp"
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/local_search.hpp"
@@ -185,6 +186,10 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
                                   const RunOptions& options) {
   nlopt::srand(campaign.random_seed);  // per thread: seed it in the optimising one
   CalibrationReport report;
+  if (campaign.strategy == Strategy::bayes) {
+    bayes_calibration(campaign, evaluator, options, report);
+    return report;
+  }
   bool cancelled = false;
   try {
     report.ensemble = choose_ensemble_size(campaign, evaluator);
@@ -248,11 +253,11 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
 }
 
 CalibrationThread::CalibrationThread(CalibrationCampaign campaign, Evaluator& evaluator,
-                                     RecordCallback on_evaluation)
+                                     RecordCallback on_evaluation, int workers)
     : campaign_(std::move(campaign)), result_(promise_.get_future()) {
-  thread_ = std::jthread([this, &evaluator, on_evaluation](std::stop_token stop) {
+  thread_ = std::jthread([this, &evaluator, on_evaluation, workers](std::stop_token stop) {
     try {
-      promise_.set_value(run_calibration(campaign_, evaluator, {stop, on_evaluation}));
+      promise_.set_value(run_calibration(campaign_, evaluator, {stop, on_evaluation, workers}));
     } catch (...) {
       promise_.set_exception(std::current_exception());
     }

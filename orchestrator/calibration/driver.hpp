@@ -24,6 +24,7 @@ namespace rockcal::calibration {
 struct RunOptions {
   std::stop_token stop;          // checked before every batch
   RecordCallback on_evaluation;  // after each search evaluation (progress, persistence)
+  int workers = 2;               // the pool's: a batch design keeps this many busy
 };
 
 // Runs the whole calibration in the calling thread and returns its report; a cancellation (stop
@@ -36,7 +37,7 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
 class CalibrationThread {
  public:
   CalibrationThread(CalibrationCampaign campaign, Evaluator& evaluator,
-                    RecordCallback on_evaluation = {});
+                    RecordCallback on_evaluation = {}, int workers = 2);
   ~CalibrationThread();  // cancels and joins
   CalibrationThread(const CalibrationThread&) = delete;
   CalibrationThread& operator=(const CalibrationThread&) = delete;

@@ -58,13 +58,8 @@ EvaluationRecord Ledger::evaluate_one(const BondPoint& point, const std::string&
   return evaluate({point}, phase).front();
 }
 
-EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome& outcome,
-                                const std::string& phase) {
-  EvaluationRecord r;
-  r.index = int(history_.size());
-  r.phase = phase;
-  r.point = point;
-  r.sample_seed = campaign_.sample_seed;
+bool fill_record(EvaluationRecord& r, const EvaluationOutcome& outcome,
+                 const CalibrationCampaign& campaign) {
   r.error = outcome.error;
   r.uct = outcome.uct;
   r.btt = outcome.btt;
@@ -72,17 +67,28 @@ EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome&
   const bool usable = outcome.loads && std::isfinite(outcome.loads->uct_n) &&
                       std::isfinite(outcome.loads->btt_n) && outcome.loads->uct_n > 0 &&
                       outcome.loads->btt_n > 0;
-  if (usable) {
-    r.loads = outcome.loads;
-    r.rel_se = {outcome.uct ? orch::relative_se(outcome.uct->peak_load) : 0.0,
-                outcome.btt ? orch::relative_se(outcome.btt->peak_load) : 0.0};
-    r.misfit = misfit(log_errors(*r.loads, targets()), weights());
-    r.within_tolerance = within_tolerance(*r.loads, targets(), campaign_.tolerance, r.rel_se);
-  } else {
+  if (!usable) {
     if (outcome.loads) r.error = "non-positive or non-finite peak load";
     if (r.error.empty()) r.error = "evaluation failed";
-    r.misfit = failure_penalty(point);
+    return false;
   }
+  const PeakLoads& targets = campaign.targets.model_loads_n;
+  r.loads = outcome.loads;
+  r.rel_se = {outcome.uct ? orch::relative_se(outcome.uct->peak_load) : 0.0,
+              outcome.btt ? orch::relative_se(outcome.btt->peak_load) : 0.0};
+  r.misfit = misfit(log_errors(*r.loads, targets), {campaign.weight_uct, campaign.weight_btt});
+  r.within_tolerance = within_tolerance(*r.loads, targets, campaign.tolerance, r.rel_se);
+  return true;
+}
+
+EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome& outcome,
+                                const std::string& phase) {
+  EvaluationRecord r;
+  r.index = int(history_.size());
+  r.phase = phase;
+  r.point = point;
+  r.sample_seed = campaign_.sample_seed;
+  if (!fill_record(r, outcome, campaign_)) r.misfit = failure_penalty(point);
   return r;
 }
 

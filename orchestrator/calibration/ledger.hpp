@@ -31,6 +31,12 @@ struct EvaluationRecord {
   bool within_tolerance = false;
 };
 
+// Fills r's loads, errors, misfit and tolerance from an evaluator's outcome (r's index, phase,
+// point and seed are the caller's); returns false for a failed evaluation, whose misfit the
+// caller sets.
+bool fill_record(EvaluationRecord& r, const EvaluationOutcome& outcome,
+                 const CalibrationCampaign& campaign);
+
 // Thrown (not an error) when the search must end: budget spent, or both targets met. It unwinds
 // through NLopt and the strategies to the driver.
 struct SearchDone {};

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "orchestrator/calibration/bayes/summary.hpp"
 #include "orchestrator/calibration/campaign.hpp"
 #include "orchestrator/calibration/ensemble_size.hpp"
 #include "orchestrator/calibration/fidelity.hpp"
@@ -61,6 +62,7 @@ struct CalibrationReport {
   std::optional<RatioRange> ratio;  // absent without a successful evaluation
   SeedScatter scatter;
   EnsembleSize ensemble;  // packings per evaluation: how many, why, what the scatter calls for
+  std::optional<PosteriorSummary> posterior;  // the "bayes" strategy's answer
 };
 
 std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& history,

@@ -220,6 +220,66 @@ json realisations_so_far(const std::vector<EvaluationRecord>& history,
   return history.back().uct->realisations.size();
 }
 
+json predicted_json(const PredictedLoad& l, const CalibrationCampaign& c) {
+  json j = {{"target", l.target_n},
+            {"mean", l.mean_n},
+            {"interval", {l.lo_n, l.hi_n}},
+            {"run_interval", {l.run_lo_n, l.run_hi_n}},
+            {"relative_error", l.relative_error},
+            {"lab_sd", l.lab_sd},
+            {"emulator_sd", l.emulator_sd},
+            {"run_sd", l.run_sd},
+            {"emulator_share", l.emulator_share}};
+  if (c.targets.scaling) {
+    const Scaling& s = *c.targets.scaling;
+    j["lab"] = {{"target", s.force_to_lab(l.target_n)},
+                {"mean", s.force_to_lab(l.mean_n)},
+                {"interval", {s.force_to_lab(l.lo_n), s.force_to_lab(l.hi_n)}}};
+  }
+  return j;
+}
+
+// The "bayes" strategy's answer: model units, with lab units beside when the targets had them.
+json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationCampaign& c) {
+  if (!p) return nullptr;
+  json region = json::array();
+  for (const RegionSpan& s : p->region) region.push_back({s.j, s.i_lo, s.i_hi});
+  json j = {
+      {"level", p->level},
+      {"estimate", {{"fr0", p->estimate.fr0_n}, {"fs0", p->estimate.fs0_n}}},
+      {"fr0", {p->fr0.lo, p->fr0.hi}},
+      {"fs0", {p->fs0.lo, p->fs0.hi}},
+      {"region",
+       {{"fr0_extent", {p->fr0_extent.lo, p->fr0_extent.hi}},
+        {"fs0_extent", {p->fs0_extent.lo, p->fs0_extent.hi}},
+        {"grid", {{"cells", p->grid_cells},
+                  {"fr0", {c.fr0_n.lo, c.fr0_n.hi}},
+                  {"fs0", {c.fs0_n.lo, c.fs0_n.hi}},
+                  {"scale", "log"}}},
+        {"spans", region}}},
+      {"bounds_reached", p->bounds_reached},
+      {"bounded", p->bounds_reached.empty()},
+      {"uct", predicted_json(p->uct, c)},
+      {"btt", predicted_json(p->btt, c)},
+      {"lab_uncertainty", {{"uct", p->uct.lab_sd}, {"btt", p->btt.lab_sd},
+                           {"source", p->lab_stated ? "request" : "default"}}},
+      {"discrepancy", p->discrepancy},
+      {"unique_width", p->unique_width},
+      {"unique", p->unique},
+      {"why", p->why},
+      {"runs", p->runs},
+      {"points", p->points},
+      {"rounds", p->rounds}};
+  if (c.targets.scaling) {
+    const BondPoint lab = bonds_to_lab(p->estimate, *c.targets.scaling);
+    const Scaling& s = *c.targets.scaling;
+    j["lab"] = {{"estimate", {{"fr0", lab.fr0_n}, {"fs0", lab.fs0_n}}},
+                {"fr0", {s.force_to_lab(p->fr0.lo), s.force_to_lab(p->fr0.hi)}},
+                {"fs0", {s.force_to_lab(p->fs0.lo), s.force_to_lab(p->fs0.hi)}}};
+  }
+  return j;
+}
+
 }  // namespace
 
 json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
@@ -249,7 +309,8 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"consistent", consistent_json(r)},
             {"unique", r.consistent.unique},
             {"suggestion", suggestion_json(r.suggestion)},
-            {"fidelity", r.fidelity ? to_json(*r.fidelity, c) : json(nullptr)}};
+            {"fidelity", r.fidelity ? to_json(*r.fidelity, c) : json(nullptr)},
+            {"posterior", posterior_json(r.posterior, c)}};
   // Which specimen each search evaluation ran on: the template's, coarse when a fine one follows.
   for (json& row : j["history"]) row["resolution"] = c.fine_patch.is_null() ? "template" : "coarse";
   if (r.ratio) {

@@ -1,6 +1,6 @@
 // Focus: the batch design. It picks where the posterior is, counts the pending runs so that a
-// batch is not the same run repeated blindly, returns as many runs as asked, and values a run by what the emulator does
-// not yet know against one run's scatter.
+// batch is not the same run repeated blindly, returns as many runs as asked, and values a run by
+// what the emulator does not yet know against one run's scatter.
 #include <gtest/gtest.h>
 
 #include "orchestrator/inference/design/batch_design.hpp"

@@ -38,13 +38,15 @@ std::vector<std::string> reaches_outside(const std::string& folder,
   std::vector<std::string> out;
   int files = 0;
   for (const auto& e : fs::directory_iterator(kRoot / "orchestrator/inference" / folder)) {
-    const std::string file = "orchestrator/inference/" + folder + "/" + e.path().filename().string();
+    const std::string file =
+        "orchestrator/inference/" + folder + "/" + e.path().filename().string();
     ++files;
     std::map<std::string, std::string> seen;
     reach(file, file, seen);
     for (const auto& [header, chain] : seen) {
       bool ok = false;
-      for (const std::string& a : allowed) ok |= header.rfind("orchestrator/inference/" + a + "/", 0) == 0;
+      for (const std::string& a : allowed)
+        ok |= header.rfind("orchestrator/inference/" + a + "/", 0) == 0;
       if (!ok) out.push_back(chain);
     }
   }

@@ -17,8 +17,12 @@ inline double ln_load(const Eigen::VectorXd& x, double a, double p, double q) {
   return a + p * u + q * v + 0.15 * std::sin(3.0 * x(0)) * std::cos(2.0 * x(1));
 }
 
-inline double ln_uct(const Eigen::VectorXd& x) { return ln_load(x, std::log(2500.0), 0.3, 0.7); }
-inline double ln_btt(const Eigen::VectorXd& x) { return ln_load(x, std::log(420.0), 0.8, 0.2); }
+inline double ln_uct(const Eigen::VectorXd& x) {
+  return ln_load(x, std::log(2500.0), 0.3, 0.7);
+}
+inline double ln_btt(const Eigen::VectorXd& x) {
+  return ln_load(x, std::log(420.0), 0.8, 0.2);
+}
 
 // n points spread over the unit square (a seeded Latin hypercube).
 inline Eigen::MatrixXd latin_square(int n, unsigned seed, int dims = 2) {

@@ -21,7 +21,8 @@ Conditioned condition(const Gp& gp, const Eigen::MatrixXd& pending, double tau2)
   Eigen::MatrixXd k = cross_covariance(gp, c.x, c.x);
   const int n = int(gp.data.x.rows());
   for (int i = 0; i < c.x.rows(); ++i) {
-    k(i, i) += (i < n ? gp.data.noise_var(i) : tau2) + gp.hyper.nugget + 1e-10 * gp.hyper.signal_var;
+    k(i, i) +=
+        (i < n ? gp.data.noise_var(i) : tau2) + gp.hyper.nugget + 1e-10 * gp.hyper.signal_var;
   }
   c.chol.compute(k);
   return c;
@@ -76,7 +77,8 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
       // Weight of a variance reduction at reference cell r: w_r / (lab + var_r).
       const Eigen::VectorXd weight = w.array() / (lab + var_g.array());
       for (int k = 0; k < c; ++k) {
-        score(k) += weight.dot(cov.col(k).cwiseAbs2()) / (var_c(k) + in.run_noise[j] + gp.hyper.nugget);
+        score(k) +=
+            weight.dot(cov.col(k).cwiseAbs2()) / (var_c(k) + in.run_noise[j] + gp.hyper.nugget);
       }
     }
     Eigen::Index best = 0;

@@ -21,12 +21,12 @@ namespace rockcal::inference {
 struct DesignInput {
   std::vector<const Gp*> emulators;  // one per target, at their fitted hyperparameters
   std::vector<Target> targets;
-  std::vector<double> run_noise;     // per target: the variance of one more run
+  std::vector<double> run_noise;  // per target: the variance of one more run
   const PosteriorGrid* posterior = nullptr;
-  Eigen::MatrixXd candidates;        // c x d: where a run may go (new and existing points)
-  Eigen::MatrixXd pending;           // p x d: runs submitted whose values are not yet known
-  int batch = 1;                     // runs to choose
-  int reference_cells = 400;         // the densest cells the shrinkage is summed over
+  Eigen::MatrixXd candidates;  // c x d: where a run may go (new and existing points)
+  Eigen::MatrixXd pending;     // p x d: runs submitted whose values are not yet known
+  int batch = 1;               // runs to choose
+  int reference_cells = 400;   // the densest cells the shrinkage is summed over
 };
 
 struct DesignChoice {

@@ -92,8 +92,7 @@ double negative_likelihood(unsigned, const double* theta, double*, void* data) {
 
 }  // namespace
 
-double matern52(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
-                const Eigen::VectorXd& length) {
+double matern52(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& length) {
   const double r = std::sqrt(((a - b).array() / length.array()).square().sum());
   const double s5r = std::sqrt(5.0) * r;
   return (1.0 + s5r + 5.0 * r * r / 3.0) * std::exp(-s5r);
@@ -160,8 +159,7 @@ Gp fit_gp(GpData data, const GpOptions& options) {
   return gp;
 }
 
-Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a,
-                                 const Eigen::MatrixXd& b) {
+Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   Eigen::MatrixXd k(a.rows(), b.rows());
   for (int i = 0; i < a.rows(); ++i) {
     for (int j = 0; j < b.rows(); ++j) {
@@ -176,7 +174,7 @@ void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& 
                   Eigen::VectorXd& var) {
   const Eigen::MatrixXd k = cross_covariance(gp, gp.data.x, points);  // n x m
   const Eigen::MatrixXd kinv_k = gp.chol.solve(k);
-  const Eigen::MatrixXd h = trend_matrix(points, gp.trend_terms);  // m x p
+  const Eigen::MatrixXd h = trend_matrix(points, gp.trend_terms);           // m x p
   const Eigen::MatrixXd u = h.transpose() - gp.trend.transpose() * kinv_k;  // p x m
   mean = h * gp.beta + k.transpose() * gp.alpha;
   var.resize(points.rows());

@@ -51,8 +51,8 @@ struct Prediction {
 struct Gp {
   GpData data;
   GpHyper hyper;
-  int trend_terms = 1;  // 1 (a constant) or d + 1 (linear), by how many points there are
-  Eigen::MatrixXd trend;             // H: n x trend_terms
+  int trend_terms = 1;    // 1 (a constant) or d + 1 (linear), by how many points there are
+  Eigen::MatrixXd trend;  // H: n x trend_terms
   Eigen::LLT<Eigen::MatrixXd> chol;  // of K = s2 R + diag(noise_var + nugget)
   Eigen::VectorXd beta;              // the trend's GLS coefficients
   Eigen::VectorXd alpha;             // K^-1 (y - H beta)

@@ -14,11 +14,11 @@ namespace rockcal::inference {
 
 struct Region {
   double level = 0.9;
-  std::vector<int> cells;          // the highest-density cells holding `level` of the mass
-  Eigen::VectorXd lo, hi;          // per dimension: the region's extent (cell edges), in [0, 1]
-  Eigen::VectorXd marginal_lo;     // per dimension: the equal-tailed `level` marginal interval
+  std::vector<int> cells;       // the highest-density cells holding `level` of the mass
+  Eigen::VectorXd lo, hi;       // per dimension: the region's extent (cell edges), in [0, 1]
+  Eigen::VectorXd marginal_lo;  // per dimension: the equal-tailed `level` marginal interval
   Eigen::VectorXd marginal_hi;
-  std::vector<bool> at_lower;      // per dimension: the region reaches the box's lower edge
+  std::vector<bool> at_lower;  // per dimension: the region reaches the box's lower edge
   std::vector<bool> at_upper;
   double mass_fraction_of_box = 0.0;  // the region's share of the box's volume
   bool bounded() const;               // reaches no edge

@@ -1,0 +1,173 @@
+#include "orchestrator/calibration/bayes/emulators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "orchestrator/calibration/bayes/box.hpp"
+#include "orchestrator/calibration/sentence.hpp"
+#include "orchestrator/inference/design/batch_design.hpp"
+#include "orchestrator/inference/emulator/runs.hpp"
+#include "orchestrator/inference/posterior/region.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+// The standard normal quantile for a two-sided `level` interval, by bisection on erfc.
+double two_sided_z(double level) {
+  double lo = 0.0, hi = 10.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (std::erfc(mid / std::sqrt(2.0)) > 1.0 - level ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+PredictedLoad predicted(const inference::Gp& gp, const Eigen::Vector2d& x, double target_n,
+                        double lab_sd, double run_var, double share, double z) {
+  const inference::Prediction p = predict(gp, x);
+  PredictedLoad l;
+  l.target_n = target_n;
+  l.mean_n = std::exp(p.mean);
+  l.lo_n = std::exp(p.mean - z * std::sqrt(p.var));
+  l.hi_n = std::exp(p.mean + z * std::sqrt(p.var));
+  l.run_lo_n = std::exp(p.mean - z * std::sqrt(p.var + run_var));
+  l.run_hi_n = std::exp(p.mean + z * std::sqrt(p.var + run_var));
+  l.relative_error = l.mean_n / target_n - 1.0;
+  l.lab_sd = lab_sd;
+  l.emulator_sd = std::sqrt(p.var);
+  l.run_sd = std::sqrt(run_var);
+  l.emulator_share = share;
+  return l;
+}
+
+}  // namespace
+
+std::vector<inference::Target> inference_targets(const CalibrationCampaign& c) {
+  const PeakLoads& t = c.targets.model_loads_n;
+  const InferenceSettings& s = c.inference;
+  return {{std::log(t.uct_n), s.lab_uct, s.discrepancy},
+          {std::log(t.btt_n), s.lab_btt, s.discrepancy}};
+}
+
+Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
+                        const CalibrationCampaign& c) {
+  Emulators m;
+  std::map<std::pair<double, double>, int> index;
+  std::vector<inference::PointRuns> uct, btt;
+  for (const EvaluationRecord& r : history) {
+    if (!r.loads) continue;
+    auto [it, fresh] = index.try_emplace({r.point.fr0_n, r.point.fs0_n}, int(m.points.size()));
+    if (fresh) {
+      m.points.push_back(r.point);
+      uct.push_back({to_unit(r.point, c), {}});
+      btt.push_back({to_unit(r.point, c), {}});
+    }
+    uct[it->second].values.push_back(std::log(r.loads->uct_n));
+    btt[it->second].values.push_back(std::log(r.loads->btt_n));
+    ++m.runs;
+  }
+  if (m.points.size() < 3) throw std::runtime_error("fewer than 3 points with both loads");
+  const inference::PooledScatter su = inference::pooled_scatter(uct);
+  const inference::PooledScatter sb = inference::pooled_scatter(btt);
+  m.uct = inference::fit_gp(inference::gp_data(uct, su));
+  m.btt = inference::fit_gp(inference::gp_data(btt, sb));
+  m.run_noise[0] = inference::per_run_noise(su, m.uct);
+  m.run_noise[1] = inference::per_run_noise(sb, m.btt);
+  m.targets = inference_targets(c);
+  m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
+  return m;
+}
+
+std::vector<double> emulator_shares(const Emulators& m) {
+  return inference::emulator_share(m.grid, m.targets);
+}
+
+bool in_credible_region(const PosteriorSummary& s, const BondPoint& p,
+                        const CalibrationCampaign& c) {
+  const Eigen::Vector2d u = to_unit(p, c);
+  const int n = s.grid_cells;
+  const int i = std::clamp(int(std::floor(u(0) * n)), 0, n - 1);
+  const int j = std::clamp(int(std::floor(u(1) * n)), 0, n - 1);
+  return std::any_of(s.region.begin(), s.region.end(),
+                     [&](const RegionSpan& r) { return r.j == j && r.i_lo <= i && i <= r.i_hi; });
+}
+
+PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int rounds) {
+  const InferenceSettings& s = c.inference;
+  const inference::Region region = inference::credible_region(m.grid, s.level);
+  const Eigen::Vector2d peak = inference::density_peak(m.grid, m.emulators(), m.targets);
+  PosteriorSummary p;
+  p.level = s.level;
+  p.estimate = from_unit(peak, c);
+  p.fr0 = {strength_at(region.marginal_lo(0), 0, c), strength_at(region.marginal_hi(0), 0, c)};
+  p.fs0 = {strength_at(region.marginal_lo(1), 1, c), strength_at(region.marginal_hi(1), 1, c)};
+  p.fr0_extent = {strength_at(region.lo(0), 0, c), strength_at(region.hi(0), 0, c)};
+  p.fs0_extent = {strength_at(region.lo(1), 1, c), strength_at(region.hi(1), 1, c)};
+  p.grid_cells = m.grid.per_dim;
+  std::vector<std::vector<int>> rows(m.grid.per_dim);
+  for (int cell : region.cells) {
+    const std::vector<int> ij = inference::cell_indices(m.grid, cell);
+    rows[ij[1]].push_back(ij[0]);
+  }
+  for (int j = 0; j < m.grid.per_dim; ++j) {
+    std::sort(rows[j].begin(), rows[j].end());
+    for (std::size_t k = 0; k < rows[j].size(); ++k) {
+      if (k == 0 || rows[j][k] != rows[j][k - 1] + 1)
+        p.region.push_back({j, rows[j][k], rows[j][k]});
+      p.region.back().i_hi = rows[j][k];
+    }
+  }
+  const char* names[] = {"F_r0", "F_s0"};
+  const Range* ranges[] = {&c.fr0_n, &c.fs0_n};
+  for (int k = 0; k < 2; ++k) {
+    char text[128];
+    if (region.at_lower[k]) {
+      std::snprintf(text, sizeof text, "the lower bound of %s (%.4g)", names[k], ranges[k]->lo);
+      p.bounds_reached.push_back(text);
+    }
+    if (region.at_upper[k]) {
+      std::snprintf(text, sizeof text, "the upper bound of %s (%.4g)", names[k], ranges[k]->hi);
+      p.bounds_reached.push_back(text);
+    }
+  }
+  const double z = two_sided_z(s.level);
+  const std::vector<double> share = emulator_shares(m);
+  const PeakLoads& t = c.targets.model_loads_n;
+  p.uct = predicted(m.uct, peak, t.uct_n, s.lab_uct, m.run_noise[0], share[0], z);
+  p.btt = predicted(m.btt, peak, t.btt_n, s.lab_btt, m.run_noise[1], share[1], z);
+  p.lab_stated = s.lab_stated;
+  p.discrepancy = s.discrepancy;
+  p.unique_width = s.unique_width;
+  p.runs = m.runs;
+  p.points = int(m.points.size());
+  p.rounds = rounds;
+  const double wr = p.fr0.hi / p.fr0.lo, ws = p.fs0.hi / p.fs0.lo;
+  const int pct = int(std::lround(100 * s.level));
+  if (!p.bounds_reached.empty()) {
+    p.unique = false;
+    p.why = "the " + std::to_string(pct) + "% region reaches " + p.bounds_reached.front() +
+            ": the targets do not bound the strengths there";
+  } else if (wr > s.unique_width || ws > s.unique_width) {
+    p.unique = false;
+    p.why = sentence("the %.0f%% intervals span a factor %.3g in F_r0 and %.3g in F_s0",
+                     100 * s.level, wr, ws) +
+            sentence(", wider than the stated %.3g: the targets, known to %.3g%%", s.unique_width,
+                     100 * std::max(s.lab_uct, s.lab_btt)) +
+            sentence(
+                ", allow a range of strengths (the emulators hold %.0f%% and %.0f%% of the "
+                "posterior's variance)",
+                100 * share[0] / (1 + share[0]), 100 * share[1] / (1 + share[1]));
+  } else {
+    p.unique = true;
+    p.why = sentence(
+                "the %.0f%% region lies inside the bounds and its intervals span a factor "
+                "%.3g in F_r0 and %.3g in F_s0",
+                100 * s.level, wr, ws) +
+            sentence(", within the stated %.3g", s.unique_width);
+  }
+  return p;
+}
+
+}  // namespace rockcal::calibration

@@ -1,0 +1,38 @@
+// The calibration's two emulators (ln UCT and ln BTT peak load over the unit log box) fitted to a
+// campaign's runs, the posterior they give for its targets, and the summary of that posterior.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "orchestrator/calibration/bayes/summary.hpp"
+#include "orchestrator/calibration/ledger.hpp"
+#include "orchestrator/inference/posterior/posterior.hpp"
+
+namespace rockcal::calibration {
+
+struct Emulators {
+  inference::Gp uct, btt;
+  double run_noise[2] = {0, 0};  // variance of one run's ln load (pooled scatter, or nugget)
+  int runs = 0;
+  std::vector<BondPoint> points;  // the distinct points run, in first-run order
+  std::vector<inference::Target> targets;
+  inference::PosteriorGrid grid;
+  std::vector<const inference::Gp*> emulators() const { return {&uct, &btt}; }
+};
+
+// The targets in ln with the lab's relative sd and the stated discrepancy.
+std::vector<inference::Target> inference_targets(const CalibrationCampaign& c);
+
+// Throws std::runtime_error with fewer than 3 distinct successful points (or a failed fit).
+Emulators fit_emulators(const std::vector<EvaluationRecord>& history, const CalibrationCampaign& c);
+
+std::vector<double> emulator_shares(const Emulators& m);
+
+// Whether p lies in the summary's credible region (one of its cells on the log box).
+bool in_credible_region(const PosteriorSummary& s, const BondPoint& p,
+                        const CalibrationCampaign& c);
+
+PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int rounds);
+
+}  // namespace rockcal::calibration

@@ -1,0 +1,257 @@
+#include "orchestrator/calibration/bayes/search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <future>
+#include <map>
+
+#include "orchestrator/calibration/bayes/box.hpp"
+#include "orchestrator/calibration/bayes/emulators.hpp"
+#include "orchestrator/calibration/bayes/verdict.hpp"
+#include "orchestrator/calibration/latin_hypercube.hpp"
+#include "orchestrator/inference/design/batch_design.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+// Below this share of the posterior's variance in the emulators, more runs narrow the region by
+// less than a tenth (sqrt(1.25) = 1.12).
+constexpr double kShareStop = 0.25;
+constexpr int kSpaceFilling = 256;  // candidates spread over the box, besides the posterior's own
+constexpr int kDensest = 64;        // candidates at the posterior's densest cells
+
+struct Run {
+  BondPoint point;
+  std::uint64_t seed;
+  std::string phase;
+};
+
+struct Flight {
+  std::vector<Run> runs;
+  std::future<std::vector<EvaluationOutcome>> outcomes;
+};
+
+class Search {
+ public:
+  Search(const CalibrationCampaign& c, Evaluator& e, const RunOptions& o)
+      : c_(c), evaluator_(e), options_(o) {
+    batch_ = c.inference.batch > 0 ? c.inference.batch : std::max(2, o.workers);
+  }
+
+  void run(CalibrationReport& report) {
+    launch(start());
+    while (!flights_.empty()) {
+      Flight f = std::move(flights_.front());
+      flights_.pop_front();
+      std::vector<EvaluationOutcome> outcomes;
+      try {
+        outcomes = f.outcomes.get();
+      } catch (const EvaluationCancelled&) {
+        cancelled_ = true;
+      }
+      if (cancelled_ || options_.stop.stop_requested()) {
+        cancelled_ = true;
+        drain();
+        break;
+      }
+      take(f.runs, outcomes);
+      refit();
+      if (model_ && !checked_) {
+        const std::vector<double> share = emulator_shares(*model_);
+        converged_ = share[0] < kShareStop && share[1] < kShareStop;
+      }
+      while (flights_.size() < 2 && !checked_ && launched_ < c_.max_evaluations) plan_next();
+    }
+    report.history = history_;
+    report.stop_reason = cancelled_   ? StopReason::cancelled
+                         : converged_ ? StopReason::converged
+                                      : StopReason::budget_exhausted;
+    if (model_) report.posterior = summarise(*model_, c_, rounds_);
+    if (!check_.empty()) report.best = check_record();
+  }
+
+ private:
+  std::vector<Run> start() {
+    const int n = std::min(c_.max_evaluations, std::max(8, 2 * batch_));
+    std::vector<Run> runs;
+    for (const auto& u : latin_hypercube(n, c_.random_seed)) {
+      runs.push_back(run_at(from_unit({u[0], u[1]}, c_), "start"));
+    }
+    return runs;
+  }
+
+  Run run_at(const BondPoint& p, const char* phase) {
+    // Every run a packing of its own (independent scatter); one specimen when seeds do not matter.
+    const std::uint64_t seed =
+        c_.seed_matters ? c_.sample_seed + std::uint64_t(next_run_) : c_.sample_seed;
+    ++next_run_;
+    return {p, seed, phase};
+  }
+
+  void launch(std::vector<Run> runs) {
+    if (runs.empty()) return;
+    launched_ += int(runs.size());
+    std::vector<EvaluationRequest> requests;
+    for (const Run& r : runs) requests.push_back({r.point, r.seed, 1});
+    Evaluator* e = &evaluator_;
+    auto work = [e, requests = std::move(requests)] { return e->evaluate_batch(requests); };
+    flights_.push_back({std::move(runs), std::async(std::launch::async, std::move(work))});
+  }
+
+  void drain() {
+    for (Flight& f : flights_) {
+      try {
+        f.outcomes.get();
+      } catch (...) {
+      }
+    }
+    flights_.clear();
+  }
+
+  void take(const std::vector<Run>& runs, const std::vector<EvaluationOutcome>& outcomes) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      EvaluationRecord r;
+      r.index = int(history_.size());
+      r.phase = runs[i].phase;
+      r.point = runs[i].point;
+      r.sample_seed = runs[i].seed;
+      EvaluationOutcome missing;
+      missing.error = "the evaluator returned no outcome";
+      if (!fill_record(r, i < outcomes.size() ? outcomes[i] : missing, c_)) {
+        r.misfit = (c_.weight_uct + c_.weight_btt) * std::pow(std::log(10.0), 2);
+      }
+      history_.push_back(r);
+      if (r.phase == "check") check_.push_back(r);
+      if (options_.on_evaluation) options_.on_evaluation(r);
+    }
+  }
+
+  void refit() {
+    try {
+      model_ = fit_emulators(history_, c_);
+    } catch (const std::exception&) {
+      model_.reset();  // too few or degenerate runs: the next batch fills the box instead
+    }
+  }
+
+  void plan_next() {
+    const int left = c_.max_evaluations - launched_;
+    if (model_ && (converged_ || left <= batch_)) {
+      // The check batch: the estimate on `batch` packings (fewer when seeds do not matter).
+      const BondPoint estimate = summarise(*model_, c_, rounds_).estimate;
+      std::vector<Run> runs;
+      const int n = c_.seed_matters ? std::min(batch_, left) : 1;
+      for (int k = 0; k < n; ++k) runs.push_back(run_at(estimate, "check"));
+      checked_ = true;
+      launch(std::move(runs));
+      return;
+    }
+    ++rounds_;
+    launch(model_ ? design(std::min(batch_, left)) : space_filling(std::min(batch_, left)));
+  }
+
+  std::vector<Run> space_filling(int n) {
+    std::vector<Run> runs;
+    for (const auto& u : latin_hypercube(n, c_.random_seed + 7919 * std::uint64_t(rounds_))) {
+      runs.push_back(run_at(from_unit({u[0], u[1]}, c_), "design"));
+    }
+    return runs;
+  }
+
+  std::vector<Run> design(int n) {
+    const Emulators& m = *model_;
+    // Candidates: spread over the box, at the posterior's densest cells, and (when another
+    // packing is another specimen) the points already run: a further realisation there.
+    std::vector<Eigen::Vector2d> cand;
+    std::vector<std::optional<BondPoint>> exact;  // the existing point a candidate repeats
+    for (const auto& u :
+         latin_hypercube(kSpaceFilling, c_.random_seed + 104729 * std::uint64_t(rounds_))) {
+      cand.push_back({u[0], u[1]});
+      exact.push_back(std::nullopt);
+    }
+    std::vector<int> order(m.grid.weight.size());
+    for (int i = 0; i < int(order.size()); ++i) order[i] = i;
+    const int top = std::min<int>(kDensest, int(order.size()));
+    std::partial_sort(order.begin(), order.begin() + top, order.end(),
+                      [&](int a, int b) { return m.grid.weight(a) > m.grid.weight(b); });
+    for (int k = 0; k < top; ++k) {
+      cand.push_back(m.grid.points.row(order[k]).transpose());
+      exact.push_back(std::nullopt);
+    }
+    if (c_.seed_matters) {
+      for (const BondPoint& p : m.points) {
+        cand.push_back(to_unit(p, c_));
+        exact.push_back(p);
+      }
+    }
+    inference::DesignInput in;
+    in.emulators = m.emulators();
+    in.targets = m.targets;
+    in.run_noise = {m.run_noise[0], m.run_noise[1]};
+    in.posterior = &m.grid;
+    in.candidates.resize(Eigen::Index(cand.size()), 2);
+    for (std::size_t i = 0; i < cand.size(); ++i) in.candidates.row(Eigen::Index(i)) = cand[i];
+    std::vector<Eigen::Vector2d> pend;
+    for (const Flight& f : flights_) {
+      for (const Run& r : f.runs) pend.push_back(to_unit(r.point, c_));
+    }
+    in.pending.resize(Eigen::Index(pend.size()), 2);
+    for (std::size_t i = 0; i < pend.size(); ++i) in.pending.row(Eigen::Index(i)) = pend[i];
+    in.batch = n;
+    std::vector<Run> runs;
+    std::vector<BondPoint> chosen;
+    for (const inference::DesignChoice& d : inference::choose_batch(in)) {
+      const BondPoint p =
+          exact[d.candidate] ? *exact[d.candidate] : from_unit(cand[d.candidate], c_);
+      if (!c_.seed_matters && std::find(chosen.begin(), chosen.end(), p) != chosen.end()) continue;
+      chosen.push_back(p);
+      runs.push_back(run_at(p, "design"));
+    }
+    return runs;
+  }
+
+  // The check runs as one ensemble: the estimate's loads over its packings.
+  EvaluationRecord check_record() const {
+    std::vector<orch::Realisation> uct, btt;
+    for (const EvaluationRecord& r : check_) {
+      if (r.uct) uct.insert(uct.end(), r.uct->realisations.begin(), r.uct->realisations.end());
+      if (r.btt) btt.insert(btt.end(), r.btt->realisations.begin(), r.btt->realisations.end());
+    }
+    EvaluationRecord best;
+    best.index = check_.front().index;
+    best.phase = "check";
+    best.point = check_.front().point;
+    best.sample_seed = check_.front().sample_seed;
+    if (uct.empty() || btt.empty() ||
+        !fill_record(best, outcome_of(orch::make_ensemble(uct), orch::make_ensemble(btt)), c_)) {
+      best.misfit = (c_.weight_uct + c_.weight_btt) * std::pow(std::log(10.0), 2);
+    }
+    return best;
+  }
+
+  const CalibrationCampaign& c_;
+  Evaluator& evaluator_;
+  const RunOptions& options_;
+  int batch_ = 2;
+  int launched_ = 0;
+  int next_run_ = 0;
+  int rounds_ = 0;
+  bool cancelled_ = false, converged_ = false, checked_ = false;
+  std::deque<Flight> flights_;
+  std::vector<EvaluationRecord> history_;
+  std::vector<EvaluationRecord> check_;
+  std::optional<Emulators> model_;
+};
+
+}  // namespace
+
+void bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
+                       const RunOptions& options, CalibrationReport& report) {
+  report.strategy_used = "bayes";
+  Search(campaign, evaluator, options).run(report);
+  report.ratio = ratio_range(report.history, campaign.targets.model_loads_n);
+  judge_posterior(report, campaign);
+}
+
+}  // namespace rockcal::calibration

@@ -1,0 +1,51 @@
+// What the "bayes" strategy answers: the posterior of (F_r0, F_s0) given the two targets, in the
+// campaign's model units. Every figure here comes from the emulators and runs of the campaign.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "orchestrator/calibration/campaign.hpp"
+#include "orchestrator/calibration/evaluator.hpp"
+
+namespace rockcal::calibration {
+
+// One target's prediction at the estimate: the emulator's mean of the ensemble-mean load, its
+// `level` interval, and the interval one more packing's run would fall in.
+struct PredictedLoad {
+  double target_n = 0.0;
+  double mean_n = 0.0;
+  double lo_n = 0.0, hi_n = 0.0;          // the ensemble mean's interval
+  double run_lo_n = 0.0, run_hi_n = 0.0;  // one packing's interval
+  double relative_error = 0.0;            // mean / target - 1
+  double lab_sd = 0.0;                    // the target's relative sd used
+  double emulator_sd = 0.0;               // sd of ln(mean) from the emulator at the estimate
+  double run_sd = 0.0;                    // sd of ln(load) of one packing (the pooled scatter)
+  double emulator_share = 0.0;            // posterior-weighted emulator variance / lab variance
+};
+
+// A row of the region's cells on the posterior's grid: cells [i_lo, i_hi] of F_r0 at F_s0 row j.
+struct RegionSpan {
+  int j = 0, i_lo = 0, i_hi = 0;
+};
+
+struct PosteriorSummary {
+  double level = 0.9;
+  BondPoint estimate{};                      // the posterior's density peak
+  Range fr0{0, 0}, fs0{0, 0};                // marginal `level` intervals
+  Range fr0_extent{0, 0}, fs0_extent{0, 0};  // the region's extent
+  int grid_cells = 0;                        // per dimension; the grid spans the log bounds
+  std::vector<RegionSpan> region;            // the highest-density cells holding `level`
+  std::vector<std::string> bounds_reached;   // e.g. "the upper bound of F_s0 (1000)"
+  PredictedLoad uct, btt;
+  bool lab_stated = false;
+  double discrepancy = 0.0;
+  double unique_width = 1.5;
+  bool unique = false;
+  std::string why;  // the reason for `unique`, a sentence
+  int runs = 0;     // successful runs the emulators were fitted to
+  int points = 0;   // distinct points among them
+  int rounds = 0;   // batches designed after the start
+};
+
+}  // namespace rockcal::calibration

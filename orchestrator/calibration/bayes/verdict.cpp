@@ -1,0 +1,83 @@
+#include "orchestrator/calibration/bayes/verdict.hpp"
+
+#include <cmath>
+
+#include "orchestrator/calibration/sentence.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+std::string loads_text(const PosteriorSummary& p) {
+  return sentence("UCT %+.3g%%, BTT %+.3g%%", 100 * p.uct.relative_error,
+                  100 * p.btt.relative_error);
+}
+
+std::string region_text(const PosteriorSummary& p) {
+  return sentence("the %.0f%% credible interval of F_r0 is [%.4g, %.4g]", 100 * p.level, p.fr0.lo,
+                  p.fr0.hi) +
+         sentence(" and of F_s0 [%.4g, %.4g]", p.fs0.lo, p.fs0.hi);
+}
+
+}  // namespace
+
+void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
+  r.consistent = {};
+  if (!r.posterior) {
+    r.verdict = r.stop_reason == StopReason::cancelled ? Verdict::incomplete : Verdict::failed;
+    r.verdict_reason = r.stop_reason == StopReason::cancelled
+                           ? "cancelled before the emulators could be fitted"
+                           : "fewer than 3 points gave both peak loads: no posterior";
+    return;
+  }
+  const PosteriorSummary& p = *r.posterior;
+  r.consistent.unique = p.unique;
+  r.consistent.why = p.why;
+  r.consistent.fr0 = p.fr0;
+  r.consistent.fs0 = p.fs0;
+  const bool met = std::abs(p.uct.relative_error) <= c.tolerance &&
+                   std::abs(p.btt.relative_error) <= c.tolerance;
+  const std::string runs = sentence(" (%.0f runs at %.0f points)", p.runs, p.points);
+  if (met) {
+    r.verdict = Verdict::feasible;
+    r.verdict_reason =
+        sentence("the predicted loads at the estimate are within %.3g%% of both targets (",
+                 100 * c.tolerance) +
+        loads_text(p) + ")" + runs + "; " + region_text(p) +
+        (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why;
+    return;
+  }
+  if (r.stop_reason == StopReason::cancelled) {
+    r.verdict = Verdict::incomplete;
+    r.verdict_reason =
+        "cancelled before the predicted loads met both targets (" + loads_text(p) + ")";
+    return;
+  }
+  r.verdict = Verdict::compromise;
+  const std::string miss =
+      "the predicted loads at the estimate miss the targets (" + loads_text(p) + ")";
+  if (!p.bounds_reached.empty()) {
+    r.verdict_reason = miss + ": the posterior presses on " + p.bounds_reached.front() +
+                       "; the targets need strengths beyond it: widen \"bounds\"";
+  } else if (r.ratio && !r.ratio->target_inside()) {
+    r.verdict_reason =
+        miss + sentence(
+                   ": the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] "
+                   "the runs reached",
+                   r.ratio->target, r.ratio->min, r.ratio->max);
+  } else if (r.stop_reason == StopReason::budget_exhausted) {
+    r.verdict_reason =
+        miss + sentence(
+                   " when the budget of %.0f runs ran out, with the emulators "
+                   "holding %.0f%% (UCT) and %.0f%% (BTT) of the posterior's "
+                   "variance: more runs would narrow it",
+                   c.max_evaluations, 100 * p.uct.emulator_share / (1 + p.uct.emulator_share),
+                   100 * p.btt.emulator_share / (1 + p.btt.emulator_share));
+  } else {
+    r.verdict_reason = miss +
+                       ", though the emulators know the region well: the model cannot "
+                       "meet both loads within the tolerance there";
+  }
+  r.verdict_reason += runs + "; " + region_text(p);
+}
+
+}  // namespace rockcal::calibration

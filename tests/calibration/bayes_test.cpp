@@ -1,0 +1,201 @@
+// Focus: the "bayes" strategy end to end on formula engines whose runs scatter like the real
+// specimens' (one packing's ln peak load: sd 0.2 on the UCT, 0.35 on the BTT). Its credible
+// region holds the truth about as often as it claims (coverage over twins with known truth and
+// lab targets drawn with their stated uncertainty), it keeps every worker of a pool busy while
+// budget remains (timestamps of a fake pool), and its verdict names a bound the targets press on.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "orchestrator/calibration/bayes/box.hpp"
+#include "orchestrator/calibration/bayes/emulators.hpp"
+#include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/report.hpp"
+#include "synthetic.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+using testing::hash_unit;
+
+// A standard normal draw, deterministic in the point, seed and salt (Box-Muller on two hashes).
+double normal(const BondPoint& p, std::uint64_t seed, std::uint64_t salt) {
+  const double u1 = 0.5 * (hash_unit(p, seed, salt) + 1.0) * (1 - 1e-12) + 1e-12;
+  const double u2 = 0.5 * (hash_unit(p, seed, salt + 1000) + 1.0);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+}
+
+// One packing per request: ln load = ln model + N(0, sd), independent across seeds. Thread-safe
+// (the search keeps two batches in flight); optionally a pool of `workers` slots that each run
+// holds for `run_time`, with every run's start and end recorded.
+struct ScatteringEvaluator : Evaluator {
+  testing::Model model;
+  double sd_uct = 0.2, sd_btt = 0.35;
+  int workers = 0;
+  std::chrono::milliseconds run_time{0};
+  std::mutex mutex;
+  std::condition_variable freed;
+  int busy = 0;
+  using Clock = std::chrono::steady_clock;
+  std::vector<std::pair<Clock::time_point, Clock::time_point>> spans;
+  int runs = 0;
+
+  explicit ScatteringEvaluator(testing::Model m) : model(std::move(m)) {}
+
+  EvaluationOutcome one(const EvaluationRequest& r) {
+    if (workers > 0) {
+      std::unique_lock lock(mutex);
+      freed.wait(lock, [&] { return busy < workers; });
+      ++busy;
+      const auto start = Clock::now();
+      lock.unlock();
+      std::this_thread::sleep_for(run_time);
+      lock.lock();
+      spans.push_back({start, Clock::now()});
+      --busy;
+      freed.notify_all();
+    }
+    const PeakLoads l = model(r.point);
+    orch::Realisation u{r.sample_seed,
+                        0,
+                        "succeeded",
+                        l.uct_n * std::exp(sd_uct * normal(r.point, r.sample_seed, 1)),
+                        {},
+                        {},
+                        ""};
+    orch::Realisation b{r.sample_seed,
+                        0,
+                        "succeeded",
+                        l.btt_n * std::exp(sd_btt * normal(r.point, r.sample_seed, 3)),
+                        {},
+                        {},
+                        ""};
+    return outcome_of(orch::make_ensemble({u}), orch::make_ensemble({b}));
+  }
+
+  std::vector<EvaluationOutcome> evaluate_batch(std::span<const EvaluationRequest> rs) override {
+    {
+      std::lock_guard lock(mutex);
+      runs += int(rs.size());
+    }
+    // A pool runs a batch's runs side by side.
+    std::vector<std::future<EvaluationOutcome>> f;
+    for (const EvaluationRequest& r : rs)
+      f.push_back(std::async(std::launch::async, [&, r] { return one(r); }));
+    std::vector<EvaluationOutcome> out;
+    for (auto& x : f) out.push_back(x.get());
+    return out;
+  }
+};
+
+nlohmann::json bayes(int budget, double lab_sd) {
+  return {{"strategy", "bayes"},
+          {"max_evaluations", budget},
+          {"bounds", {{"fr0", {10, 1000}}, {"fs0", {10, 1000}}}},
+          {"inference", {{"lab_uncertainty", {{"uct", lab_sd}, {"btt", lab_sd}}}}},
+          // A seeded lattice: every packing seed is another specimen, as in the real templates.
+          {"job", {{"sample", {{"lattice", "seeded"}, {"seed", 1}}}}}};
+}
+
+TEST(BayesCalibration, TheNinetyPercentRegionHoldsTheTruthInEightyToNinetySevenPercentOfTwins) {
+  constexpr int kTwins = 24;
+  constexpr double kLabSd = 0.05;
+  int inside = 0, feasible = 0, runs = 0;
+  for (int twin = 0; twin < kTwins; ++twin) {
+    // The truth inside the box, away from its edges; the lab's means drawn with their sd.
+    const BondPoint probe{double(twin + 1), 7.0};
+    const double u = 0.25 + 0.5 * 0.5 * (hash_unit(probe, 11, 1) + 1);
+    const double v = 0.25 + 0.5 * 0.5 * (hash_unit(probe, 11, 2) + 1);
+    const CalibrationCampaign base = testing::campaign({1, 1}, bayes(60, kLabSd));
+    const BondPoint truth = from_unit({u, v}, base);
+    const PeakLoads exact = testing::power_law(truth);
+    const PeakLoads lab{exact.uct_n * std::exp(kLabSd * normal(probe, 21, 1)),
+                        exact.btt_n * std::exp(kLabSd * normal(probe, 21, 3))};
+    nlohmann::json over = bayes(60, kLabSd);
+    over["random_seed"] = twin + 1;
+    over["job"]["sample"]["seed"] = 1 + 1000 * twin;
+    const CalibrationCampaign c = testing::campaign(lab, over);
+    ScatteringEvaluator e(testing::power_law);
+    const CalibrationReport r = run_calibration(c, e);
+    ASSERT_TRUE(r.posterior) << twin;
+    const PosteriorSummary& p = *r.posterior;
+    inside += in_credible_region(p, truth, c) ? 1 : 0;
+    runs += e.runs;
+    feasible += r.verdict == Verdict::feasible ? 1 : 0;
+    EXPECT_LE(e.runs, 60);
+  }
+  const double coverage = double(inside) / kTwins;
+  std::printf("coverage %d of %d twins, %d feasible, %.1f runs a twin\n", inside, kTwins, feasible,
+              double(runs) / kTwins);
+  EXPECT_GE(coverage, 0.80) << inside << " of " << kTwins;
+  EXPECT_LE(coverage, 0.97) << inside << " of " << kTwins;
+  EXPECT_GE(feasible, kTwins / 2);
+}
+
+TEST(BayesCalibration, NoWorkerIdlesWhileBudgetRemains) {
+  const CalibrationCampaign c = testing::campaign({120000, 9000}, bayes(40, 0.05));
+  ScatteringEvaluator e(testing::power_law);
+  e.workers = 2;
+  e.run_time = std::chrono::milliseconds(150);
+  RunOptions o;
+  o.workers = 2;
+  const CalibrationReport r = run_calibration(c, e, o);
+  ASSERT_FALSE(e.spans.empty());
+  auto first = e.spans.front().first, last = e.spans.front().second;
+  double busy = 0.0;
+  for (const auto& [a, b] : e.spans) {
+    first = std::min(first, a);
+    last = std::max(last, b);
+    busy += std::chrono::duration<double>(b - a).count();
+  }
+  const double wall = std::chrono::duration<double>(last - first).count();
+  EXPECT_GE(busy / (2 * wall), 0.9) << "busy " << busy << " s of 2 x " << wall << " s";
+  EXPECT_EQ(int(e.spans.size()), e.runs);
+  EXPECT_EQ(r.strategy_used, "bayes");
+}
+
+TEST(BayesCalibration, AVerdictNamesTheBoundTheTargetsPressOn) {
+  // Targets that need F_s0 above the box's upper bound.
+  const PeakLoads beyond = testing::power_law({300, 3000});
+  nlohmann::json over = bayes(40, 0.05);
+  const CalibrationCampaign c = testing::campaign(beyond, over);
+  ScatteringEvaluator e(testing::power_law);
+  e.sd_uct = e.sd_btt = 0.02;
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  EXPECT_FALSE(r.posterior->bounds_reached.empty());
+  EXPECT_FALSE(r.posterior->unique);
+  EXPECT_NE(r.verdict_reason.find("the upper bound of F_s0 (1000)"), std::string::npos)
+      << r.verdict_reason;
+}
+
+TEST(BayesCalibration, RequestsAreRefusedNamingTheField) {
+  auto error = [](const nlohmann::json& over) {
+    try {
+      testing::campaign({1000, 100}, over);
+    } catch (const orch::RequestError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error({{"inference", {{"level", 0.9}}}}),
+            "inference: only with \"strategy\": \"bayes\"");
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"inference", {{"level", 1.2}}}}),
+            "inference.level: must be in [0.5, 1)");
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"inference", {{"unique_width", 0.5}}}}),
+            "inference.unique_width: must be above 1 (a factor hi/lo)");
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"realisations", 3}}),
+            "realisations: not with \"strategy\": \"bayes\" (its design allocates packings)");
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"inference", {{"lab_uncertainty", {{"btt", 1.5}}}}}}),
+            "inference.lab_uncertainty: must be below 1 (a relative sd)");
+  EXPECT_EQ(
+      error({{"strategy", "bayes"}, {"inference", {{"colour", 1}}}}).rfind("inference.colour", 0),
+      0u);
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"inference", {{"batch", 4}}}}), "accepted");
+}
+
+}  // namespace
+}  // namespace rockcal::calibration
