@@ -201,6 +201,55 @@ std::string fidelity_text(const json& f) {
   return out.str();
 }
 
+// The "bayes" strategy's answer: the estimate and the credible intervals of both strengths, the
+// predicted loads with their intervals, in the targets' units (lab beside model when given).
+std::string posterior_text(const json& p, const json& best) {
+  std::ostringstream out;
+  const json& lab = at(p, "lab");
+  const bool in_lab = lab.is_object();
+  const int pct = int(std::lround(100 * p["level"].get<double>()));
+  const json& lu = at(p, "lab_uncertainty");
+  out << "posterior from " << p["runs"] << " runs at " << p["points"]
+      << " points; targets known to UCT " << num(100 * lu["uct"].get<double>(), "%.3g") << "%, BTT "
+      << num(100 * lu["btt"].get<double>(), "%.3g") << "% ("
+      << (at(lu, "source") == "request" ? "stated" : "default: not stated in the request") << ")\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "%-10s%12s  %-24s%s\n", "strength", "estimate",
+                (std::to_string(pct) + "% interval").c_str(),
+                in_lab ? "lab units (N): estimate, interval" : "");
+  out << line;
+  for (const char* key : {"fr0", "fs0"}) {
+    std::string lab_text;
+    if (in_lab) lab_text = num(lab["estimate"][key]) + ", " + range_text(lab[key]);
+    std::snprintf(line, sizeof line, "  %-8s%12s  %-24s%s\n",
+                  key == std::string("fr0") ? "F_r0" : "F_s0", num(p["estimate"][key]).c_str(),
+                  range_text(p[key]).c_str(), lab_text.c_str());
+    out << line;
+  }
+  const std::string unit = in_lab ? " (N)" : "";
+  std::snprintf(line, sizeof line, "%-6s%14s%14s  %-26s%s\n", "load", ("target" + unit).c_str(),
+                ("predicted" + unit).c_str(),
+                (std::to_string(pct) + "% interval of the mean").c_str(), "error");
+  out << line;
+  for (const char* test : {"uct", "btt"}) {
+    const json& t = p[test];
+    const json& shown = in_lab && at(t, "lab").is_object() ? t["lab"] : t;
+    std::snprintf(line, sizeof line, "  %-4s%14s%14s  %-26s%s\n",
+                  test == std::string("uct") ? "UCT" : "BTT", num(shown["target"], "%.6g").c_str(),
+                  num(shown["mean"], "%.6g").c_str(), range_text(shown["interval"]).c_str(),
+                  (num(100 * t["relative_error"].get<double>(), "%+.2f") + "%").c_str());
+    out << line;
+  }
+  out << "  one packing's scatter: UCT sd " << num(100 * p["uct"]["run_sd"].get<double>(), "%.3g")
+      << "%, BTT sd " << num(100 * p["btt"]["run_sd"].get<double>(), "%.3g") << "% (in ln)\n";
+  if (best.is_object() && at(best, "uct").is_object()) {
+    out << "  check runs at the estimate: UCT " << error_text(best["uct"]) << ", BTT "
+        << error_text(best["btt"]) << " (mean of " << value_text(at(best["uct"], "n"))
+        << " packings)\n";
+  }
+  return out.str();
+}
+
 }  // namespace
 
 std::string calibration_text(const json& s) {
@@ -208,7 +257,12 @@ std::string calibration_text(const json& s) {
   out << "verdict: " << value_text(at(s, "verdict")) << " - " << value_text(at(s, "verdict_reason"))
       << "\n";
   const json& best = at(s, "best");
-  if (best.is_object()) {
+  const json& posterior = at(s, "posterior");
+  if (posterior.is_object()) {
+    out << posterior_text(posterior, best);
+    out << "unique: " << (at(posterior, "unique") == true ? "yes" : "no") << " - "
+        << value_text(at(posterior, "why")) << "\n";
+  } else if (best.is_object()) {
     const json& lab = at(best, "lab");
     const bool in_lab = lab.is_object();
     char line[256];
@@ -232,7 +286,7 @@ std::string calibration_text(const json& s) {
     out << "  best misfit " << num(best["misfit"], "%.3g") << " at evaluation "
         << value_text(at(best, "evaluation")) << "\n";
   }
-  out << consistency_text(s);
+  if (!posterior.is_object()) out << consistency_text(s);
   out << fidelity_text(at(s, "fidelity"));
   // The same budget the progress line counted down: the search's and the valley trace's.
   const json& trace = at(s, "consistency_evaluations");

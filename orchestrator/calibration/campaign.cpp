@@ -151,7 +151,8 @@ void parse_inference(orch::JsonFields& root, CalibrationCampaign& c) {
   orch::JsonFields f(*v, "inference");
   InferenceSettings& s = c.inference;
   if (const json* lab = f.get("lab_uncertainty")) {
-    if (!lab->is_object()) throw orch::RequestError("inference.lab_uncertainty", "must be an object");
+    if (!lab->is_object())
+      throw orch::RequestError("inference.lab_uncertainty", "must be an object");
     orch::JsonFields l(*lab, "inference.lab_uncertainty");
     s.lab_uct = l.positive("uct").value_or(s.lab_uct);
     s.lab_btt = l.positive("btt").value_or(s.lab_btt);
@@ -261,6 +262,14 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.consistency_evaluations =
       int(root.integer("consistency_evaluations", 0, 1'000).value_or(c.consistency_evaluations));
   c.suggest = root.boolean("suggest").value_or(c.suggest);
+  if (c.strategy == Strategy::bayes) {
+    // The posterior is the answer: no valley trace after the search, its budget is the search's.
+    if (root.get("consistency_evaluations"))
+      throw orch::RequestError(
+          "consistency_evaluations",
+          "not with \"strategy\": \"bayes\" (its region is the consistent set)");
+    c.consistency_evaluations = 0;
+  }
   root.reject_unknown();
   return c;
 }
