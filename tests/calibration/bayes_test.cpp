@@ -139,7 +139,7 @@ TEST(BayesCalibration, NoWorkerIdlesWhileBudgetRemains) {
   const CalibrationCampaign c = testing::campaign({120000, 9000}, bayes(40, 0.05));
   ScatteringEvaluator e(testing::power_law);
   e.workers = 2;
-  e.run_time = std::chrono::milliseconds(150);
+  e.run_time = std::chrono::milliseconds(250);
   RunOptions o;
   o.workers = 2;
   const CalibrationReport r = run_calibration(c, e, o);
@@ -195,6 +195,63 @@ TEST(BayesCalibration, RequestsAreRefusedNamingTheField) {
       error({{"strategy", "bayes"}, {"inference", {{"colour", 1}}}}).rfind("inference.colour", 0),
       0u);
   EXPECT_EQ(error({{"strategy", "bayes"}, {"inference", {{"batch", 4}}}}), "accepted");
+}
+
+}  // namespace
+}  // namespace rockcal::calibration
+
+namespace rockcal::calibration {
+namespace {
+
+// Further tests on the formula engine: a triaxial peak that weighs F_s0 unlike either target, a
+// wider disc and a squat UCT that scale like the targets themselves (so they cannot tell the
+// region's members apart).
+struct ProbingEvaluator : ScatteringEvaluator {
+  using ScatteringEvaluator::ScatteringEvaluator;
+  int probes = 0;
+  std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> ps) override {
+    std::vector<orch::Ensemble> out;
+    for (const ProbeRequest& p : ps) {
+      const PeakLoads l = testing::power_law(p.point);
+      double v = p.test == TestKind::triaxial
+                     ? 3000 * std::pow(p.point.fr0_n, 0.05) * std::pow(p.point.fs0_n, 0.95)
+                 : p.test == TestKind::btt ? 2.25 * l.btt_n
+                                           : 1.1 * l.uct_n;
+      std::vector<orch::Realisation> runs;
+      for (std::uint64_t seed : orch::realisation_seeds(p.sample_seed, p.realisations)) {
+        ++probes;
+        runs.push_back(
+            {seed, 0, "succeeded", v * std::exp(0.02 * normal(p.point, seed, 9)), {}, {}, ""});
+      }
+      out.push_back(orch::make_ensemble(runs));
+    }
+    return out;
+  }
+};
+
+TEST(BayesCalibration, AWideRegionNamesTheTestThatWouldCutItMost) {
+  // Targets known to 10% only: the region is long; the triaxial is what changes along it.
+  const CalibrationCampaign c = testing::campaign(testing::power_law({60, 120}), bayes(40, 0.10));
+  ProbingEvaluator e(testing::power_law);
+  e.sd_uct = e.sd_btt = 0.05;
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  ASSERT_FALSE(r.posterior->unique) << r.posterior->why;
+  ASSERT_TRUE(r.suggestion);
+  EXPECT_EQ(r.suggestion->observable.rfind("a triaxial peak load", 0), 0u)
+      << r.suggestion->observable;
+  EXPECT_EQ(r.suggestion->candidates.size(), 3u);  // triaxial, wider disc, squat UCT (no modulus)
+  double best = 0, others = 0;
+  for (const auto& [name, shrinkage] : r.suggestion->candidates)
+    (name == r.suggestion->observable ? best : others) =
+        std::max(name == r.suggestion->observable ? best : others, shrinkage);
+  EXPECT_GT(best, 0.3);
+  EXPECT_LT(others, best);
+  EXPECT_EQ(e.probes, 3 * 2 * 2);  // three tests at the axis's two ends, two packings each
+  EXPECT_NE(r.suggestion->why.find("would shorten that axis by about"), std::string::npos)
+      << r.suggestion->why;
+  std::printf("%zu runs; %s: %s\n", r.history.size(), r.posterior->why.c_str(),
+              r.suggestion->why.c_str());
 }
 
 }  // namespace

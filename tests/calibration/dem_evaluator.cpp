@@ -63,14 +63,14 @@ void run(const std::string& engine, Job& job) {
 std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
     std::span<const EvaluationRequest> requests) {
   std::vector<Job> jobs;
+  int first = jobs_run.fetch_add(2 * int(requests.size()));
   for (const EvaluationRequest& r : requests) {
     for (TestKind test : {TestKind::uct, TestKind::btt}) {
-      const std::string name = "job" + std::to_string(jobs_run + int(jobs.size()));
+      const std::string name = "job" + std::to_string(first++);
       jobs.push_back(
           {job_for(job_template, r, test, r.sample_seed), work_dir / name, std::nullopt, ""});
     }
   }
-  jobs_run += int(jobs.size());
   std::mutex mutex;
   std::size_t next = 0;
   std::vector<std::thread> workers;

@@ -3,6 +3,7 @@
 // cache, no retries, no MPI launcher).
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <string>
 
@@ -15,7 +16,7 @@ struct DemEvaluator : Evaluator {
   nlohmann::json job_template;     // the campaign's "job" block
   std::filesystem::path work_dir;  // one subdirectory per job
   int parallel = 2;
-  int jobs_run = 0;
+  std::atomic<int> jobs_run{0};  // batches may run concurrently (the bayes search keeps two)
 
   std::vector<EvaluationOutcome> evaluate_batch(
       std::span<const EvaluationRequest> requests) override;

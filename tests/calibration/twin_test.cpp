@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "dem_evaluator.hpp"
+#include "orchestrator/calibration/bayes/emulators.hpp"
 #include "orchestrator/calibration/driver.hpp"
 
 namespace rockcal::calibration {
@@ -112,6 +113,58 @@ TEST_F(Twin, TwoLoadsThatDoNotPinTheStrengthsAreReportedNotUnique) {
   EXPECT_GE(r.consistent.fr0.hi * 1.02, truth.fr0_n);
   EXPECT_LE(r.consistent.fs0.lo * 0.98, truth.fs0_n);
   EXPECT_GE(r.consistent.fs0.hi * 1.02, truth.fs0_n);
+}
+
+}  // namespace
+}  // namespace rockcal::calibration
+
+namespace rockcal::calibration {
+namespace {
+
+// The "bayes" strategy on the real engine: the lab is the engine's own mean over four packings at
+// a known (F_r0, F_s0), stated to the standard error those four give; the credible region the
+// calibration returns from 40 single-packing runs must hold the truth, and the predicted loads at
+// its estimate meet the targets.
+TEST_F(Twin, TheBayesRegionHoldsTheEngineOwnBondStrengths) {
+  const BondPoint truth{80, 120};
+  std::vector<EvaluationRequest> lab;
+  for (std::uint64_t seed = 101; seed <= 104; ++seed) lab.push_back({truth, seed, 1});
+  json seeded = job_template();
+  seeded["sample"]["lattice"] = "seeded";
+  seeded["sample"]["seed"] = 1;
+  evaluator_.job_template = seeded;
+  const std::vector<EvaluationOutcome> runs = evaluator_.evaluate_batch(lab);
+  double lu = 0, lb = 0, su = 0, sb = 0;
+  for (const EvaluationOutcome& o : runs) {
+    ASSERT_TRUE(o.ok()) << o.error;
+    lu += std::log(o.loads->uct_n) / 4, lb += std::log(o.loads->btt_n) / 4;
+  }
+  for (const EvaluationOutcome& o : runs) {
+    su += std::pow(std::log(o.loads->uct_n) - lu, 2) / 3;
+    sb += std::pow(std::log(o.loads->btt_n) - lb, 2) / 3;
+  }
+  // The standard error of each lab mean in ln, at least 2%.
+  const double se_uct = std::max(0.02, std::sqrt(su / 4)),
+               se_btt = std::max(0.02, std::sqrt(sb / 4));
+  const json campaign_json = {
+      {"kind", "calibration"},
+      {"name", "bayes twin"},
+      {"job", seeded},
+      {"targets", {{"uct", {{"peak_load", std::exp(lu)}}}, {"btt", {{"peak_load", std::exp(lb)}}}}},
+      {"bounds", {{"fr0", {10, 400}}, {"fs0", {10, 400}}}},
+      {"strategy", "bayes"},
+      {"max_evaluations", 40},
+      {"tolerance", 0.02},
+      {"inference", {{"lab_uncertainty", {{"uct", se_uct}, {"btt", se_btt}}}}}};
+  const CalibrationCampaign c = parse_calibration_campaign(campaign_json);
+  const CalibrationReport r = run_calibration(c, evaluator_);
+  ASSERT_TRUE(r.posterior) << r.verdict_reason;
+  const PosteriorSummary& p = *r.posterior;
+  std::printf("bayes twin: %d runs, lab se %.3f/%.3f, F_r0 [%g, %g], F_s0 [%g, %g], verdict %s\n",
+              p.runs, se_uct, se_btt, p.fr0.lo, p.fr0.hi, p.fs0.lo, p.fs0.hi, to_string(r.verdict));
+  EXPECT_LE(r.history.size(), 40u);
+  EXPECT_TRUE(in_credible_region(p, truth, c)) << r.verdict_reason;
+  EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
 }
 
 }  // namespace

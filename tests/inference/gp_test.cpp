@@ -66,20 +66,28 @@ TEST(Emulator, VarianceShrinksWhereThereAreRuns) {
   EXPECT_LT(predict(gp, near).var, predict(gp, far).var);
 }
 
-TEST(Emulator, PooledScatterAndEachPointsNoise) {
-  std::vector<PointRuns> runs = {{Eigen::Vector2d(0.1, 0.1), {1.0, 1.2, 0.8}},
-                                 {Eigen::Vector2d(0.5, 0.5), {2.0}},
-                                 {Eigen::Vector2d(0.9, 0.9), {3.1, 2.9}}};
-  const PooledScatter s = pooled_scatter(runs);
-  EXPECT_EQ(s.dof, 3);
-  EXPECT_NEAR(s.per_run_var, (0.08 + 0.02) / 3, 1e-12);
-  const GpData d = gp_data(runs, s, 4.0);
-  ASSERT_EQ(d.y.size(), 3);
-  EXPECT_NEAR(d.y(0), 1.0, 1e-12);
-  // A single run: the pooled scatter; replicates: shrunk toward it, over their number.
-  EXPECT_NEAR(d.noise_var(1), s.per_run_var, 1e-12);
-  EXPECT_NEAR(d.noise_var(0), (4 * s.per_run_var + 0.08) / 6 / 3, 1e-12);
-  EXPECT_EQ(pooled_scatter({{Eigen::Vector2d(0.1, 0.1), {1.0}}}).dof, 0);
+TEST(Emulator, OneRunsScatterIsLearnedAndAPointOfManyRunsIsKnownBetter) {
+  // 40 points, 1 to 3 runs each, one run's scatter sd 0.2 about a smooth function.
+  std::mt19937 rng(17);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  const Eigen::MatrixXd x = latin_square(40, 17);
+  std::vector<PointRuns> points;
+  for (int i = 0; i < 40; ++i) {
+    PointRuns p{x.row(i).transpose(), {}};
+    for (int k = 0; k <= i % 3; ++k) p.values.push_back(ln_uct(p.x) + noise(rng));
+    points.push_back(p);
+  }
+  const GpData d = gp_data(points);
+  ASSERT_EQ(d.y.size(), 40);
+  EXPECT_EQ(d.runs(2), 3.0);
+  EXPECT_NEAR(d.y(1), 0.5 * (points[1].values[0] + points[1].values[1]), 1e-12);
+  const Gp gp = fit_gp(d);
+  EXPECT_NEAR(std::sqrt(per_run_noise(gp)), 0.2, 0.06);
+  // The same point with three runs instead of one: its mean is known better.
+  GpData more = d;
+  more.runs(0) = 10;
+  const Eigen::VectorXd x0 = d.x.row(0).transpose();
+  EXPECT_LT(predict(condition_gp(more, gp.hyper), x0).var, predict(gp, x0).var);
 }
 
 TEST(Emulator, BadDataAreRefused) {
@@ -107,6 +115,9 @@ TEST(Emulator, BadDataAreRefused) {
   GpData negative = d;
   negative.noise_var(0) = -1;
   EXPECT_EQ(message(negative), "emulator: a negative noise_var");
+  GpData no_runs = d;
+  no_runs.runs = Eigen::VectorXd::Zero(5);
+  EXPECT_EQ(message(no_runs), "emulator: runs must be >= 1 for every point");
 }
 
 }  // namespace

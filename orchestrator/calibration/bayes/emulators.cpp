@@ -69,12 +69,10 @@ Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
     ++m.runs;
   }
   if (m.points.size() < 3) throw std::runtime_error("fewer than 3 points with both loads");
-  const inference::PooledScatter su = inference::pooled_scatter(uct);
-  const inference::PooledScatter sb = inference::pooled_scatter(btt);
-  m.uct = inference::fit_gp(inference::gp_data(uct, su));
-  m.btt = inference::fit_gp(inference::gp_data(btt, sb));
-  m.run_noise[0] = inference::per_run_noise(su, m.uct);
-  m.run_noise[1] = inference::per_run_noise(sb, m.btt);
+  m.uct = inference::fit_gp(inference::gp_data(uct));
+  m.btt = inference::fit_gp(inference::gp_data(btt));
+  m.run_noise[0] = inference::per_run_noise(m.uct);
+  m.run_noise[1] = inference::per_run_noise(m.btt);
   m.targets = inference_targets(c);
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
   return m;

@@ -13,7 +13,7 @@ namespace rockcal::calibration {
 
 struct Emulators {
   inference::Gp uct, btt;
-  double run_noise[2] = {0, 0};  // variance of one run's ln load (pooled scatter, or nugget)
+  double run_noise[2] = {0, 0};  // variance of one run's ln load (the emulators' nugget)
   int runs = 0;
   std::vector<BondPoint> points;  // the distinct points run, in first-run order
   std::vector<inference::Target> targets;

@@ -8,6 +8,7 @@
 
 #include "orchestrator/calibration/bayes/box.hpp"
 #include "orchestrator/calibration/bayes/emulators.hpp"
+#include "orchestrator/calibration/bayes/next_test.hpp"
 #include "orchestrator/calibration/bayes/verdict.hpp"
 #include "orchestrator/calibration/latin_hypercube.hpp"
 #include "orchestrator/inference/design/batch_design.hpp"
@@ -69,6 +70,15 @@ class Search {
                                       : StopReason::budget_exhausted;
     if (model_) report.posterior = summarise(*model_, c_, rounds_);
     if (!check_.empty()) report.best = check_record();
+    // A region too wide to call unique: which further test would cut it most.
+    if (report.posterior && !report.posterior->unique && c_.suggest && !cancelled_ &&
+        !options_.stop.stop_requested()) {
+      try {
+        report.suggestion = next_test(*model_, history_, c_, evaluator_, batch_);
+      } catch (const EvaluationCancelled&) {
+        report.stop_reason = StopReason::cancelled;
+      }
+    }
   }
 
  private:

@@ -7,8 +7,8 @@
 namespace rockcal::inference {
 namespace {
 
-// One target's emulator with the pending runs added as observations of noise tau^2 (their values
-// do not enter the variance).
+// One target's emulator with the pending runs added as observations of noise tau^2, one run's
+// variance (their values do not enter the variance).
 struct Conditioned {
   const Gp* gp;
   Eigen::MatrixXd x;  // training rows then pending rows
@@ -21,8 +21,9 @@ Conditioned condition(const Gp& gp, const Eigen::MatrixXd& pending, double tau2)
   Eigen::MatrixXd k = cross_covariance(gp, c.x, c.x);
   const int n = int(gp.data.x.rows());
   for (int i = 0; i < c.x.rows(); ++i) {
-    k(i, i) +=
-        (i < n ? gp.data.noise_var(i) : tau2) + gp.hyper.nugget + 1e-10 * gp.hyper.signal_var;
+    const double runs = i < n && gp.data.runs.size() ? gp.data.runs(i) : 1.0;
+    k(i, i) += (i < n ? gp.data.noise_var(i) + gp.hyper.nugget / runs : tau2) +
+               1e-10 * gp.hyper.signal_var;
   }
   c.chol.compute(k);
   return c;
@@ -77,8 +78,7 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
       // Weight of a variance reduction at reference cell r: w_r / (lab + var_r).
       const Eigen::VectorXd weight = w.array() / (lab + var_g.array());
       for (int k = 0; k < c; ++k) {
-        score(k) +=
-            weight.dot(cov.col(k).cwiseAbs2()) / (var_c(k) + in.run_noise[j] + gp.hyper.nugget);
+        score(k) += weight.dot(cov.col(k).cwiseAbs2()) / (var_c(k) + in.run_noise[j]);
       }
     }
     Eigen::Index best = 0;

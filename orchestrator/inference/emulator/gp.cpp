@@ -40,19 +40,18 @@ void check(const GpData& d) {
   if (d.x.minCoeff() < -1e-12 || d.x.maxCoeff() > 1 + 1e-12)
     throw std::invalid_argument("emulator: a coordinate outside [0, 1]");
   if (d.noise_var.minCoeff() < 0) throw std::invalid_argument("emulator: a negative noise_var");
+  if (d.runs.size() != 0 && (d.runs.size() != n || !d.runs.allFinite() || d.runs.minCoeff() < 1))
+    throw std::invalid_argument("emulator: runs must be >= 1 for every point");
 }
 
 // Factorises at `hyper`; returns false when K is not positive definite.
 bool factorise(Gp& gp) {
   const GpData& d = gp.data;
   const int n = int(d.x.rows());
-  Eigen::MatrixXd k(n, n);
+  Eigen::MatrixXd k = cross_covariance(gp, d.x, d.x);
   for (int i = 0; i < n; ++i) {
-    for (int j = 0; j <= i; ++j) {
-      k(i, j) = k(j, i) = gp.hyper.signal_var *
-                          matern52(d.x.row(i).transpose(), d.x.row(j).transpose(), gp.hyper.length);
-    }
-    k(i, i) += d.noise_var(i) + gp.hyper.nugget + 1e-10 * gp.hyper.signal_var;
+    const double runs = d.runs.size() ? d.runs(i) : 1.0;
+    k(i, i) += d.noise_var(i) + gp.hyper.nugget / runs + 1e-10 * gp.hyper.signal_var;
   }
   gp.chol.compute(k);
   if (gp.chol.info() != Eigen::Success) return false;
@@ -160,14 +159,17 @@ Gp fit_gp(GpData data, const GpOptions& options) {
 }
 
 Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  Eigen::MatrixXd k(a.rows(), b.rows());
-  for (int i = 0; i < a.rows(); ++i) {
-    for (int j = 0; j < b.rows(); ++j) {
-      k(i, j) = gp.hyper.signal_var *
-                matern52(a.row(i).transpose(), b.row(j).transpose(), gp.hyper.length);
-    }
-  }
-  return k;
+  // Squared scaled distances as |a|^2 + |b|^2 - 2 a.b, all at once (the design calls this on
+  // hundreds of points per pick).
+  const Eigen::RowVectorXd inv = gp.hyper.length.cwiseInverse().transpose();
+  const Eigen::MatrixXd as = a.array().rowwise() * inv.array();
+  const Eigen::MatrixXd bs = b.array().rowwise() * inv.array();
+  Eigen::MatrixXd r2 = (-2.0 * as * bs.transpose()).eval();
+  r2.colwise() += as.rowwise().squaredNorm();
+  r2.rowwise() += bs.rowwise().squaredNorm().transpose();
+  const Eigen::ArrayXXd r = r2.array().max(0.0).sqrt();
+  const Eigen::ArrayXXd s5r = std::sqrt(5.0) * r;
+  return (gp.hyper.signal_var * (1.0 + s5r + (5.0 / 3.0) * r * r) * (-s5r).exp()).matrix();
 }
 
 void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& mean,
@@ -188,17 +190,6 @@ Prediction predict(const Gp& gp, const Eigen::VectorXd& x) {
   Eigen::VectorXd mean, var;
   predict_many(gp, x.transpose(), mean, var);
   return {mean(0), var(0)};
-}
-
-double posterior_cov(const Gp& gp, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const int n = int(gp.data.x.rows());
-  Eigen::VectorXd ka(n), kb(n);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::VectorXd xi = gp.data.x.row(i).transpose();
-    ka(i) = gp.hyper.signal_var * matern52(a, xi, gp.hyper.length);
-    kb(i) = gp.hyper.signal_var * matern52(b, xi, gp.hyper.length);
-  }
-  return gp.hyper.signal_var * matern52(a, b, gp.hyper.length) - ka.dot(gp.chol.solve(kb));
 }
 
 }  // namespace rockcal::inference

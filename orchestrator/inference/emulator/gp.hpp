@@ -10,8 +10,10 @@
 //          the loads in the strengths (ln load ~ a + sum_k p_k ln F_k), fitted by generalised least
 //          squares and its uncertainty carried into the predictive variance;
 //   f ~ GP(0, s2 * Matern52_ARD(x, x'; lengths)): the departure from it;
-//   noise_i ~ N(0, noise_var_i + nugget): noise_var_i is the point's own ensemble noise (the
-//          packings' scatter over its realisations, heteroscedastic), the nugget what is left.
+//   noise_i ~ N(0, noise_var_i + nugget / runs_i): the nugget is one run's scatter (the
+//          packings' scatter, learned from all residuals and replicates together), over the
+//          point's number of runs (a point of many realisations is known better); noise_var_i a
+//          known extra variance of the point (0 for the calibration's runs).
 // Hyperparameters (lengths, s2, nugget) maximise the restricted likelihood (NLopt, bounded).
 #pragma once
 
@@ -22,21 +24,22 @@
 namespace rockcal::inference {
 
 // The training data: one row per distinct point. y is the mean of the observable over the point's
-// realisations and noise_var the variance of that mean (0 when unknown: the nugget carries it).
+// runs, runs how many there were, noise_var a known extra variance of that mean (usually 0).
 struct GpData {
   Eigen::MatrixXd x;          // n x d, each coordinate in [0, 1]
   Eigen::VectorXd y;          // n
   Eigen::VectorXd noise_var;  // n, >= 0
+  Eigen::VectorXd runs;       // n, >= 1; empty: one run each
 };
 
 struct GpHyper {
   Eigen::VectorXd length;  // d correlation lengths, in units of the box
   double signal_var = 1.0;
-  double nugget = 1e-6;
+  double nugget = 1e-6;  // one run's noise variance
 };
 
 struct GpOptions {
-  double min_length = 0.05;
+  double min_length = 0.2;  // shorter chases the runs' scatter as if it were signal
   double max_length = 3.0;  // longer is a straight line over the box: the trend's job
   double min_nugget = 1e-8;
   int restarts = 3;  // extra starts of the likelihood search beyond the default one
@@ -53,7 +56,7 @@ struct Gp {
   GpHyper hyper;
   int trend_terms = 1;    // 1 (a constant) or d + 1 (linear), by how many points there are
   Eigen::MatrixXd trend;  // H: n x trend_terms
-  Eigen::LLT<Eigen::MatrixXd> chol;  // of K = s2 R + diag(noise_var + nugget)
+  Eigen::LLT<Eigen::MatrixXd> chol;  // of K = s2 R + diag(noise_var + nugget / runs)
   Eigen::VectorXd beta;              // the trend's GLS coefficients
   Eigen::VectorXd alpha;             // K^-1 (y - H beta)
   Eigen::MatrixXd h_kinv_h_inv;      // (H' K^-1 H)^-1
@@ -74,8 +77,5 @@ void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& 
                   Eigen::VectorXd& var);
 // The prior covariance matrix between the rows of a (m x d) and of b (p x d).
 Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
-// The latent posterior covariance between a and b (the simple-kriging part: without the trend's
-// uncertainty), what a design uses to value a run at b for a prediction at a.
-double posterior_cov(const Gp& gp, const Eigen::VectorXd& a, const Eigen::VectorXd& b);
 
 }  // namespace rockcal::inference
