@@ -24,6 +24,13 @@ json seed_of(const db::JobRow& j) {
   return orch::realisation(j, std::nullopt).seed;
 }
 
+// How a result's strength follows from its peak load, as the engine stated it in result.json
+// (engine/loadtests/strength.hpp); null for the elastic test.
+json strength_definition_of(const db::ResultRow& r) {
+  const json result = json::parse(r.result, nullptr, false);
+  return result.is_object() ? result.value("strength_definition", json(nullptr)) : json(nullptr);
+}
+
 }  // namespace
 
 json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s) {
@@ -81,6 +88,7 @@ json result_row_json(const db::JobResultRow& row) {
           {"seed", seed_of(j)},
           {"peak_load", r ? or_null(r->peak_load) : json(nullptr)},
           {"strength", r ? or_null(r->strength) : json(nullptr)},
+          {"strength_definition", r ? strength_definition_of(*r) : json(nullptr)},
           {"youngs_modulus", r ? or_null(r->youngs_modulus) : json(nullptr)},
           {"particles", r ? or_null(r->particles) : json(nullptr)},
           {"wall_seconds", r ? or_null(r->wall_seconds) : json(nullptr)},
@@ -103,6 +111,7 @@ json stored_result_json(const db::ResultRow& r) {
           {"fs0", r.fs0},
           {"peak_load", or_null(r.peak_load)},
           {"strength", or_null(r.strength)},
+          {"strength_definition", strength_definition_of(r)},
           {"youngs_modulus", or_null(r.youngs_modulus)},
           {"poisson_ratio", or_null(r.poisson_ratio)},
           {"particles", or_null(r.particles)},

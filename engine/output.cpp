@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "engine/loadtests/brazilian.hpp"
+#include "engine/loadtests/strength.hpp"
 #include "engine/simulation.hpp"
 
 namespace rockcal {
@@ -49,9 +50,11 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
            {"rate_study", rate},
            {"spec", to_json(spec)}};
   if (r.test == TestKind::elastic) return out;
-  // Loading tests: whether the peak is a failure, from which state it was measured, and (BTT) the
-  // set-up's strength factor and where the disc broke first.
+  // Loading tests: whether the peak is a failure, how the strength follows from it, from which
+  // state it was measured, and (BTT) the set-up's strength factor and where the disc broke first.
   out["peak_reached"] = r.peak_reached;
+  if (const auto definition = strength_definition(spec))
+    out["strength_definition"] = to_json(*definition);
   if (!r.peak_reached) out["no_peak_reason"] = r.no_peak_reason;
   out["seating"] = {{"load", r.seating.load_n},
                     {"closure", r.seating.closure_m},

@@ -12,6 +12,7 @@
 #include "engine/loadtests/run_clock.hpp"
 #include "engine/loadtests/seating.hpp"
 #include "engine/loadtests/specimen.hpp"
+#include "engine/loadtests/strength.hpp"
 
 namespace rockcal {
 namespace {
@@ -240,16 +241,11 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   r.peak_step = peak.peak_step;
   r.broken_at_peak = peak.broken_at_peak;
   if (!r.peak_reached) r.no_peak_reason = peak.no_peak_reason(r.stop_reason);
-  const double d = spec.sample.diameter_m;
-  if (spec.test == TestKind::btt) {
-    r.strength_pa = btt_strength(spec, r.peak_load_n);
-  } else {
-    const double area = 0.25 * M_PI * d * d;
-    r.strength_pa = r.peak_load_n / area;
-    if (r.peak_reached) {
-      r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
-      r.peak_strain = r.peak_displacement_m / length;
-    }
+  r.strength_pa = strength_pa(spec, r.peak_load_n);
+  if (spec.test != TestKind::btt && r.peak_reached) {
+    const double area = axial_area_m2(spec.sample.diameter_m);  // the strength's cross-section
+    r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
+    r.peak_strain = r.peak_displacement_m / length;
   }
   r.steps = sim.step;
   r.broken_bonds = sim.broken_total;

@@ -50,7 +50,7 @@ struct TestResult {
   bool peak_reached = false;
   std::string no_peak_reason;
   double peak_load_n = 0.0;
-  double strength_pa = 0.0;                 // UCS = F/A or BTS = 2P/(pi D t); elastic: 0
+  double strength_pa = 0.0;                 // loadtests/strength.hpp; elastic: 0
   double confining_pressure_pa = 0.0;       // triaxial: the lateral pressure; others 0
   std::optional<double> youngs_modulus_pa;  // UCT pre-peak slope, or elastic test
   std::optional<double> poisson_ratio;      // elastic test

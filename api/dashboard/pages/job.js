@@ -2,7 +2,7 @@
 // the log and the raw spec and result. Polled while it is queued or running.
 import {getJson, getText} from '../api.js';
 import {badge, clear, facts, h, note, progressBar, rememberFocus, section} from '../dom.js';
-import {dateTime, duration, newtons, num, pascals} from '../format.js';
+import {dateTime, duration, newtons, num, pascals, strengthFormula} from '../format.js';
 import {watchJson} from '../poll.js';
 import {labFactors} from './calibration.js';
 import {brokenBondsPlot, fetchCurve, loadCurvePlot} from './curves.js';
@@ -91,7 +91,7 @@ function resultSection(r, lab) {
       r.peak_reached === false ? h('strong', {class: 'warn'}, ` — no peak: ${r.no_peak_reason || r.stop_reason}; not a result`) : '']],
     // No lab strength: a model specimen at demo resolution is not the lab specimen scaled, so the
     // mapped load is comparable and the stress is not (docs/calibration.md).
-    ['strength', [pascals(r.strength), ' (model units', r.test === 'btt' ? '; BTS = 2P / (π D t))' : r.test === 'uct' ? '; UCS = F / A)' : ')']],
+    ['strength', [pascals(r.strength), ` (model units${r.strength_definition ? `; ${strengthFormula(r.strength_definition)}` : ''})`]],
     Number.isFinite(r.youngs_modulus) ? ['Young’s modulus', pascals(r.youngs_modulus)] : null,
     Number.isFinite(r.poisson_ratio) ? ['Poisson’s ratio', num(r.poisson_ratio, 3)] : null,
     ['displacement at peak', [`${num(r.peak_displacement)} m`, lab ? ` (lab ${num(r.peak_displacement * lab.length * 1e3)} mm)` : '']],
