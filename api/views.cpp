@@ -78,6 +78,16 @@ json job_json(const db::JobRow& j, const std::optional<db::ResultRow>& r, bool d
   return out;
 }
 
+json job_files_json(const db::JobRow& j, const std::optional<db::ResultRow>& r,
+                    const orch::JobOutputs& outputs) {
+  const std::string base = "/api/v1/jobs/" + std::to_string(j.id);
+  json vtk = json::array();
+  for (const std::string& name : outputs.vtk) vtk.push_back(base + "/vtk/" + name);
+  return {{"curve_csv", r && r->curve ? json(base + "/curve") : json(nullptr)},
+          {"breaks_csv", outputs.breaks_csv ? json(base + "/breaks") : json(nullptr)},
+          {"vtk", vtk}};
+}
+
 json result_row_json(const db::JobResultRow& row) {
   const auto& j = row.job;
   const auto& r = row.result;

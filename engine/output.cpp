@@ -1,6 +1,8 @@
 #include "engine/output.hpp"
 
+#include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "engine/loadtests/brazilian.hpp"
@@ -125,12 +127,19 @@ class VtuWriter {
     if (!out_) throw std::runtime_error("cannot write " + path.string());
     out_.precision(9);
   }
-  void begin(std::size_t n) {
+  // `fields`: one value each for the whole snapshot (VTK field data), e.g. its time and load.
+  void begin(std::size_t n, const std::vector<std::pair<const char*, double>>& fields = {}) {
     n_ = n;
     out_ << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-            "byte_order=\"LittleEndian\">\n"
-         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
-         << "\">\n";
+            "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n";
+    if (!fields.empty()) {
+      out_ << "<FieldData>\n";
+      for (const auto& [name, value] : fields)
+        out_ << "<DataArray type=\"Float64\" Name=\"" << name
+             << "\" NumberOfTuples=\"1\" format=\"ascii\">" << value << "</DataArray>\n";
+      out_ << "</FieldData>\n";
+    }
+    out_ << "<Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n";
   }
   template <class F>
   void points(F point_at) {
@@ -173,7 +182,7 @@ class VtuWriter {
 
 }  // namespace
 
-void write_particles_vtu(const fs::path& path, const Simulation& sim) {
+void write_particles_vtu(const fs::path& path, const Simulation& sim, const Frame& frame) {
   const Particles& p = sim.particles;
   std::vector<int> broken_count(p.size(), 0);
   for (const Bond& b : sim.broken) {
@@ -181,7 +190,10 @@ void write_particles_vtu(const fs::path& path, const Simulation& sim) {
     ++broken_count[b.j];
   }
   VtuWriter w(path);
-  w.begin(p.size());
+  w.begin(p.size(), {{"TimeValue", frame.time_s},
+                     {"step", double(frame.step)},
+                     {"load", frame.load_n},
+                     {"displacement", frame.displacement_m}});
   w.points([&](std::size_t k) { return p.pos[k]; });
   w.scalars("radius", [&](std::size_t k) { return p.radius[k]; });
   w.scalars("id", [&](std::size_t k) { return double(p.id[k]); });
@@ -197,6 +209,31 @@ void write_breaks_vtu(const fs::path& path, const std::vector<BreakEvent>& break
   w.scalars("step", [&](std::size_t k) { return double(breaks[k].step); });
   w.scalars("mode", [&](std::size_t k) { return double(static_cast<int>(breaks[k].mode)); });
   w.end();
+}
+
+std::string particles_vtu_name(int frame, int rank, int ranks) {
+  char name[48];
+  if (ranks > 1)
+    std::snprintf(name, sizeof name, "particles_%04d_r%d.vtu", frame, rank);
+  else
+    std::snprintf(name, sizeof name, "particles_%04d.vtu", frame);
+  return name;
+}
+
+void write_vtk_series(const fs::path& path, const std::vector<Frame>& frames, int ranks) {
+  std::ostringstream out;
+  out.precision(10);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+         "byte_order=\"LittleEndian\">\n<Collection>\n";
+  for (const Frame& f : frames) {
+    for (int rank = 0; rank < ranks; ++rank) {
+      out << "<DataSet timestep=\"" << f.time_s << "\" part=\"" << rank << "\" file=\""
+          << particles_vtu_name(f.index, rank, ranks) << "\" step=\"" << f.step << "\" load=\""
+          << f.load_n << "\" displacement=\"" << f.displacement_m << "\"/>\n";
+    }
+  }
+  out << "</Collection>\n</VTKFile>\n";
+  write_atomically(path, out.str());
 }
 
 }  // namespace rockcal

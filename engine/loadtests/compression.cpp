@@ -161,7 +161,8 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   double load = 0.0, closure = 0.0;  // closure counts from the seated state
   double seat_closure = 0.0;
   int frame = 0;
-  if (hooks.on_frame) hooks.on_frame(sim, frame++);
+  auto snapshot = [&] { hooks.on_frame(sim, Frame{frame++, sim.step, sim.time, load, closure}); };
+  if (hooks.on_frame) snapshot();
 
   auto progress = [&](double elapsed) {
     double f =
@@ -214,7 +215,7 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
       next_curve = closure + curve_spacing;
     }
     if (hooks.on_frame && closure >= next_frame) {
-      hooks.on_frame(sim, frame++);
+      snapshot();
       next_frame = closure + frame_spacing;
     }
     clock.maybe_report(progress);
@@ -232,7 +233,7 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   }
   if (r.curve.empty() || r.curve.back().step != sim.step)
     r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
-  if (hooks.on_frame) hooks.on_frame(sim, frame++);
+  if (hooks.on_frame) snapshot();
   clock.maybe_report(progress, true);
 
   r.peak_reached = r.stop_reason == "post_peak";

@@ -83,12 +83,21 @@ struct Progress {
   double elapsed_s;
 };
 
+// One VTK snapshot: its number and the loading state it shows.
+struct Frame {
+  int index = 0;
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  double load_n = 0.0;
+  double displacement_m = 0.0;  // platen closure from the seated state
+};
+
 // Hooks a run calls; all optional. `stop` is polled each step (set by a signal handler). With a
 // communicator of several ranks the run is decomposed; progress and frames are then per rank.
 struct RunHooks {
   MPI_Comm comm = MPI_COMM_NULL;
   std::function<void(const Progress&)> on_progress;
-  std::function<void(const Simulation&, int frame)> on_frame;  // VTK snapshots
+  std::function<void(const Simulation&, const Frame&)> on_frame;  // VTK snapshots
   const std::atomic<bool>* stop = nullptr;
 };
 

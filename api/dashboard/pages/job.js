@@ -56,8 +56,7 @@ async function jobView(j, ctx) {
       live(j) ? ['progress', progressBar(j.progress || 0, j.state === 'queued' ? 'queued' : `${Math.round((j.progress || 0) * 100)}% of the run`)] : null,
       ['created', dateTime(j.created_at)],
       j.started_at ? ['ran', `${dateTime(j.started_at)}${j.finished_at ? ` for ${duration(j.finished_at - j.started_at)}` : ''}`] : null,
-      ['data', [h('a', {href: `/api/v1/jobs/${j.id}`}, 'JSON'), ' · ', h('a', {href: `/api/v1/jobs/${j.id}/curve`}, 'curve CSV'),
-        ' · ', h('a', {href: `/api/v1/jobs/${j.id}/log`}, 'log')]],
+      ['data', downloads(j)],
     ]),
   ];
   if (j.error) out.push(h('pre', {class: 'error', role: 'alert'}, j.error));
@@ -79,6 +78,26 @@ async function jobView(j, ctx) {
   out.push(await logSection(j, ctx));
   out.push(h('details', {}, h('summary', {}, 'Spec (canonical JSON)'), h('pre', {class: 'json'}, JSON.stringify(j.spec, null, 2))));
   if (j.result) out.push(h('details', {}, h('summary', {}, 'result.json'), h('pre', {class: 'json'}, JSON.stringify(j.result, null, 2))));
+  return out;
+}
+
+// The job's files: JSON, log, and what the run that answered it left (curve, breaks, VTK).
+function downloads(j) {
+  const f = j.files || {};
+  const links = [h('a', {href: `/api/v1/jobs/${j.id}`}, 'JSON'), h('a', {href: `/api/v1/jobs/${j.id}/log`}, 'log')];
+  if (f.curve_csv) links.push(h('a', {href: f.curve_csv, download: 'curve.csv'}, 'curve.csv'));
+  if (f.breaks_csv) links.push(h('a', {href: f.breaks_csv, download: 'breaks.csv'}, 'breaks.csv'));
+  const vtk = (f.vtk || []).map((url) => {
+    const file = url.slice(url.lastIndexOf('/') + 1);
+    return h('a', {href: url, download: file}, file);
+  });
+  const out = links.flatMap((a, i) => (i ? [' · ', a] : [a]));
+  if (vtk.length) {
+    out.push(h('details', {class: 'vtk-files'}, h('summary', {}, `VTK for ParaView (${vtk.length} files: save them in one folder, open particles.pvd)`),
+      h('ul', {}, vtk.map((a) => h('li', {}, a)))));
+  } else if (j.state === 'succeeded') {
+    out.push(' · no VTK (ask for it with "output": {"vtk": true})');
+  }
   return out;
 }
 
