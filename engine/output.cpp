@@ -58,6 +58,7 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
   if (const auto definition = strength_definition(spec))
     out["strength_definition"] = to_json(*definition);
   if (!r.peak_reached) out["no_peak_reason"] = r.no_peak_reason;
+  out["peak_step"] = r.peak_step;  // breaks.csv rows up to it are the damage at the peak
   out["seating"] = {{"load", r.seating.load_n},
                     {"closure", r.seating.closure_m},
                     {"step", r.seating.step},

@@ -63,7 +63,7 @@ async function api(method, url, body) {
     body: body === undefined ? undefined : JSON.stringify(body)});
   const text = await r.text();
   if (!r.ok) throw new Error(`${method} ${url}: ${r.status} ${text}`);
-  return url.endsWith('/curve') ? text : JSON.parse(text);
+  return url.endsWith('/curve') || url.endsWith('/breaks') ? text : JSON.parse(text);
 }
 
 async function until(what, check, seconds) {
@@ -257,6 +257,33 @@ test('a sweep: heat maps of both peak loads and their ratio, with the targets\' 
   assert.match(await page.locator('dl.facts').nth(1).innerText(), new RegExp(`peak load\\s+${num(job.result.peak_load / 1e3)} kN`));
   assert.match(await page.locator('dl.facts').nth(1).innerText(), new RegExp(`particles, bonds\\s+${job.result.particles}, ${job.result.bonds}`));
   assert.ok((await page.locator('pre.log').innerText()).length > 0);
+  // The strength as the engine defined it, and the table in model units (a sweep has no lab case).
+  assert.match(await page.locator('dl.facts').nth(1).innerText(), /strength\s+.* \(model units; UCS = F \/ A\)/);
+  assert.match(await page.locator('section', {hasText: 'Strength and stiffness (model units)'}).locator('table').innerText(),
+    /UCS \(UCS = F \/ A\)/);
+  // Stress against strain: every point of the curve.
+  const stressStrain = page.locator('figure.plot', {hasText: 'UCT stress against strain'});
+  assert.equal(await stressStrain.locator('svg.chart').getAttribute('data-points'), String(curveRows));
+  // The fracture: every broken bond of breaks.csv at the end, by mode, and those up to the peak's
+  // step at the peak (when the run reached one).
+  const breaks = (await api('GET', `/api/v1/jobs/${jobId}/breaks`)).trim().split('\n').slice(1).map((l) => l.split(','));
+  assert.ok(breaks.length > 0, 'the job broke bonds');
+  const fracture = page.locator('figure.specimen-map');
+  const atPeak = breaks.filter((b) => Number(b[0]) <= job.result.peak_step);
+  assert.equal(await fracture.count(), job.result.peak_reached ? 2 : 1);
+  const atEnd = fracture.nth(job.result.peak_reached ? 1 : 0);
+  assert.equal(await atEnd.locator('svg.chart').getAttribute('data-points'), String(breaks.length));
+  if (job.result.peak_reached) assert.equal(await fracture.nth(0).locator('svg.chart').getAttribute('data-points'), String(atPeak.length));
+  for (const mode of ['tension', 'shear', 'twist', 'bending']) {
+    assert.equal(await atEnd.locator(`g.series[data-series="${mode}"]`).getAttribute('data-points'),
+      String(breaks.filter((b) => b[4] === mode).length), mode);
+  }
+  assert.ok(await atEnd.locator('.specimen-outline').count() === 1);
+  // Download links: the curve and breaks.csv of the run (no VTK was asked for).
+  assert.equal(await page.locator('a[download="breaks.csv"]').getAttribute('href'), `/api/v1/jobs/${jobId}/breaks`);
+  assert.equal(await page.locator('a[download="curve.csv"]').getAttribute('href'), `/api/v1/jobs/${jobId}/curve`);
+  await fracture.nth(0).scrollIntoViewIfNeeded();
+  await shot(page, '03b-job-fracture');
   // The curve's crosshair follows the arrow keys.
   await plots.nth(0).locator('[role="slider"]').focus();
   await page.keyboard.press('End');

@@ -15,8 +15,8 @@ import {fetchResults, resultsTable} from './results.js';
 // Factors from model to lab units (lab = model x factor), when the targets came in lab units.
 export function labFactors(summary) {
   const sc = summary && summary.targets && summary.targets.scaling;
-  if (!sc || !(sc.force > 0) || !(sc.length > 0)) return null;
-  return {force: 1 / sc.force, length: 1 / sc.length};
+  if (!sc || !(sc.force > 0) || !(sc.length > 0) || !(sc.stress > 0)) return null;
+  return {force: 1 / sc.force, length: 1 / sc.length, stress: 1 / sc.stress};
 }
 
 export async function renderCalibration(c, ctx) {

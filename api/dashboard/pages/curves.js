@@ -54,3 +54,24 @@ export function brokenBondsPlot({title, curve, width, lab, bonds}) {
     x: {label: 'platen displacement (m, model units)', min: 0, second: second.x},
     y: {label: 'broken bonds (count)', include: [0]}});
 }
+
+// Axial stress against axial strain of a UCT or triaxial job. The stress is the load over the
+// strength's cross-section as the engine applied it (strength / peak load: F / A), the strain the
+// platen closure over the loaded length (the specimen's height). lab.stress: model -> lab stress.
+export function stressStrainPlot({title, r, curve, height, width, lab}) {
+  const perNewton = r.strength / r.peak_load;
+  const strain = (d) => d / height;
+  const points = curve.displacement.map((d, i) => {
+    const stress = curve.load[i] * perNewton;
+    return {x: strain(d), y: stress,
+      label: `axial strain ${num(strain(d))}, axial stress ${num(stress)} Pa` + (lab ? ` (lab ${num(stress * lab.stress / 1e6)} MPa)` : '')};
+  });
+  const hlines = Number.isFinite(r.strength) && r.peak_reached !== false
+    ? [{y: r.strength, label: `${r.strength_definition ? r.strength_definition.name : 'strength'} ${num(r.strength)} Pa`, dash: '2 3'}] : [];
+  return linePlot({title, width, height: 300, hlines,
+    caption: 'lateral and volumetric strain: not measured by this test (the engine records the platen load and closure)',
+    series: [{name: 'axial', line: true, marker: null, cursor: true, points}],
+    x: {label: 'axial strain (closure / height)', min: 0},
+    y: {label: 'axial stress (Pa, model units)', include: [0],
+      second: lab ? {factor: lab.stress / 1e6, label: 'lab stress (MPa)'} : undefined}});
+}
