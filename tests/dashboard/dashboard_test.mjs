@@ -36,6 +36,11 @@ const calibration = (name, maxEvaluations, tolerance) => ({kind: 'calibration', 
   job: {...JOB, effects: {heterogeneity: {weibull_m: 4}}},
   targets: {uct: {peak_load: 2000}, btt: {peak_load: 1000}},
   bounds: {fr0: [16, 1024], fs0: [16, 1024]}, max_evaluations: maxEvaluations, tolerance, seeds: [2, 3]});
+// Targets twice the tiny model's loads at the corner (F_r0 64 N, F_s0 128 N) of its bounds: the
+// search ends on the bounds, and the verdict must say which one and how to widen it.
+const BOUND = {kind: 'calibration', name: 'browser test calibration on its bounds', job: JOB,
+  targets: {uct: {peak_load: 11200}, btt: {peak_load: 1000}}, bounds: {fr0: [16, 64], fs0: [16, 128]},
+  max_evaluations: 6, tolerance: 0.02, consistency_evaluations: 0, suggest: false};
 // The one the page submits and cancels: a global search (DIRECT-L) with an unreachable tolerance
 // and a budget it cannot spend before the test cancels it.
 const LIVE = {...calibration('live calibration from the page', 1000, 1e-6), strategy: 'direct_2d', algorithm: 'direct_l'};
@@ -146,6 +151,7 @@ before(async () => {
   ids.sweep = (await api('POST', '/api/v1/campaigns', SWEEP)).id;
   ids.calibration = (await api('POST', '/api/v1/campaigns', calibration('browser test calibration', 10, 0.02))).id;
   ids.diagnosis = (await api('POST', '/api/v1/campaigns', DIAGNOSIS)).id;
+  ids.bound = (await api('POST', '/api/v1/campaigns', BOUND)).id;
   // Debian's chromium on a fresh profile (playwright passes the directory as --user-data-dir).
   browser = await chromium.launchPersistentContext(path.join(run, 'chromium-profile'), {
     executablePath: '/usr/bin/chromium', headless: true, deviceScaleFactor: 1,
@@ -364,6 +370,27 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
   await consistent.screenshot({path: path.join(shots, '05b-calibration-consistent-set.png')});
   log('screenshot', path.join(shots, '05b-calibration-consistent-set.png'));
   assert.deepEqual(page.problems.concat(phone.problems), []);
+});
+
+test('a calibration that ends on its bounds: the verdict names the bound and the fix', async () => {
+  const c = await until('the calibration on its bounds to finish', async () => {
+    const x = await api('GET', `/api/v1/campaigns/${ids.bound}`);
+    return finished(x) && x;
+  }, 300);
+  const s = c.summary;
+  assert.equal(s.verdict, 'compromise', s.verdict_reason);
+  const named = s.verdict_reason.match(/F_(r|s)0 = [^ ]+ N lies on its upper bound (64|128) \(widen "bounds\.f(r|s)0" above (64|128)\)/);
+  assert.ok(named, s.verdict_reason);
+  assert.doesNotMatch(s.verdict_reason, /budget/);
+  const page = await newPage();
+  await page.goto(`${base}/campaigns/${ids.bound}`);
+  const verdict = page.locator('.verdict').first();
+  await verdict.waitFor();
+  assert.ok((await verdict.innerText()).includes(named[0]), await verdict.innerText());
+  // Model-unit targets: the consistent set speaks of target loads, not lab loads.
+  assert.doesNotMatch(await page.locator('main').innerText(), /lab loads/);
+  await shot(page, '05d-calibration-on-bounds');
+  assert.deepEqual(page.problems, []);
 });
 
 test('a diagnosis: verdict and confidence, residuals before and after, candidate scores', async () => {
