@@ -13,13 +13,14 @@
 namespace rockcal::api {
 
 struct Http {
+  std::string server;  // the URL, for messages
   httplib::Client client;
   httplib::Headers headers;
   explicit Http(const ClientOptions& o);
+  // Prints the server's error (or the transport error, naming the URL) and returns the exit code
+  // to use.
+  int report(const httplib::Result& r) const;
 };
-
-// Prints the server's error (or the transport error) and returns the exit code to use.
-int report(const httplib::Result& r);
 
 // `text` padded to `width` columns (UTF-8: "±" is two bytes, one column).
 std::string padded(std::string text, std::size_t width);

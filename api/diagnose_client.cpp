@@ -167,7 +167,7 @@ int client_diagnose(const ClientOptions& o, const std::string& file, const std::
   Http http(o);
   auto posted =
       http.client.Post("/api/v1/campaigns", http.headers, request.dump(), "application/json");
-  if (!posted || posted->status != 201) return report(posted);
+  if (!posted || posted->status != 201) return http.report(posted);
   const std::int64_t id = json::parse(posted->body)["id"].get<std::int64_t>();
   const std::string path = "/api/v1/campaigns/" + std::to_string(id);
   std::cout << "diagnosis campaign " << id << std::endl;
@@ -175,7 +175,7 @@ int client_diagnose(const ClientOptions& o, const std::string& file, const std::
   json c;
   while (true) {
     auto r = http.client.Get(path, http.headers);
-    if (!r || r->status != 200) return report(r);
+    if (!r || r->status != 200) return http.report(r);
     c = json::parse(r->body);
     const std::string state = c["state"].get<std::string>();
     // The driver's verdict, not the jobs, says when a diagnosis is over.
@@ -198,7 +198,7 @@ int client_diagnose(const ClientOptions& o, const std::string& file, const std::
   }
   std::cout << "\n" << diagnosis_text(c["summary"]);
   auto page = http.client.Get(path + "/report.html", http.headers);
-  if (!page || page->status != 200) return report(page);
+  if (!page || page->status != 200) return http.report(page);
   const std::string out = html_out.empty() ? "diagnosis-" + std::to_string(id) + ".html" : html_out;
   std::ofstream(out) << page->body;
   std::cout << "\nreport: " << out << "\n";

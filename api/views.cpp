@@ -130,9 +130,22 @@ json stored_result_json(const db::ResultRow& r) {
           {"no_peak", or_null(r.no_peak)}};
 }
 
+namespace {
+
+// A CSV field that may hold commas or quotes: quoted, its quotes doubled (RFC 4180).
+std::string csv_quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : text) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+
+}  // namespace
+
 std::string results_csv(const std::vector<db::JobResultRow>& rows) {
+  // Units in the column names; `error` is why a job has no values (its first line).
   std::string out =
-      "fr0,fs0,test,peak_load,strength,youngs_modulus,particles,wall_seconds,state,job_id,seed\n";
+      "fr0_n,fs0_n,test,peak_load_n,strength_pa,youngs_modulus_pa,particles,wall_seconds,state,"
+      "job_id,seed,error\n";
   auto num = [](const std::optional<double>& v) { return v ? number_text(*v) : std::string(); };
   for (const auto& row : rows) {
     const auto& r = row.result;
@@ -144,6 +157,8 @@ std::string results_csv(const std::vector<db::JobResultRow>& rows) {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "," + std::string.
     out += ',';
     out += seed_of(row.job).dump();
+    out += ',';
+    if (row.job.error) out += csv_quoted(row.job.error->substr(0, row.job.error->find('\n')));
     out += '\n';
   }
   return out;
