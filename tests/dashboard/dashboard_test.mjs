@@ -5,7 +5,7 @@
 // campaign from the page (a refused one first, then without and with the bearer token) and
 // cancels it there, and saves screenshots under the build directory.
 import assert from 'node:assert/strict';
-import {spawn} from 'node:child_process';
+import {spawn, spawnSync} from 'node:child_process';
 import fs from 'node:fs';
 import {createRequire} from 'node:module';
 import path from 'node:path';
@@ -311,6 +311,17 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
   await page.locator('.verdict').first().waitFor();
   assert.match(await page.locator('.verdict').first().innerText(), new RegExp(`Verdict: ${s.verdict}`));
   assert.match(await page.locator('.best-point').innerText(), new RegExp(`F_r0 = ${num(s.best.fr0)} N, F_s0 = ${num(s.best.fs0)} N`));
+  // One count of evaluations: the page and `rockcal status` show the report's progress model.
+  const m = s.progress;
+  assert.equal(m.done, s.evaluations);
+  assert.equal(m.budget, 10 + 24);
+  const count = `${m.done} of ${m.budget}`;
+  const parts = '(search 10, valley trace 24; +2 seed re-runs)';
+  assert.ok((await page.locator('.verdict + p').first().innerText()).includes(`${count} evaluations ${parts}`));
+  const cli = spawnSync(rockcal, ['status', String(ids.calibration)], {encoding: 'utf8',
+    env: {...process.env, ROCKCAL_SERVER: base, ROCKCAL_TOKEN: TOKEN}});
+  assert.equal(cli.status, 0, cli.stderr);
+  assert.ok(cli.stdout.includes(`evaluations: ${count} ${parts}`), cli.stdout);
   const fig = (title) => page.locator('figure.plot').filter({has: page.locator('figcaption strong', {hasText: title})});
   const ok = s.history.filter((r) => r.ok);
   await fig('Packing-seed scatter').waitFor();
@@ -473,7 +484,7 @@ test('submitting from the page: the server\'s field error, the token, a live cal
   await until('two evaluations on the page', async () => (await conv.count()) > 0 && (await points()) >= 2, 120);
   const seen = await points();
   await until('a later evaluation on the page', async () => (await points()) > seen, 60);
-  assert.match(await page.locator('.verdict').first().innerText(), /Running: \d+ of 1000 evaluations/);
+  assert.match(await page.locator('.verdict').first().innerText(), /Running: \d+ of 1024 evaluations \(search 1000, valley trace 24; \+2 seed re-runs\)/);
   const state = await api('GET', `/api/v1/campaigns/${id}`);
   assert.equal(state.state, 'running');
   await shot(page, '09-calibration-running');
