@@ -21,7 +21,9 @@ function progressOf(c) {
   const p = c.progress || {};
   const s = c.summary || {};
   const parts = [];
-  let fraction = p.fraction;
+  // The server's fraction: of the jobs for a sweep, of the driver's own progress for a calibration
+  // (its evaluations of the budget) or a diagnosis (its phases); it never goes backwards.
+  const fraction = p.fraction;
   // A calibration's own model: evaluations of its budget and the ETA at its pace. A diagnosis adds
   // jobs as it goes, so the server's ETA covers only the jobs queued now.
   const model = c.kind === 'calibration' ? s.progress : null;
@@ -29,11 +31,9 @@ function progressOf(c) {
     ? `${c.driver_status ? 'queued jobs done in' : 'ETA'} ${duration(p.eta_seconds)}` : null;
   if (model && typeof model.budget === 'number') {
     parts.push(evaluationsText(model));
-    fraction = model.fraction;
     eta = isLive(c) && typeof model.eta_seconds === 'number' ? `ETA ${duration(model.eta_seconds)} (full budget)` : null;
   } else if (c.kind === 'diagnosis' && typeof s.phase === 'string') {
     parts.push(`phase ${s.step} of ${s.steps}: ${s.phase}`);
-    if (s.steps) fraction = (s.step - 1 + (p.fraction || 0)) / s.steps;
   }
   parts.push(`${p.succeeded ?? 0} of ${p.total ?? 0} jobs done`);
   if (p.running) parts.push(`${p.running} running`);
