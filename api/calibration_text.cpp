@@ -80,7 +80,10 @@ bool is_live_calibration(const json& campaign) {
          at(at(at(campaign, "summary"), "progress"), "budget").is_number();
 }
 
-std::string calibration_line(const json& c) {
+}  // namespace
+
+std::optional<std::string> calibration_line(const json& c) {
+  if (!is_live_calibration(c)) return std::nullopt;
   const json& s = c["summary"];
   const json& model = s["progress"];
   const std::string state = c["state"].get<std::string>();
@@ -106,6 +109,8 @@ std::string calibration_line(const json& c) {
   }
   return out.str();
 }
+
+namespace {
 
 // "+1.25% ± 0.40%": the relative error and, for an ensemble mean, its standard error.
 std::string error_text(const json& test) {
@@ -265,10 +270,6 @@ std::string calibration_text(const json& s) {
   const json& why = at(at(s, "ensemble"), "why");
   if (why.is_string()) out << "ensemble: " << why.get<std::string>() << "\n";
   return out.str();
-}
-
-std::string progress_line(const json& campaign) {
-  return is_live_calibration(campaign) ? calibration_line(campaign) : status_line(campaign);
 }
 
 }  // namespace rockcal::api

@@ -124,29 +124,22 @@ int client_submit(const ClientOptions& o, const std::string& file) {
   return 0;
 }
 
-int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_json) {
-  Http http(o);
-  // With --json, stdout carries the campaign object alone; a --wait shows its progress on stderr.
-  std::ostream& progress = as_json ? std::cerr : std::cout;
-  const int progress_fd = as_json ? STDERR_FILENO : STDOUT_FILENO;
+std::optional<json> Http::watch(std::int64_t id, bool wait, int progress_fd, int& exit_code) {
+  std::ostream& progress = progress_fd == STDERR_FILENO ? std::cerr : std::cout;
   const bool tty = isatty(progress_fd);
   LinePacer pacer(std::chrono::seconds(5));
   bool drawn = false;  // a \r-redrawn line is on the terminal
   while (true) {
-    auto r = http.client.Get(path_of(id), http.headers);
-    if (!r || r->status != 200) return http.report(r);
+    auto r = client.Get(path_of(id), headers);
+    if (!r || r->status != 200) {
+      if (drawn) progress << "\n";
+      exit_code = report(r);
+      return std::nullopt;
+    }
     json c = json::parse(r->body);
-    const bool done = finished(c["state"].get<std::string>());
-    if (!wait || done) {
+    if (!wait || finished(c["state"].get<std::string>())) {
       if (drawn) progress << "\r\033[K" << std::flush;
-      if (as_json) {
-        std::cout << c.dump(2) << std::endl;
-      } else {
-        std::cout << progress_line(c) << "\n";
-        if (done) std::cout << "\n" << summary_text(c);
-        std::cout << std::flush;
-      }
-      return c["state"] == "succeeded" || !wait ? 0 : 1;
+      return c;
     }
     const std::string line = progress_line(c);
     if (tty) {
@@ -157,6 +150,22 @@ int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_js
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
+}
+
+int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_json) {
+  Http http(o);
+  // With --json, stdout carries the campaign object alone; a --wait shows its progress on stderr.
+  int exit_code = 0;
+  const auto c = http.watch(id, wait, as_json ? STDERR_FILENO : STDOUT_FILENO, exit_code);
+  if (!c) return exit_code;
+  if (as_json) {
+    std::cout << c->dump(2) << std::endl;
+  } else {
+    std::cout << progress_line(*c) << "\n";
+    if (finished((*c)["state"].get<std::string>())) std::cout << "\n" << summary_text(*c);
+    std::cout << std::flush;
+  }
+  return (*c)["state"] == "succeeded" || !wait ? 0 : 1;
 }
 
 namespace {

@@ -220,6 +220,17 @@ TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
             "tolerance_met\n");
 }
 
+// A diagnosis's line (rockcal status and rockcal diagnose share it) carries its phase.
+TEST(CalibrationProgress, ADiagnosisLineCarriesItsPhase) {
+  json c = running_calibration(390.0);
+  c["kind"] = "diagnosis";
+  c["summary"] = {{"phase", "budget"}, {"step", 2}, {"steps", 4}, {"runs", 12}};
+  c["progress"]["eta_seconds"] = 30;
+  EXPECT_EQ(progress_line(c),
+            "campaign 7 running [#######################.......] 75% 6/8 done, 2 running, 0 "
+            "queued, ETA 30s  [2/4 budget]");
+}
+
 TEST(SweepSummary, JobCountsAndWhereTheResultsAre) {
   json c = running_calibration(390.0);
   c["kind"] = "sweep";
