@@ -10,22 +10,17 @@
 
 #include "api/client_http.hpp"
 #include "api/status_text.hpp"
+#include "orchestrator/summary_reader.hpp"
 
 namespace rockcal::api {
 namespace {
 
 using nlohmann::json;
 
-const json& at(const json& j, const char* key) {
-  static const json null;
-  return j.is_object() && j.contains(key) ? j[key] : null;
-}
+using summary::at;
 
 std::string num(const json& v, const char* format = "%.4g") {
-  if (!v.is_number()) return "-";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, v.get<double>());
-  return buffer;
+  return v.is_number() ? summary::printed(v.get<double>(), format) : "-";
 }
 
 std::string num(double v, const char* format = "%.4g") {

@@ -12,6 +12,7 @@
 #include "api/client_http.hpp"
 #include "api/status_text.hpp"
 #include "engine/json_input.hpp"
+#include "orchestrator/summary_reader.hpp"
 
 namespace rockcal::api {
 namespace {
@@ -46,16 +47,11 @@ json diagnosis_request(const std::string& file) {
   return request;
 }
 
+using summary::at;
+
 std::string fmt(const json& v, const char* format = "%.4g") {
   if (!v.is_number()) return v.is_string() ? v.get<std::string>() : "-";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, v.get<double>());
-  return buf;
-}
-
-const json& at(const json& j, const char* key) {
-  static const json null;
-  return j.is_object() && j.contains(key) ? j[key] : null;
+  return summary::printed(v.get<double>(), format);
 }
 
 }  // namespace
