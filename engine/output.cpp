@@ -94,11 +94,14 @@ void write_atomically(const fs::path& path, const std::string& text) {
 
 void write_curve_csv(const fs::path& path, const std::vector<CurvePoint>& curve) {
   std::ofstream out(path);
-  out << "step,time_s,displacement_m,load_n,broken_bonds\n";
+  out << "step,time_s,displacement_m,load_n,broken_bonds,lateral_strain\n";
   out.precision(10);
-  for (const CurvePoint& c : curve)
+  for (const CurvePoint& c : curve) {
     out << c.step << ',' << c.time_s << ',' << c.displacement_m << ',' << c.load_n << ','
-        << c.broken_bonds << '\n';
+        << c.broken_bonds << ',';
+    if (c.lateral_strain) out << *c.lateral_strain;
+    out << '\n';
+  }
 }
 
 void write_breaks_csv(const fs::path& path, const std::vector<BreakEvent>& breaks) {

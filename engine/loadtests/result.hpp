@@ -25,6 +25,9 @@ struct CurvePoint {
   double displacement_m;  // platen closure
   double load_n;
   std::int64_t broken_bonds;
+  // UCT and triaxial, from the seated state on: the mid-height third's lateral strain,
+  // compression positive like the axial strain (expansion negative).
+  std::optional<double> lateral_strain = std::nullopt;
 };
 
 // Peak load against platen speed, extrapolated to zero speed (rate study).

@@ -270,6 +270,10 @@ test('a sweep: heat maps of both peak loads and their ratio, with the targets\' 
   // Stress against strain: every point of the curve.
   const stressStrain = page.locator('figure.plot', {hasText: 'UCT stress against strain'});
   assert.equal(await stressStrain.locator('svg.chart').getAttribute('data-points'), String(curveRows));
+  // ... with the lateral and volumetric strains the UCT measures, every point too.
+  for (const name of ['lateral', 'volumetric']) {
+    assert.equal(await stressStrain.locator(`g.series[data-series="${name}"]`).getAttribute('data-points'), String(curveRows), name);
+  }
   // The fracture: every broken bond of breaks.csv at the end, by mode, and those up to the peak's
   // step at the peak (when the run reached one).
   const breaks = (await api('GET', `/api/v1/jobs/${jobId}/breaks`)).trim().split('\n').slice(1).map((l) => l.split(','));
