@@ -44,8 +44,12 @@ export async function fractureSection(j, curve, width, ctx) {
   const breaks = await fetchBreaks(j.files.breaks_csv, ctx);
   const sample = (j.spec && j.spec.sample) || {};
   const disc = j.test === 'btt';
+  // A flattened disc's flats sit at |z| = D/2 cos(alpha), 2 alpha its loading angle.
+  const loading = (j.spec && j.spec.loading) || {};
+  const flatY = disc && loading.btt_geometry === 'flattened' && Number.isFinite(loading.flat_angle_deg)
+    ? (sample.diameter / 2) * Math.cos((loading.flat_angle_deg / 2) * Math.PI / 180) : null;
   const outline = {shape: disc ? 'circle' : 'rect', halfWidth: sample.diameter / 2,
-    halfHeight: (disc ? sample.diameter : sample.height) / 2};
+    halfHeight: (disc ? sample.diameter : sample.height) / 2, flatY};
   const axesLabels = {xLabel: 'x (m, model units)', yLabel: 'z, loading axis (m)'};
   const peak = peakStep(r, curve);
   const maps = [];

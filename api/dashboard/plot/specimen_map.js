@@ -10,7 +10,22 @@ import {marker, s} from './svg.js';
 
 const MAX_PLOT_HEIGHT = 380;
 
-// outline: {shape: 'rect' | 'circle', halfWidth, halfHeight}; groups: [{name, points: [[x, y]]}]
+// The specimen's outline in plot coordinates: a rectangle, an ellipse (a circle at equal scale), or
+// a circle with two flats.
+function outlineShape({shape, halfWidth: a, halfHeight: b, flatY}, px, py) {
+  const attrs = {class: 'specimen-outline'};
+  if (shape !== 'circle') return s('rect', {...attrs, x: px(-a), y: py(b), width: px(a) - px(-a), height: py(-b) - py(b)});
+  const rx = px(a) - px(0);
+  const ry = py(-b) - py(0);
+  if (!(flatY > 0 && flatY < b)) return s('ellipse', {...attrs, cx: px(0), cy: py(0), rx, ry});
+  const xf = a * Math.sqrt(1 - (flatY / b) ** 2);
+  const d = `M${px(xf)},${py(flatY)} A${rx},${ry} 0 0 1 ${px(xf)},${py(-flatY)} L${px(-xf)},${py(-flatY)} ` +
+    `A${rx},${ry} 0 0 1 ${px(-xf)},${py(flatY)} Z`;
+  return s('path', {...attrs, d});
+}
+
+// outline: {shape: 'rect' | 'circle', halfWidth, halfHeight, flatY (a disc cut flat at |y| =
+// flatY)}; groups: [{name, points: [[x, y]]}]
 // (every group keeps its colour and marker by its place in the list, even when it is empty).
 export function specimenMap({title, caption, width, outline, groups, xLabel, yLabel}) {
   const m = margins();
@@ -30,9 +45,7 @@ export function specimenMap({title, caption, width, outline, groups, xLabel, yLa
   plot.append(axes({x: px, y: py, w, h: ph, xLabel, yLabel, xTicks: 4, yTicks: 4}));
   const a = outline.halfWidth;
   const b = outline.halfHeight;
-  plot.append(outline.shape === 'circle'
-    ? s('ellipse', {class: 'specimen-outline', cx: px(0), cy: py(0), rx: px(a) - px(0), ry: py(-b) - py(0)})
-    : s('rect', {class: 'specimen-outline', x: px(-a), y: py(b), width: px(a) - px(-a), height: py(-b) - py(b)}));
+  plot.append(outlineShape(outline, px, py));
   let total = 0;
   const legendItems = groups.map((g, i) => {
     const colour = SERIES[i % SERIES.length];
