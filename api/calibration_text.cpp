@@ -1,6 +1,6 @@
 // A calibration campaign as `rockcal status` shows it: the progress line from the live summary
-// (orchestrator/calibration/calibration_kind.cpp: history, max_evaluations, scatter_runs, pace)
-// and the table of the final report (report_json.cpp).
+// (its progress model, orchestrator/calibration/progress.hpp, and its history) and the table of
+// the final report (report_json.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,22 +10,17 @@
 
 #include "api/client_http.hpp"
 #include "api/status_text.hpp"
+#include "orchestrator/summary_reader.hpp"
 
 namespace rockcal::api {
 namespace {
 
 using nlohmann::json;
 
-const json& at(const json& j, const char* key) {
-  static const json null;
-  return j.is_object() && j.contains(key) ? j[key] : null;
-}
+using summary::at;
 
 std::string num(const json& v, const char* format = "%.4g") {
-  if (!v.is_number()) return "-";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, v.get<double>());
-  return buffer;
+  return v.is_number() ? summary::printed(v.get<double>(), format) : "-";
 }
 
 std::string num(double v, const char* format = "%.4g") {
@@ -45,38 +40,51 @@ const json& best_so_far(const json& summary) {
   return *best;
 }
 
-// Seconds for the evaluations still possible: the search's remaining budget plus the seed
-// re-runs of the best point, at the measured pace. Null until one evaluation has run (the pace is
-// unknown) and once nothing is left.
-// The whole budget: the search's and the consistent-set trace's after it.
-int budget_of(const json& summary) {
-  const json& trace = at(summary, "consistency_evaluations");
-  return at(summary, "max_evaluations").get<int>() + (trace.is_number() ? trace.get<int>() : 0);
-}
-
-std::optional<double> eta_seconds(const json& summary) {
-  const json& per = at(at(summary, "pace"), "seconds_per_evaluation");
-  if (!per.is_number()) return std::nullopt;
-  const int left = std::max(0, budget_of(summary) - at(summary, "evaluations").get<int>()) +
-                   at(summary, "scatter_runs").get<int>();
-  if (left == 0) return std::nullopt;
-  // At least a second: a running campaign never shows "ETA 0s".
-  return std::max(1.0, std::ceil(left * per.get<double>()));
+// "3 of 64 evaluations done (search 40, valley trace 24; +2 seed re-runs)": the progress model's
+// count (orchestrator/calibration/progress.hpp), each part of the budget named.
+// `noun` follows the count: " evaluations done" in the progress line, nothing after "evaluations:".
+std::string evaluations_text(const json& model, const char* noun) {
+  std::ostringstream out;
+  out << model["done"] << " of " << model["budget"] << noun;
+  std::vector<std::string> notes;
+  const json& parts = at(model, "parts");
+  if (parts.is_array() && parts.size() > 1) {
+    std::string list;
+    for (const json& p : parts) {
+      // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on ", " + std::string.
+      if (!list.empty()) list += ", ";
+      list += p["name"].get<std::string>();
+      list += ' ';
+      list += p["budget"].dump();
+    }
+    notes.push_back(list);
+  }
+  if (at(model, "seed_reruns").is_number() && model["seed_reruns"].get<int>() > 0) {
+    std::string reruns = "+";
+    reruns += model["seed_reruns"].dump();
+    reruns += " seed re-runs";
+    notes.push_back(reruns);
+  }
+  for (std::size_t k = 0; k < notes.size(); ++k) out << (k ? "; " : " (") << notes[k];
+  if (!notes.empty()) out << ")";
+  return out.str();
 }
 
 bool is_live_calibration(const json& campaign) {
-  const json& s = at(campaign, "summary");
-  return at(campaign, "kind") == "calibration" && at(s, "max_evaluations").is_number() &&
-         at(s, "evaluations").is_number() && at(s, "scatter_runs").is_number();
+  return at(campaign, "kind") == "calibration" &&
+         at(at(at(campaign, "summary"), "progress"), "budget").is_number();
 }
 
-std::string calibration_line(const json& c) {
+}  // namespace
+
+std::optional<std::string> calibration_line(const json& c) {
+  if (!is_live_calibration(c)) return std::nullopt;
   const json& s = c["summary"];
+  const json& model = s["progress"];
   const std::string state = c["state"].get<std::string>();
   std::ostringstream out;
-  out << "campaign " << c["id"] << " " << state << ": " << s["evaluations"] << " of "
-      << budget_of(s) << " evaluations done";
-  if (s["scatter_runs"].get<int>() > 0) out << " (+" << s["scatter_runs"] << " seed re-runs)";
+  out << "campaign " << c["id"] << " " << state << ": "
+      << evaluations_text(model, " evaluations done");
   const json& best = best_so_far(s);
   if (best.is_object()) {
     out << ", best misfit " << num(best["misfit"], "%.3g") << " at F_r0 = " << num(best["fr0"])
@@ -85,9 +93,10 @@ std::string calibration_line(const json& c) {
   const json& running = at(c["progress"], "running");
   out << ", " << running << (running == 1 ? " job" : " jobs") << " running";
   if (state == "running" || state == "queued") {
-    if (const auto eta = eta_seconds(s)) {
-      out << ", ETA " << duration_text(*eta) << " (full budget)";
-    } else if (at(at(s, "pace"), "seconds_per_evaluation").is_number()) {
+    const json& eta = at(model, "eta_seconds");
+    if (eta.is_number()) {
+      out << ", ETA " << duration_text(eta.get<double>()) << " (full budget)";
+    } else if (at(model, "left") == 0) {
       out << ", finishing";
     } else {
       out << ", ETA unknown";
@@ -95,6 +104,8 @@ std::string calibration_line(const json& c) {
   }
   return out.str();
 }
+
+namespace {
 
 // "+1.25% ± 0.40%": the relative error and, for an ensemble mean, its standard error.
 std::string error_text(const json& test) {
@@ -288,22 +299,16 @@ std::string calibration_text(const json& s) {
   }
   if (!posterior.is_object()) out << consistency_text(s);
   out << fidelity_text(at(s, "fidelity"));
-  // The same budget the progress line counted down: the search's and the valley trace's.
-  const json& trace = at(s, "consistency_evaluations");
-  const bool traced =
-      at(s, "max_evaluations").is_number() && trace.is_number() && trace.get<int>() > 0;
-  out << "evaluations: " << value_text(at(s, "evaluations")) << " of "
-      << (traced ? std::to_string(budget_of(s)) : value_text(at(s, "max_evaluations")));
-  std::vector<std::string> notes;
+  // The same count the progress line showed: the progress model's.
+  const json& model = at(s, "progress");
+  if (model.is_object()) {
+    out << "evaluations: " << evaluations_text(model, "");
+  } else {
+    out << "evaluations: " << value_text(at(s, "evaluations"));
+  }
   if (at(s, "failed_evaluations").is_number() && s["failed_evaluations"].get<int>() > 0) {
-    notes.push_back(s["failed_evaluations"].dump() + " failed");
+    out << ", " << s["failed_evaluations"].dump() << " failed";
   }
-  if (traced) {
-    notes.push_back("budget: search " + s["max_evaluations"].dump() + ", valley trace " +
-                    trace.dump());
-  }
-  for (std::size_t k = 0; k < notes.size(); ++k) out << (k ? "; " : " (") << notes[k];
-  if (!notes.empty()) out << ")";
   if (at(s, "realisations").is_number() && s["realisations"].get<int>() > 1) {
     out << ", " << s["realisations"] << " packings each";
   }
@@ -314,10 +319,6 @@ std::string calibration_text(const json& s) {
   const json& why = at(at(s, "ensemble"), "why");
   if (why.is_string()) out << "ensemble: " << why.get<std::string>() << "\n";
   return out.str();
-}
-
-std::string progress_line(const json& campaign) {
-  return is_live_calibration(campaign) ? calibration_line(campaign) : status_line(campaign);
 }
 
 }  // namespace rockcal::api

@@ -21,7 +21,7 @@ namespace rockcal::api {
 
 using nlohmann::json;
 
-Http::Http(const ClientOptions& o) : client(o.server) {
+Http::Http(const ClientOptions& o) : server(o.server), client(o.server) {
   client.set_connection_timeout(5, 0);
   client.set_read_timeout(60, 0);
   std::string token;
@@ -34,9 +34,11 @@ Http::Http(const ClientOptions& o) : client(o.server) {
 }
 
 // Prints the server's error (or the transport error) and returns the exit code to use.
-int report(const httplib::Result& r) {
+int Http::report(const httplib::Result& r) const {
   if (!r) {
-    std::cerr << "rockcal: cannot reach the server: " << httplib::to_string(r.error()) << "\n";
+    std::cerr << "rockcal: cannot reach the server at " << server << " ("
+              << httplib::to_string(r.error())
+              << " error; give its URL with --server or $ROCKCAL_SERVER)\n";
     return 2;
   }
   json body = json::parse(r->body, nullptr, false);
@@ -117,34 +119,27 @@ int client_submit(const ClientOptions& o, const std::string& file) {
   }
   Http http(o);
   auto r = http.client.Post("/api/v1/campaigns", http.headers, body.str(), "application/json");
-  if (!r || r->status != 201) return report(r);
+  if (!r || r->status != 201) return http.report(r);
   std::cout << json::parse(r->body)["id"] << "\n";
   return 0;
 }
 
-int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_json) {
-  Http http(o);
-  // With --json, stdout carries the campaign object alone; a --wait shows its progress on stderr.
-  std::ostream& progress = as_json ? std::cerr : std::cout;
-  const int progress_fd = as_json ? STDERR_FILENO : STDOUT_FILENO;
+std::optional<json> Http::watch(std::int64_t id, bool wait, int progress_fd, int& exit_code) {
+  std::ostream& progress = progress_fd == STDERR_FILENO ? std::cerr : std::cout;
   const bool tty = isatty(progress_fd);
   LinePacer pacer(std::chrono::seconds(5));
   bool drawn = false;  // a \r-redrawn line is on the terminal
   while (true) {
-    auto r = http.client.Get(path_of(id), http.headers);
-    if (!r || r->status != 200) return report(r);
+    auto r = client.Get(path_of(id), headers);
+    if (!r || r->status != 200) {
+      if (drawn) progress << "\n";
+      exit_code = report(r);
+      return std::nullopt;
+    }
     json c = json::parse(r->body);
-    const bool done = finished(c["state"].get<std::string>());
-    if (!wait || done) {
+    if (!wait || finished(c["state"].get<std::string>())) {
       if (drawn) progress << "\r\033[K" << std::flush;
-      if (as_json) {
-        std::cout << c.dump(2) << std::endl;
-      } else {
-        std::cout << progress_line(c) << "\n";
-        if (done) std::cout << "\n" << summary_text(c);
-        std::cout << std::flush;
-      }
-      return c["state"] == "succeeded" || !wait ? 0 : 1;
+      return c;
     }
     const std::string line = progress_line(c);
     if (tty) {
@@ -155,6 +150,22 @@ int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_js
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
+}
+
+int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_json) {
+  Http http(o);
+  // With --json, stdout carries the campaign object alone; a --wait shows its progress on stderr.
+  int exit_code = 0;
+  const auto c = http.watch(id, wait, as_json ? STDERR_FILENO : STDOUT_FILENO, exit_code);
+  if (!c) return exit_code;
+  if (as_json) {
+    std::cout << c->dump(2) << std::endl;
+  } else {
+    std::cout << progress_line(*c) << "\n";
+    if (finished((*c)["state"].get<std::string>())) std::cout << "\n" << summary_text(*c);
+    std::cout << std::flush;
+  }
+  return (*c)["state"] == "succeeded" || !wait ? 0 : 1;
 }
 
 namespace {
@@ -181,14 +192,16 @@ std::string first_line(const std::string& text) {
 std::string results_text(const json& body) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-8s %10s %10s %3s %6s  ", "test", "fr0", "fs0", "n", "failed");
-  out += line + padded("peak_load (mean ± se)", 24) + padded("strength", 24) + "youngs_modulus\n";
+  std::snprintf(line, sizeof line, "%-8s %10s %10s %3s %6s  ", "test", "fr0 (N)", "fs0 (N)", "n",
+                "failed");
+  out += line + padded("peak_load (N, mean ± se)", 26) + padded("strength (Pa, mean ± se)", 26) +
+         "youngs_modulus (Pa, mean ± se)\n";
   std::string failures;
   for (const json& p : body.value("points", json::array())) {
     std::snprintf(line, sizeof line, "%-8s %10.5g %10.5g %3d %6d  ",
                   p["test"].get<std::string>().c_str(), p["fr0"].get<double>(),
                   p["fs0"].get<double>(), p["peak_load"]["n"].get<int>(), p["failed"].get<int>());
-    out += line + padded(mean_se(p["peak_load"]), 24) + padded(mean_se(p["strength"]), 24) +
+    out += line + padded(mean_se(p["peak_load"]), 26) + padded(mean_se(p["strength"]), 26) +
            mean_se(p["modulus"]) + "\n";
     for (const json& r : p["realisations"]) {
       if (!r["error"].is_string()) continue;
@@ -208,7 +221,7 @@ std::string results_text(const json& body) {
 int client_results(const ClientOptions& o, std::int64_t id, bool csv) {
   Http http(o);
   auto r = http.client.Get(path_of(id, csv ? "/results?format=csv" : "/results"), http.headers);
-  if (!r || r->status != 200) return report(r);
+  if (!r || r->status != 200) return http.report(r);
   if (csv) {
     std::cout << r->body;
     return 0;
@@ -220,7 +233,7 @@ int client_results(const ClientOptions& o, std::int64_t id, bool csv) {
 int client_cancel(const ClientOptions& o, std::int64_t id) {
   Http http(o);
   auto r = http.client.Delete(path_of(id), http.headers);
-  if (!r || r->status != 200) return report(r);
+  if (!r || r->status != 200) return http.report(r);
   std::cout << status_line(json::parse(r->body)) << "\n";
   return 0;
 }
@@ -228,7 +241,7 @@ int client_cancel(const ClientOptions& o, std::int64_t id) {
 int client_list(const ClientOptions& o) {
   Http http(o);
   auto r = http.client.Get("/api/v1/campaigns?limit=100", http.headers);
-  if (!r || r->status != 200) return report(r);
+  if (!r || r->status != 200) return http.report(r);
   json body = json::parse(r->body);  // kept alive: the loop iterates one of its members
   for (const auto& c : body["campaigns"]) {
     std::cout << status_line(c) << "  " << c["kind"].get<std::string>() << " \""

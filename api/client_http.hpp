@@ -4,6 +4,8 @@
 
 #include <httplib.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -13,13 +15,19 @@
 namespace rockcal::api {
 
 struct Http {
+  std::string server;  // the URL, for messages
   httplib::Client client;
   httplib::Headers headers;
   explicit Http(const ClientOptions& o);
+  // Prints the server's error (or the transport error, naming the URL) and returns the exit code
+  // to use.
+  int report(const httplib::Result& r) const;
+  // The one wait loop of the client commands: polls campaign `id` until it has ended (once without
+  // `wait`), showing progress_line() on `progress_fd` (redrawn on a terminal, paced lines in a
+  // log). Returns the last campaign object, or nullopt after reporting a failed request
+  // (`exit_code` set).
+  std::optional<nlohmann::json> watch(std::int64_t id, bool wait, int progress_fd, int& exit_code);
 };
-
-// Prints the server's error (or the transport error) and returns the exit code to use.
-int report(const httplib::Result& r);
 
 // `text` padded to `width` columns (UTF-8: "±" is two bytes, one column).
 std::string padded(std::string text, std::size_t width);

@@ -7,11 +7,12 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <thread>
 
 #include "api/client.hpp"
 #include "api/client_http.hpp"
+#include "api/status_text.hpp"
 #include "engine/json_input.hpp"
+#include "orchestrator/summary_reader.hpp"
 
 namespace rockcal::api {
 namespace {
@@ -46,23 +47,11 @@ json diagnosis_request(const std::string& file) {
   return request;
 }
 
+using summary::at;
+
 std::string fmt(const json& v, const char* format = "%.4g") {
   if (!v.is_number()) return v.is_string() ? v.get<std::string>() : "-";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, v.get<double>());
-  return buf;
-}
-
-const json& at(const json& j, const char* key) {
-  static const json null;
-  return j.is_object() && j.contains(key) ? j[key] : null;
-}
-
-std::string phase_text(const json& campaign) {
-  const json& s = at(campaign, "summary");
-  if (!at(s, "phase").is_string()) return "";
-  return "  [" + fmt(at(s, "step")) + "/" + fmt(at(s, "steps")) + " " +
-         s["phase"].get<std::string>() + "]";
+  return summary::printed(v.get<double>(), format);
 }
 
 }  // namespace
@@ -167,30 +156,16 @@ int client_diagnose(const ClientOptions& o, const std::string& file, const std::
   Http http(o);
   auto posted =
       http.client.Post("/api/v1/campaigns", http.headers, request.dump(), "application/json");
-  if (!posted || posted->status != 201) return report(posted);
+  if (!posted || posted->status != 201) return http.report(posted);
   const std::int64_t id = json::parse(posted->body)["id"].get<std::int64_t>();
   const std::string path = "/api/v1/campaigns/" + std::to_string(id);
   std::cout << "diagnosis campaign " << id << std::endl;
-  const bool tty = isatty(1);
-  json c;
-  while (true) {
-    auto r = http.client.Get(path, http.headers);
-    if (!r || r->status != 200) return report(r);
-    c = json::parse(r->body);
-    const std::string state = c["state"].get<std::string>();
-    // The driver's verdict, not the jobs, says when a diagnosis is over.
-    const std::string driver = c.value("driver_status", "");
-    const bool over = driver == "done" || driver == "failed" || state == "cancelled";
-    const std::string line = status_line(c) + phase_text(c);
-    if (tty) {
-      std::cout << "\r\033[K" << line << std::flush;
-    } else {
-      std::cout << line << std::endl;
-    }
-    if (over) break;
-    std::this_thread::sleep_for(std::chrono::seconds(tty ? 1 : 5));
-  }
-  if (tty) std::cout << std::endl;
+  // The campaign's state follows its driver: it ends when the driver has (campaign_status.hpp).
+  int exit_code = 0;
+  const auto watched = http.watch(id, true, STDOUT_FILENO, exit_code);
+  if (!watched) return exit_code;
+  const json& c = *watched;
+  std::cout << progress_line(c) << std::endl;
   if (c.value("driver_status", "") != "done") {
     std::cerr << "rockcal: diagnosis " << id << " did not finish: " << at(c, "summary").dump()
               << "\n";
@@ -198,7 +173,7 @@ int client_diagnose(const ClientOptions& o, const std::string& file, const std::
   }
   std::cout << "\n" << diagnosis_text(c["summary"]);
   auto page = http.client.Get(path + "/report.html", http.headers);
-  if (!page || page->status != 200) return report(page);
+  if (!page || page->status != 200) return http.report(page);
   const std::string out = html_out.empty() ? "diagnosis-" + std::to_string(id) + ".html" : html_out;
   std::ofstream(out) << page->body;
   std::cout << "\nreport: " << out << "\n";

@@ -83,7 +83,9 @@ int main(int argc, char** argv) {
   std::int64_t id = 0;
   bool csv = false, wait = false, as_json = false;
   auto add_common = [&](CLI::App* sub) {
-    sub->add_option("--server", client.server, "server URL")->capture_default_str();
+    sub->add_option("--server", client.server, "server URL (or $ROCKCAL_SERVER)")
+        ->envname("ROCKCAL_SERVER")
+        ->capture_default_str();
     sub->add_option("--token-file", client.token_file, "bearer token (or $ROCKCAL_TOKEN)");
   };
   auto* submit = app.add_subcommand("submit", "submit a campaign (JSON file, - for stdin)");

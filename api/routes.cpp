@@ -139,9 +139,52 @@ void campaign_report(ApiContext& ctx, const Req& req, Res& res) {
   res.set_content(kind->report_html(json::parse(*c.summary)), "text/html; charset=utf-8");
 }
 
+// The files of the run that answered a job: its own, or for a job answered from the store the run
+// that computed the stored result.
+std::filesystem::path run_dir(ApiContext& ctx, const db::JobRow& j,
+                              const std::optional<db::ResultRow>& r) {
+  return orch::job_dir(ctx.service.jobs_dir(), r ? r->job_id : j.id);
+}
+
 void get_job(ApiContext& ctx, const Req& req, Res& res) {
   auto j = job_or_404(ctx.service, req);
-  send_json(res, job_json(j, result_of(ctx.service, j), true));
+  const auto r = result_of(ctx.service, j);
+  json out = job_json(j, r, true);
+  out["files"] =
+      job_files_json(j, r, r ? orch::job_outputs(run_dir(ctx, j, r)) : orch::JobOutputs{});
+  send_json(res, out);
+}
+
+// A file a finished run wrote, as an attachment named `name`.
+void send_run_file(Res& res, const std::filesystem::path& file, const std::string& name,
+                   const std::string& content_type) {
+  auto text = orch::read_text(file);
+  if (!text) throw HttpError(404, "the run wrote no " + name);
+  res.set_header("Content-Disposition", "attachment; filename=\"" + name + "\"");
+  res.set_content(*text, content_type);
+}
+
+void job_breaks(ApiContext& ctx, const Req& req, Res& res) {
+  auto j = job_or_404(ctx.service, req);
+  auto r = result_of(ctx.service, j);
+  if (!r) throw HttpError(404, "job " + std::to_string(j.id) + " has no finished run");
+  send_run_file(res, run_dir(ctx, j, r) / "breaks.csv", "breaks.csv", "text/csv");
+}
+
+// A VTK file by name: only a name the run's vtk/ directory lists is read, never a path from the
+// request.
+void job_vtk(ApiContext& ctx, const Req& req, Res& res) {
+  auto j = job_or_404(ctx.service, req);
+  auto r = result_of(ctx.service, j);
+  if (!r) throw HttpError(404, "job " + std::to_string(j.id) + " has no finished run");
+  const std::filesystem::path dir = run_dir(ctx, j, r);
+  const std::string wanted = req.matches[2];
+  for (const std::string& name : orch::job_outputs(dir).vtk) {
+    if (name == wanted) return send_run_file(res, dir / "vtk" / name, name, "application/xml");
+  }
+  throw HttpError(404,
+                  "job " + std::to_string(j.id) + " has no VTK file " + wanted +
+                      " (VTK is written when the job's spec asks for \"output\": {\"vtk\": true})");
 }
 
 void job_log(ApiContext& ctx, const Req& req, Res& res) {
@@ -207,6 +250,8 @@ std::vector<Route> api_routes(ApiContext& ctx) {
       {"GET", "/api/v1/jobs/{id}", bind(get_job)},
       {"GET", "/api/v1/jobs/{id}/log", bind(job_log)},
       {"GET", "/api/v1/jobs/{id}/curve", bind(job_curve)},
+      {"GET", "/api/v1/jobs/{id}/breaks", bind(job_breaks)},
+      {"GET", "/api/v1/jobs/{id}/vtk/{name}", bind(job_vtk)},
       {"GET",
        "/api/v1/results",
        bind(query_results),

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "api/client.hpp"
+#include "api/client_http.hpp"
 
 namespace rockcal::api {
 namespace {
@@ -25,7 +26,20 @@ std::string jobs_text(const json& c) {
   return out.str();
 }
 
+// A driver's phase while it runs (a diagnosis): "  [2/4 budget]".
+std::string phase_text(const json& c) {
+  const json& s = c.contains("summary") ? c["summary"] : json();
+  if (!s.is_object() || !s.contains("phase") || !s["phase"].is_string()) return "";
+  return "  [" + s.value("step", json()).dump() + "/" + s.value("steps", json()).dump() + " " +
+         s["phase"].get<std::string>() + "]";
+}
+
 }  // namespace
+
+std::string progress_line(const json& c) {
+  if (auto line = calibration_line(c)) return *line;
+  return status_line(c) + phase_text(c);
+}
 
 std::string summary_text(const json& c) {
   const json& s = c.contains("summary") ? c["summary"] : json();

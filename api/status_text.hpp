@@ -14,7 +14,11 @@ namespace rockcal::api {
 // A calibration's line: "campaign 3 running: 12 of 40 evaluations done (+2 seed re-runs), best
 // misfit 0.0123 at F_r0 = 40.1, F_s0 = 89.7, 2 jobs running, ETA 5m20s (full budget)". Other
 // kinds, and a calibration whose summary does not say its budget, get status_line().
+// A diagnosis adds its phase: "  [2/4 budget]".
 std::string progress_line(const nlohmann::json& campaign);
+
+// A live calibration's line (above), or nullopt for anything else.
+std::optional<std::string> calibration_line(const nlohmann::json& campaign);
 
 // The end of a campaign for a reader: a calibration's verdict, strengths, loads against targets
 // and budget (calibration_text); a diagnosis's verdict tables (diagnosis_text); a sweep's job

@@ -24,6 +24,13 @@ json seed_of(const db::JobRow& j) {
   return orch::realisation(j, std::nullopt).seed;
 }
 
+// How a result's strength follows from its peak load, as the engine stated it in result.json
+// (engine/loadtests/strength.hpp); null for the elastic test.
+json strength_definition_of(const db::ResultRow& r) {
+  const json result = json::parse(r.result, nullptr, false);
+  return result.is_object() ? result.value("strength_definition", json(nullptr)) : json(nullptr);
+}
+
 }  // namespace
 
 json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s) {
@@ -71,6 +78,16 @@ json job_json(const db::JobRow& j, const std::optional<db::ResultRow>& r, bool d
   return out;
 }
 
+json job_files_json(const db::JobRow& j, const std::optional<db::ResultRow>& r,
+                    const orch::JobOutputs& outputs) {
+  const std::string base = "/api/v1/jobs/" + std::to_string(j.id);
+  json vtk = json::array();
+  for (const std::string& name : outputs.vtk) vtk.push_back(base + "/vtk/" + name);
+  return {{"curve_csv", r && r->curve ? json(base + "/curve") : json(nullptr)},
+          {"breaks_csv", outputs.breaks_csv ? json(base + "/breaks") : json(nullptr)},
+          {"vtk", vtk}};
+}
+
 json result_row_json(const db::JobResultRow& row) {
   const auto& j = row.job;
   const auto& r = row.result;
@@ -81,6 +98,7 @@ json result_row_json(const db::JobResultRow& row) {
           {"seed", seed_of(j)},
           {"peak_load", r ? or_null(r->peak_load) : json(nullptr)},
           {"strength", r ? or_null(r->strength) : json(nullptr)},
+          {"strength_definition", r ? strength_definition_of(*r) : json(nullptr)},
           {"youngs_modulus", r ? or_null(r->youngs_modulus) : json(nullptr)},
           {"particles", r ? or_null(r->particles) : json(nullptr)},
           {"wall_seconds", r ? or_null(r->wall_seconds) : json(nullptr)},
@@ -103,6 +121,7 @@ json stored_result_json(const db::ResultRow& r) {
           {"fs0", r.fs0},
           {"peak_load", or_null(r.peak_load)},
           {"strength", or_null(r.strength)},
+          {"strength_definition", strength_definition_of(r)},
           {"youngs_modulus", or_null(r.youngs_modulus)},
           {"poisson_ratio", or_null(r.poisson_ratio)},
           {"particles", or_null(r.particles)},
@@ -111,9 +130,22 @@ json stored_result_json(const db::ResultRow& r) {
           {"no_peak", or_null(r.no_peak)}};
 }
 
+namespace {
+
+// A CSV field that may hold commas or quotes: quoted, its quotes doubled (RFC 4180).
+std::string csv_quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : text) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+
+}  // namespace
+
 std::string results_csv(const std::vector<db::JobResultRow>& rows) {
+  // Units in the column names; `error` is why a job has no values (its first line).
   std::string out =
-      "fr0,fs0,test,peak_load,strength,youngs_modulus,particles,wall_seconds,state,job_id,seed\n";
+      "fr0_n,fs0_n,test,peak_load_n,strength_pa,youngs_modulus_pa,particles,wall_seconds,state,"
+      "job_id,seed,error\n";
   auto num = [](const std::optional<double>& v) { return v ? number_text(*v) : std::string(); };
   for (const auto& row : rows) {
     const auto& r = row.result;
@@ -125,6 +157,8 @@ std::string results_csv(const std::vector<db::JobResultRow>& rows) {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "," + std::string.
     out += ',';
     out += seed_of(row.job).dump();
+    out += ',';
+    if (row.job.error) out += csv_quoted(row.job.error->substr(0, row.job.error->find('\n')));
     out += '\n';
   }
   return out;

@@ -5,6 +5,7 @@
 
 #include "db/records.hpp"
 #include "orchestrator/campaign_status.hpp"
+#include "orchestrator/job_files.hpp"
 #include "orchestrator/realisations.hpp"
 
 namespace rockcal::api {
@@ -12,6 +13,10 @@ namespace rockcal::api {
 nlohmann::json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s);
 // With `detail`, the spec and the full result.json are included.
 nlohmann::json job_json(const db::JobRow& j, const std::optional<db::ResultRow>& r, bool detail);
+// Where a job's files are downloaded: {"curve_csv", "breaks_csv", "vtk": [...]}, each a path of
+// the API, present when the run that answered the job (`outputs`: what it left) wrote it.
+nlohmann::json job_files_json(const db::JobRow& j, const std::optional<db::ResultRow>& r,
+                              const orch::JobOutputs& outputs);
 // One row of a results table: fr0, fs0, test, seed, peak_load, strength, youngs_modulus,
 // particles, wall_seconds, state, error (and job id, cached).
 nlohmann::json result_row_json(const db::JobResultRow& row);

@@ -1,9 +1,12 @@
 #include "engine/output.hpp"
 
+#include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "engine/loadtests/brazilian.hpp"
+#include "engine/loadtests/strength.hpp"
 #include "engine/simulation.hpp"
 
 namespace rockcal {
@@ -49,10 +52,13 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
            {"rate_study", rate},
            {"spec", to_json(spec)}};
   if (r.test == TestKind::elastic) return out;
-  // Loading tests: whether the peak is a failure, from which state it was measured, and (BTT) the
-  // set-up's strength factor and where the disc broke first.
+  // Loading tests: whether the peak is a failure, how the strength follows from it, from which
+  // state it was measured, and (BTT) the set-up's strength factor and where the disc broke first.
   out["peak_reached"] = r.peak_reached;
+  if (const auto definition = strength_definition(spec))
+    out["strength_definition"] = to_json(*definition);
   if (!r.peak_reached) out["no_peak_reason"] = r.no_peak_reason;
+  out["peak_step"] = r.peak_step;  // breaks.csv rows up to it are the damage at the peak
   out["seating"] = {{"load", r.seating.load_n},
                     {"closure", r.seating.closure_m},
                     {"step", r.seating.step},
@@ -88,11 +94,14 @@ void write_atomically(const fs::path& path, const std::string& text) {
 
 void write_curve_csv(const fs::path& path, const std::vector<CurvePoint>& curve) {
   std::ofstream out(path);
-  out << "step,time_s,displacement_m,load_n,broken_bonds\n";
+  out << "step,time_s,displacement_m,load_n,broken_bonds,lateral_strain\n";
   out.precision(10);
-  for (const CurvePoint& c : curve)
+  for (const CurvePoint& c : curve) {
     out << c.step << ',' << c.time_s << ',' << c.displacement_m << ',' << c.load_n << ','
-        << c.broken_bonds << '\n';
+        << c.broken_bonds << ',';
+    if (c.lateral_strain) out << *c.lateral_strain;
+    out << '\n';
+  }
 }
 
 void write_breaks_csv(const fs::path& path, const std::vector<BreakEvent>& breaks) {
@@ -122,12 +131,19 @@ class VtuWriter {
     if (!out_) throw std::runtime_error("cannot write " + path.string());
     out_.precision(9);
   }
-  void begin(std::size_t n) {
+  // `fields`: one value each for the whole snapshot (VTK field data), e.g. its time and load.
+  void begin(std::size_t n, const std::vector<std::pair<const char*, double>>& fields = {}) {
     n_ = n;
     out_ << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-            "byte_order=\"LittleEndian\">\n"
-         << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
-         << "\">\n";
+            "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n";
+    if (!fields.empty()) {
+      out_ << "<FieldData>\n";
+      for (const auto& [name, value] : fields)
+        out_ << "<DataArray type=\"Float64\" Name=\"" << name
+             << "\" NumberOfTuples=\"1\" format=\"ascii\">" << value << "</DataArray>\n";
+      out_ << "</FieldData>\n";
+    }
+    out_ << "<Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n";
   }
   template <class F>
   void points(F point_at) {
@@ -170,7 +186,7 @@ class VtuWriter {
 
 }  // namespace
 
-void write_particles_vtu(const fs::path& path, const Simulation& sim) {
+void write_particles_vtu(const fs::path& path, const Simulation& sim, const Frame& frame) {
   const Particles& p = sim.particles;
   std::vector<int> broken_count(p.size(), 0);
   for (const Bond& b : sim.broken) {
@@ -178,7 +194,10 @@ void write_particles_vtu(const fs::path& path, const Simulation& sim) {
     ++broken_count[b.j];
   }
   VtuWriter w(path);
-  w.begin(p.size());
+  w.begin(p.size(), {{"TimeValue", frame.time_s},
+                     {"step", double(frame.step)},
+                     {"load", frame.load_n},
+                     {"displacement", frame.displacement_m}});
   w.points([&](std::size_t k) { return p.pos[k]; });
   w.scalars("radius", [&](std::size_t k) { return p.radius[k]; });
   w.scalars("id", [&](std::size_t k) { return double(p.id[k]); });
@@ -194,6 +213,31 @@ void write_breaks_vtu(const fs::path& path, const std::vector<BreakEvent>& break
   w.scalars("step", [&](std::size_t k) { return double(breaks[k].step); });
   w.scalars("mode", [&](std::size_t k) { return double(static_cast<int>(breaks[k].mode)); });
   w.end();
+}
+
+std::string particles_vtu_name(int frame, int rank, int ranks) {
+  char name[48];
+  if (ranks > 1)
+    std::snprintf(name, sizeof name, "particles_%04d_r%d.vtu", frame, rank);
+  else
+    std::snprintf(name, sizeof name, "particles_%04d.vtu", frame);
+  return name;
+}
+
+void write_vtk_series(const fs::path& path, const std::vector<Frame>& frames, int ranks) {
+  std::ostringstream out;
+  out.precision(10);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+         "byte_order=\"LittleEndian\">\n<Collection>\n";
+  for (const Frame& f : frames) {
+    for (int rank = 0; rank < ranks; ++rank) {
+      out << "<DataSet timestep=\"" << f.time_s << "\" part=\"" << rank << "\" file=\""
+          << particles_vtu_name(f.index, rank, ranks) << "\" step=\"" << f.step << "\" load=\""
+          << f.load_n << "\" displacement=\"" << f.displacement_m << "\"/>\n";
+    }
+  }
+  out << "</Collection>\n</VTKFile>\n";
+  write_atomically(path, out.str());
 }
 
 }  // namespace rockcal

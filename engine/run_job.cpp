@@ -42,6 +42,7 @@ nlohmann::json run_job(const JobSpec& spec, const fs::path& dir, const std::atom
   const bool root = rank == 0;
   if (root) fs::create_directories(dir);
   RunHooks hooks;
+  std::vector<Frame> frames;  // the VTK snapshots written, for their series
   hooks.comm = ranks > 1 ? comm : MPI_COMM_NULL;
   hooks.stop = stop;
   if (root) {
@@ -58,13 +59,10 @@ nlohmann::json run_job(const JobSpec& spec, const fs::path& dir, const std::atom
   if (spec.output.vtk) {
     if (root) fs::create_directories(dir / "vtk");
     if (ranks > 1) MPI_Barrier(comm);
-    hooks.on_frame = [&, rank, ranks](const Simulation& sim, int frame) {
-      char name[48];
-      if (ranks > 1)
-        std::snprintf(name, sizeof name, "particles_%04d_r%d.vtu", frame, rank);
-      else
-        std::snprintf(name, sizeof name, "particles_%04d.vtu", frame);
-      write_particles_vtu(dir / "vtk" / name, sim);
+    hooks.on_frame = [&, rank, ranks](const Simulation& sim, const Frame& frame) {
+      write_particles_vtu(dir / "vtk" / particles_vtu_name(frame.index, rank, ranks), sim, frame);
+      if (frame.index == 0) frames.clear();  // a rate study's next run writes its frames afresh
+      frames.push_back(frame);
     };
   }
 
@@ -83,7 +81,10 @@ nlohmann::json run_job(const JobSpec& spec, const fs::path& dir, const std::atom
 
   write_curve_csv(dir / "curve.csv", r.curve);
   write_breaks_csv(dir / "breaks.csv", r.breaks);
-  if (spec.output.vtk) write_breaks_vtu(dir / "vtk" / "breaks.vtu", r.breaks);
+  if (spec.output.vtk) {
+    write_breaks_vtu(dir / "vtk" / "breaks.vtu", r.breaks);
+    write_vtk_series(dir / "vtk" / "particles.pvd", frames, ranks);
+  }
   if (progress_on_stderr) {
     std::fprintf(stderr,
                  "[rockcal-dem] %s: peak load %.6g N, strength %.6g Pa, %lld particles, %lld of "

@@ -12,7 +12,10 @@ namespace rockcal::orch {
 struct CampaignStatus {
   std::string state;  // queued | running | succeeded | failed | cancelled
   db::StateCounts counts;
-  double fraction = 0;                // 0..1 of the jobs' work done
+  // 0..1 of the work done: of the jobs' (a sweep), or of the driver's own progress when its live
+  // summary states one (a calibration's evaluations of its budget, a diagnosis's phases), which
+  // never goes backwards as the driver adds jobs.
+  double fraction = 0;
   std::optional<double> eta_seconds;  // unknown until some job has run
 };
 

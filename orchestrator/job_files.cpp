@@ -1,5 +1,6 @@
 #include "orchestrator/job_files.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -30,6 +31,19 @@ fs::path prepare_job_dir(const fs::path& jobs_dir, const db::JobRow& job) {
   std::ofstream log(dir / "log", std::ios::app);
   log << "=== rockcal: attempt " << job.attempts << " of job " << job.id << " ===\n";
   return dir;
+}
+
+JobOutputs job_outputs(const fs::path& dir) {
+  JobOutputs out;
+  std::error_code ec;
+  out.breaks_csv = fs::is_regular_file(dir / "breaks.csv", ec);
+  for (const auto& entry : fs::directory_iterator(dir / "vtk", ec)) {
+    const fs::path name = entry.path().filename();
+    if (entry.is_regular_file() && (name.extension() == ".vtu" || name.extension() == ".pvd"))
+      out.vtk.push_back(name.string());
+  }
+  std::sort(out.vtk.begin(), out.vtk.end());
+  return out;
 }
 
 std::optional<std::string> read_text(const fs::path& file) {

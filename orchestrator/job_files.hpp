@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +34,15 @@ db::ResultRow read_result(const std::filesystem::path& dir, const db::JobRow& jo
 
 // The run's progress fraction (0..1) from progress.json, if it has written one.
 std::optional<double> read_progress(const std::filesystem::path& dir);
+
+// What a finished run left in its directory `dir` for a reader to download: breaks.csv, and the
+// VTK snapshots (vtk/: the series particles.pvd, particles_NNNN[_rK].vtu, breaks.vtu) by file
+// name, sorted.
+struct JobOutputs {
+  bool breaks_csv = false;
+  std::vector<std::string> vtk;
+};
+JobOutputs job_outputs(const std::filesystem::path& dir);
 
 // The last `max_lines` lines (at most `max_bytes`) of a text file; "" if it does not exist.
 std::string tail_file(const std::filesystem::path& file, std::size_t max_lines,

@@ -26,7 +26,13 @@ std::string sha256_hex(const std::string& data) {
 
 std::string identity_hash(const nlohmann::json& canonical_spec, const std::string& engine_version) {
   nlohmann::json identity = canonical_spec;
-  identity.erase("output");  // does not change results
+  // The output block changes no result, but a run asked for VTK snapshots must leave them: such a
+  // job is answered only by a run that wrote the same snapshots. Without VTK the block is left out
+  // (the identities of such jobs are what they always were).
+  const nlohmann::json output = identity.value("output", nlohmann::json::object());
+  identity.erase("output");
+  if (output.value("vtk", false))
+    identity["output"] = {{"vtk", true}, {"vtk_frames", output.value("vtk_frames", 0)}};
   // nlohmann::json objects keep keys sorted, so dump() is canonical for equal specs.
   return sha256_hex(identity.dump() + "\n" + engine_version);
 }

@@ -1,5 +1,5 @@
-// A job's identity: the hash of its canonical spec (output block removed) plus the engine version.
-// Equal hashes mean a stored result answers the job.
+// A job's identity: the hash of its canonical spec (output block removed, but for the VTK snapshots
+// it asks for) plus the engine version. Equal hashes mean a stored result answers the job.
 #pragma once
 
 #include <string>

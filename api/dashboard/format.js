@@ -67,3 +67,11 @@ export function pascals(x) {
   }
   return `${num(x)} Pa`;
 }
+
+// How a strength follows from its peak load, from a result's "strength_definition" (the engine's
+// one definition): "UCS = F / A", "BTS = k 2P / (π D t), k = 0.9131".
+export function strengthFormula(d) {
+  if (!d || typeof d.formula !== 'string') return '';
+  const text = `${d.name} = ${d.formula.replace('pi', 'π')}`;
+  return d.formula.startsWith('k ') ? `${text}, k = ${num(d.factor)}` : text;
+}

@@ -26,11 +26,6 @@ double btt_strength_factor(const LoadingSpec& loading) {
   return num * num / (8.0 * (c + s / a)) * a / s;
 }
 
-double btt_strength(const JobSpec& spec, double peak_load_n) {
-  return btt_strength_factor(spec.loading) * 2.0 * peak_load_n /
-         (M_PI * spec.sample.diameter_m * spec.sample.btt_thickness());
-}
-
 BttFracture btt_fracture(const JobSpec& spec, const std::vector<BreakEvent>& breaks,
                          std::int64_t from_step, std::int64_t peak_step) {
   const double radius = 0.5 * spec.sample.diameter_m;

@@ -16,9 +16,9 @@ Disc btt_disc(const JobSpec& spec);
 
 // Wang et al. (2004, IJRMMS 41:245) for a flattened disc of loading angle 2 alpha:
 // sigma_t = k 2P / (pi D t), k = (2 cos^3 a + cos a + sin a / a)^2 / (8 (cos a + sin a / a)) a /
-// sin a. 1 for the full disc (flat platens, curved jaws: the ISRM formula 2P / (pi D t)).
+// sin a. 1 for the full disc (flat platens, curved jaws: the ISRM formula 2P / (pi D t)). The
+// strength itself: loadtests/strength.hpp.
 double btt_strength_factor(const LoadingSpec& loading);
-double btt_strength(const JobSpec& spec, double peak_load_n);
 
 // ISRM jaws are wider than the contact they make (about 10 degrees of arc at failure); a face of
 // +-30 degrees about the loading axis, seen from the jaw's axis, never runs out of jaw.

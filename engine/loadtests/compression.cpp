@@ -3,6 +3,7 @@
 #include <functional>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "engine/confinement.hpp"
 #include "engine/effects/effect.hpp"
@@ -12,6 +13,7 @@
 #include "engine/loadtests/run_clock.hpp"
 #include "engine/loadtests/seating.hpp"
 #include "engine/loadtests/specimen.hpp"
+#include "engine/loadtests/strength.hpp"
 
 namespace rockcal {
 namespace {
@@ -115,6 +117,25 @@ std::string seat(Simulation& sim, const JobSpec& spec, RunClock& clock, std::int
   return "";
 }
 
+// The least-squares radial strain e of the particles in `reference` (by id, their positions then):
+// u_r = e r over their radial displacements u_r at radii r from the loading axis, summed over
+// ranks. Positive when they move outwards.
+double radial_strain(const Simulation& sim,
+                     const std::unordered_map<std::int64_t, Vec3>& reference) {
+  const Particles& p = sim.particles;
+  double sums[2] = {};  // sum u . r, sum r . r (in the x-y plane)
+  for (std::size_t k = 0; k < p.n_owned; ++k) {
+    const auto it = reference.find(p.id[k]);
+    if (it == reference.end()) continue;
+    const Vec3& x0 = it->second;
+    const Vec3 u = p.pos[k] - x0;
+    sums[0] += u.x() * x0.x() + u.y() * x0.y();
+    sums[1] += x0.x() * x0.x() + x0.y() * x0.y();
+  }
+  reduce_sum(sim.domain, sums, 2);
+  return sums[1] > 0 ? sums[0] / sums[1] : 0.0;
+}
+
 }  // namespace
 
 void tally_breaks(const JobSpec& spec, TestResult& r) {
@@ -160,7 +181,8 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   double load = 0.0, closure = 0.0;  // closure counts from the seated state
   double seat_closure = 0.0;
   int frame = 0;
-  if (hooks.on_frame) hooks.on_frame(sim, frame++);
+  auto snapshot = [&] { hooks.on_frame(sim, Frame{frame++, sim.step, sim.time, load, closure}); };
+  if (hooks.on_frame) snapshot();
 
   auto progress = [&](double elapsed) {
     double f =
@@ -184,8 +206,22 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   r.seating.closure_m = seat_closure;
   peak.start(sim.broken_total);
   load = 0.5 * (top.reaction.z() - bottom.reaction.z());
+  // Lateral strain (UCT, triaxial): the mid-height third's radial strain since the seated state,
+  // compression positive like the axial strain. Every rank measures at the same curve points (the
+  // closure is global); under decomposition a particle that changes rank leaves the fit.
+  const bool lateral = spec.test != TestKind::btt && r.stop_reason.empty();
+  std::unordered_map<std::int64_t, Vec3> band;  // by id: local indices change at rebuilds
+  for (std::size_t k = 0; lateral && k < sim.particles.n_owned; ++k) {
+    if (std::abs(sim.particles.pos[k].z()) <= spec.sample.height_m / 6.0)
+      band.emplace(sim.particles.id[k], sim.particles.pos[k]);
+  }
+  auto lateral_strain = [&]() -> std::optional<double> {
+    if (!lateral) return std::nullopt;
+    const double strain = radial_strain(sim, band);
+    return strain == 0.0 ? 0.0 : -strain;  // 0, not -0, at the start
+  };
   if (r.stop_reason.empty()) {
-    r.curve.push_back({sim.step, sim.time, 0.0, load, sim.broken_total});
+    r.curve.push_back({sim.step, sim.time, 0.0, load, sim.broken_total, lateral_strain()});
     next_curve = curve_spacing;
   }
 
@@ -209,11 +245,11 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     const bool failed =
         peak.update(load, closure, sim.step, sim.broken_total) && !schedule.changing(t);
     if (closure >= next_curve) {
-      r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
+      r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total, lateral_strain()});
       next_curve = closure + curve_spacing;
     }
     if (hooks.on_frame && closure >= next_frame) {
-      hooks.on_frame(sim, frame++);
+      snapshot();
       next_frame = closure + frame_spacing;
     }
     clock.maybe_report(progress);
@@ -230,8 +266,8 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     sim.stop_local = clock.stop_requested();  // decided together after the next step
   }
   if (r.curve.empty() || r.curve.back().step != sim.step)
-    r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total});
-  if (hooks.on_frame) hooks.on_frame(sim, frame++);
+    r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total, lateral_strain()});
+  if (hooks.on_frame) snapshot();
   clock.maybe_report(progress, true);
 
   r.peak_reached = r.stop_reason == "post_peak";
@@ -240,16 +276,11 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   r.peak_step = peak.peak_step;
   r.broken_at_peak = peak.broken_at_peak;
   if (!r.peak_reached) r.no_peak_reason = peak.no_peak_reason(r.stop_reason);
-  const double d = spec.sample.diameter_m;
-  if (spec.test == TestKind::btt) {
-    r.strength_pa = btt_strength(spec, r.peak_load_n);
-  } else {
-    const double area = 0.25 * M_PI * d * d;
-    r.strength_pa = r.peak_load_n / area;
-    if (r.peak_reached) {
-      r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
-      r.peak_strain = r.peak_displacement_m / length;
-    }
+  r.strength_pa = strength_pa(spec, r.peak_load_n);
+  if (spec.test != TestKind::btt && r.peak_reached) {
+    const double area = axial_area_m2(spec.sample.diameter_m);  // the strength's cross-section
+    r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
+    r.peak_strain = r.peak_displacement_m / length;
   }
   r.steps = sim.step;
   r.broken_bonds = sim.broken_total;

@@ -25,6 +25,9 @@ struct CurvePoint {
   double displacement_m;  // platen closure
   double load_n;
   std::int64_t broken_bonds;
+  // UCT and triaxial, from the seated state on: the mid-height third's lateral strain,
+  // compression positive like the axial strain (expansion negative).
+  std::optional<double> lateral_strain = std::nullopt;
 };
 
 // Peak load against platen speed, extrapolated to zero speed (rate study).
@@ -50,7 +53,7 @@ struct TestResult {
   bool peak_reached = false;
   std::string no_peak_reason;
   double peak_load_n = 0.0;
-  double strength_pa = 0.0;                 // UCS = F/A or BTS = 2P/(pi D t); elastic: 0
+  double strength_pa = 0.0;                 // loadtests/strength.hpp; elastic: 0
   double confining_pressure_pa = 0.0;       // triaxial: the lateral pressure; others 0
   std::optional<double> youngs_modulus_pa;  // UCT pre-peak slope, or elastic test
   std::optional<double> poisson_ratio;      // elastic test
@@ -83,12 +86,21 @@ struct Progress {
   double elapsed_s;
 };
 
+// One VTK snapshot: its number and the loading state it shows.
+struct Frame {
+  int index = 0;
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  double load_n = 0.0;
+  double displacement_m = 0.0;  // platen closure from the seated state
+};
+
 // Hooks a run calls; all optional. `stop` is polled each step (set by a signal handler). With a
 // communicator of several ranks the run is decomposed; progress and frames are then per rank.
 struct RunHooks {
   MPI_Comm comm = MPI_COMM_NULL;
   std::function<void(const Progress&)> on_progress;
-  std::function<void(const Simulation&, int frame)> on_frame;  // VTK snapshots
+  std::function<void(const Simulation&, const Frame&)> on_frame;  // VTK snapshots
   const std::atomic<bool>* stop = nullptr;
 };
 

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <vector>
 
 #include "orchestrator/calibration/campaign.hpp"
 #include "orchestrator/calibration/driver.hpp"
 #include "orchestrator/calibration/pool_evaluator.hpp"
+#include "orchestrator/calibration/progress.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/request_error.hpp"
 
@@ -27,17 +29,18 @@ class Pace {
 
   // Per evaluation over the latest kWindow timed ones: the start batch runs its points side by
   // side, the search after it one by one, so the pace of the start would promise too much.
-  nlohmann::json to_json() const {
-    nlohmann::json per = nullptr;
+  std::optional<double> seconds_per_evaluation() const {
     const int n = int(times_.size());
-    if (n > kWindow) {
-      per = seconds(times_.back() - times_[n - 1 - kWindow]) / kWindow;
-    } else if (n > 0) {
-      per = seconds(times_.back() - start_) / n;
-    }
+    if (n > kWindow) return seconds(times_.back() - times_[n - 1 - kWindow]) / kWindow;
+    if (n > 0) return seconds(times_.back() - start_) / n;
+    return std::nullopt;
+  }
+
+  nlohmann::json to_json() const {
+    const auto per = seconds_per_evaluation();
     return {{"wall_seconds", seconds(Clock::now() - start_)},
-            {"evaluations_timed", n},
-            {"seconds_per_evaluation", per}};
+            {"evaluations_timed", int(times_.size())},
+            {"seconds_per_evaluation", per ? nlohmann::json(*per) : nlohmann::json(nullptr)}};
   }
 
  private:
@@ -61,12 +64,6 @@ class Pace {
   std::vector<Clock::time_point> times_;  // when each timed evaluation ended
 };
 
-// The packings the best point is re-run on once the search has ended (its own seed is not).
-int scatter_runs(const CalibrationCampaign& c) {
-  return int(std::count_if(c.scatter_seeds.begin(), c.scatter_seeds.end(),
-                           [&](std::uint64_t s) { return s != c.sample_seed; }));
-}
-
 }  // namespace
 
 orch::CampaignKind calibration_kind() {
@@ -88,8 +85,10 @@ orch::CampaignKind calibration_kind() {
     std::vector<EvaluationRecord> history;
     auto publish = [&] {
       nlohmann::json live = progress_json(history, c);
-      live["scatter_runs"] = scatter_runs(c);
+      live["scatter_runs"] = seed_reruns(c);
       live["pace"] = pace.to_json();
+      live["progress"] =
+          progress_model_json(history.size(), c, pace.seconds_per_evaluation(), false);
       ctx.service.store().set_driver_status(ctx.campaign_id, "running", live.dump());
     };
     publish();
@@ -101,6 +100,8 @@ orch::CampaignKind calibration_kind() {
     nlohmann::json report = to_json(
         run_calibration(c, evaluator, {ctx.stop, on_evaluation, ctx.service.config().workers}), c);
     report["pace"] = pace.to_json();
+    report["progress"] =
+        progress_model_json(report["evaluations"].get<std::size_t>(), c, std::nullopt, true);
     return report;
   };
   return kind;

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "engine/effects/effect.hpp"
+#include "engine/loadtests/brazilian.hpp"
 #include "engine/spec.hpp"
 #include "orchestrator/calibration/algorithms.hpp"
 #include "orchestrator/calibration/lab_case.hpp"
@@ -53,6 +54,11 @@ Targets parse_targets(orch::JsonFields& root, const JobSpec& model,
   }
   t.reject_unknown();
   return resolve_targets(uct, btt, model_specimen, lab);
+}
+
+Specimen model_specimen_of(const JobSpec& model) {
+  return {model.sample.diameter_m, model.sample.height_m, model.sample.btt_thickness(),
+          btt_strength_factor(model.loading)};
 }
 
 // The template through the engine's own validation, for both tests; the bond block is the
@@ -221,13 +227,11 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   const json& job_template = root.require("job");
   const JobSpec model = validate_template(job_template, c.fr0_n, c.fs0_n);
   c.job_template = job_template;  // copied once the engine has validated it
-  c.model_specimen = {model.sample.diameter_m, model.sample.height_m, model.sample.btt_thickness()};
+  c.model_specimen = model_specimen_of(model);
   c.sample_seed = model.sample.seed;
   // Lab targets map to the fine specimen's model when there is one: its loads are the answer.
   const std::optional<JobSpec> fine = parse_fidelity(root, c);
-  c.targets = fine ? parse_targets(root, *fine,
-                                   {fine->sample.diameter_m, fine->sample.height_m,
-                                    fine->sample.btt_thickness()})
+  c.targets = fine ? parse_targets(root, *fine, model_specimen_of(*fine))
                    : parse_targets(root, model, c.model_specimen);
   c.max_evaluations = int(root.integer("max_evaluations", 4, 10'000).value_or(c.max_evaluations));
   c.tolerance = root.positive("tolerance").value_or(c.tolerance);

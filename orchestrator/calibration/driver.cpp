@@ -141,6 +141,59 @@ bool judge_fine(CalibrationReport& r, const CalibrationCampaign& c) {
   return true;
 }
 
+// The bounds the best point sits on (within 1% of the search's log range), each with its fix: the
+// targets want strengths beyond it. Empty when it is inside.
+std::string bounds_hit_text(const BondPoint& p, const CalibrationCampaign& c) {
+  std::string out;
+  auto check = [&out](const char* name, const char* field, double x, const Range& range) {
+    const double slack = 0.01 * std::log(range.hi / range.lo);
+    const bool lower = std::log(x / range.lo) <= slack;
+    if (!lower && std::log(range.hi / x) > slack) return;
+    out += (out.empty() ? "" : "; ") + std::string(name) + sentence(" = %.4g N lies on its ", x) +
+           (lower ? "lower" : "upper") +
+           sentence(" bound %.4g (widen ", lower ? range.lo : range.hi) + field +
+           (lower ? sentence(" below %.4g)", range.lo) : sentence(" above %.4g)", range.hi));
+  };
+  check("F_r0", "\"bounds.fr0\"", p.fr0_n, c.fr0_n);
+  check("F_s0", "\"bounds.fs0\"", p.fs0_n, c.fs0_n);
+  return out;
+}
+
+// The search's runs that ended without a peak (failed jobs "no peak: ..."; their largest load is
+// no result), by the limit that ended them, with the fix. Empty when every run reached one.
+std::string no_peak_text(const std::vector<EvaluationRecord>& history) {
+  int runs = 0, no_peak = 0, at_strain = 0, at_steps = 0;
+  auto count = [&](const std::string& error) {
+    ++runs;
+    if (error.rfind("no peak", 0) != 0 && error.find(": no peak") == std::string::npos) return;
+    ++no_peak;
+    at_strain += error.find("loading.max_strain") != std::string::npos ? 1 : 0;
+    at_steps += error.find("loading.max_steps") != std::string::npos ? 1 : 0;
+  };
+  for (const EvaluationRecord& e : history) {
+    if (!e.uct || !e.btt) {  // an evaluator without realisations: a UCT and a BTT run, the
+      runs += 1;             // error naming the one that failed
+      count(e.error);
+      continue;
+    }
+    for (const orch::Ensemble* test : {&*e.uct, &*e.btt})
+      for (const orch::Realisation& x : test->realisations) count(x.error);
+  }
+  if (no_peak == 0) return "";
+  std::string out =
+      sentence("%.0f of %.0f runs ended without a peak and count as failed", no_peak, runs);
+  if (at_strain > 0)
+    out += sentence(
+        " (%.0f at loading.max_strain: raise it in the job template so that they "
+        "reach one",
+        at_strain);
+  if (at_steps > 0)
+    out +=
+        (at_strain > 0 ? "; " : " (") + sentence("%.0f at loading.max_steps: raise it", at_steps);
+  if (at_strain + at_steps > 0) out += ")";
+  return out;
+}
+
 void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   blur_by_scatter(r, c);
   if (!r.best) {
@@ -163,11 +216,22 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
     return;
   }
   r.verdict = Verdict::compromise;
+  const std::string bounds = bounds_hit_text(r.best->point, c);
+  const std::string no_peak = no_peak_text(r.history);
   if (r.ratio && !r.ratio->target_inside()) {
     r.verdict_reason = sentence(
         "the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] the model reached: "
         "both loads cannot be met; best is the weighted log-misfit compromise",
         r.ratio->target, r.ratio->min, r.ratio->max);
+    if (!bounds.empty())
+      r.verdict_reason += "; the best point lies on the search's bounds: " + bounds;
+  } else if (!bounds.empty()) {
+    // Not the budget: the search went as far as the bounds let it.
+    r.verdict_reason = sentence(
+                           "the loads are not both within %.3g%%: the best point lies on the "
+                           "search's bounds: ",
+                           100 * c.tolerance) +
+                       bounds;
   } else if (r.stop_reason == StopReason::budget_exhausted) {
     r.verdict_reason =
         sentence("the budget of %.0f evaluations ran out before both loads were within %.3g%%",
@@ -178,6 +242,7 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
         "the targets are barely reachable)",
         100 * c.tolerance);
   }
+  if (!no_peak.empty()) r.verdict_reason += "; " + no_peak;
 }
 
 }  // namespace

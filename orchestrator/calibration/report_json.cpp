@@ -138,6 +138,14 @@ json targets_json(const CalibrationCampaign& c) {
   return j;
 }
 
+// How each strength in the report follows from its load: on the model specimen (the engine's own
+// definition, the same as its jobs' results) and, with lab targets, on the lab's.
+json definitions_json(const CalibrationCampaign& c) {
+  json j = {{"model", strength_definitions_json(c.model_specimen)}};
+  if (c.targets.lab) j["lab"] = strength_definitions_json(c.targets.lab->specimen);
+  return j;
+}
+
 json history_json(const std::vector<EvaluationRecord>& history) {
   json rows = json::array();
   double best_so_far = INFINITY;
@@ -303,6 +311,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"max_evaluations", c.max_evaluations},
             {"consistency_evaluations", c.consistency_evaluations},
             {"targets", targets_json(c)},
+            {"strength_definitions", definitions_json(c)},
             {"best", r.best ? best_json(*r.best, c) : json(nullptr)},
             {"history", history_json(r.history)},
             {"scatter", scatter_json(r.scatter)},

@@ -1,31 +1,25 @@
 #include "orchestrator/calibration/specimen.hpp"
 
-#include <cmath>
+#include "engine/loadtests/strength.hpp"
 
 namespace rockcal::calibration {
-namespace {
-
-double uct_area_m2(const Specimen& s) {
-  return M_PI * 0.25 * s.diameter_m * s.diameter_m;
-}
-// P = BTS * (pi D t / 2): the "area" that turns the Brazilian load into the tensile strength.
-double btt_area_m2(const Specimen& s) {
-  return 0.5 * M_PI * s.diameter_m * s.thickness_m;
-}
-
-}  // namespace
 
 double uct_strength_pa(double load_n, const Specimen& s) {
-  return load_n / uct_area_m2(s);
+  return axial_strength_pa(load_n, s.diameter_m);
 }
 double uct_load_n(double strength_pa, const Specimen& s) {
-  return strength_pa * uct_area_m2(s);
+  return axial_load_n(strength_pa, s.diameter_m);
 }
 double btt_strength_pa(double load_n, const Specimen& s) {
-  return load_n / btt_area_m2(s);
+  return bts_pa(load_n, s.diameter_m, s.thickness_m, s.btt_factor);
 }
 double btt_load_n(double strength_pa, const Specimen& s) {
-  return strength_pa * btt_area_m2(s);
+  return bts_load_n(strength_pa, s.diameter_m, s.thickness_m, s.btt_factor);
+}
+
+nlohmann::json strength_definitions_json(const Specimen& s) {
+  return {{"uct", to_json(axial_strength_definition(TestKind::uct))},
+          {"btt", to_json(bts_definition(s.btt_factor))}};
 }
 
 }  // namespace rockcal::calibration

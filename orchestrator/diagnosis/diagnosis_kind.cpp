@@ -41,7 +41,11 @@ orch::CampaignKind diagnosis_kind() {
     DiagnosisOptions options;
     options.stop = ctx.stop;
     // While it runs, the summary says which phase it is in; the report replaces it at the end.
-    options.on_progress = [&](const nlohmann::json& progress) {
+    // With the jobs done before the phase began, the campaign's progress counts the phase's own
+    // (orchestrator/campaign_status.hpp).
+    options.on_progress = [&](nlohmann::json progress) {
+      const db::StateCounts done = ctx.service.store().counts(ctx.campaign_id);
+      progress["jobs_done_before"] = done.succeeded + done.failed + done.cancelled;
       ctx.service.store().set_driver_status(ctx.campaign_id, "running", progress.dump());
     };
     return to_json(run_diagnosis(c, evaluator, options), c);

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/sentence.hpp"
 #include "synthetic.hpp"
 
 namespace rockcal::calibration {
@@ -117,6 +118,37 @@ TEST(Driver, UnreachableRatioGivesCompromiseWithRatioRange) {
   EXPECT_NEAR(e.uct, -e.btt, 0.05);
   std::printf("unreachable ratio: %zu evaluations, ratio range [%g, %g]\n", r.history.size(),
               r.ratio->min, r.ratio->max);
+}
+
+TEST(Driver, ABestPointOnTheBoundsNamesTheBoundsAndTheRunsWithoutAPeakWithTheirFixes) {
+  // The truth (3000, 3000) lies beyond the bounds [1, 1000] at a reachable ratio: the search ends
+  // on the upper bounds, with a fifth of its points failing as runs without a peak.
+  const CalibrationCampaign c = testing::campaign(
+      testing::power_law({3000, 3000}), {{"consistency_evaluations", 0}, {"suggest", false}});
+  ModelEvaluator evaluator(testing::power_law);
+  evaluator.failure_rate = 0.2;
+  evaluator.failure_error =
+      "no peak: the load did not fall past a peak with bonds breaking before loading.max_strain";
+  const CalibrationReport r = run_calibration(c, evaluator);
+  ASSERT_TRUE(r.best.has_value());
+  EXPECT_EQ(r.verdict, Verdict::compromise);
+  int failed = 0;
+  for (const EvaluationRecord& e : r.history) failed += e.loads ? 0 : 1;
+  ASSERT_GT(failed, 0);
+  // Each failed point is a UCT and a BTT run without a peak.
+  EXPECT_EQ(r.verdict_reason,
+            sentence("the loads are not both within 2%%: the best point lies on the search's "
+                     "bounds: F_r0 = %.4g N lies on its upper bound 1000 (widen \"bounds.fr0\" "
+                     "above 1000); ",
+                     r.best->point.fr0_n) +
+                sentence("F_s0 = %.4g N lies on its upper bound 1000 (widen \"bounds.fs0\" above "
+                         "1000); ",
+                         r.best->point.fs0_n) +
+                sentence("%.0f of %.0f runs ended without a peak and count as failed (%.0f at "
+                         "loading.max_strain: raise it in the job template so that they reach "
+                         "one)",
+                         2 * failed, 2 * double(r.history.size()), 2 * failed));
+  EXPECT_EQ(r.verdict_reason.find("budget"), std::string::npos);
 }
 
 TEST(Driver, BudgetIsRespected) {

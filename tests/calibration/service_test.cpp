@@ -132,7 +132,7 @@ TEST_F(ServiceCalibration, RunsToAFeasibleReport) {
   EXPECT_NE(text.find("\n  UCT "), std::string::npos) << text;
   EXPECT_NE(text.find("\n  BTT "), std::string::npos) << text;
   EXPECT_NE(text.find("\nevaluations: " + report["evaluations"].dump() +
-                      " of 64 (budget: search 40, valley trace 24), stopped: "),
+                      " of 64 (search 40, valley trace 24), stopped: "),
             std::string::npos)
       << text;
 }
@@ -166,6 +166,8 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   EXPECT_EQ(progress["max_evaluations"], 40);
   EXPECT_EQ(progress["scatter_runs"], 0);
   EXPECT_GT(progress["pace"]["seconds_per_evaluation"].get<double>(), 0.0);
+  EXPECT_EQ(progress["progress"]["done"], progress["evaluations"]);
+  EXPECT_EQ(progress["progress"]["budget"], 64);
   const json campaign = {{"id", id},
                          {"kind", "calibration"},
                          {"state", "running"},
@@ -174,7 +176,7 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   const std::string line = api::progress_line(campaign);
   EXPECT_EQ(
       line.rfind("campaign " + std::to_string(id) + " running: " + progress["evaluations"].dump() +
-                     " of 64 evaluations done, best misfit ",  // 40 + 24 for the trace
+                     " of 64 evaluations done (search 40, valley trace 24), best misfit ",
                  0),
       0u)
       << line;

@@ -36,7 +36,7 @@ EvaluationOutcome ModelEvaluator::evaluate(const EvaluationRequest& r) const {
   std::vector<orch::Realisation> uct, btt;
   for (std::uint64_t seed : orch::realisation_seeds(r.sample_seed, r.realisations)) {
     if (failure_rate > 0 && 0.5 * (hash_unit(r.point, seed, 7) + 1.0) < failure_rate) {
-      uct.push_back({seed, 0, "failed", {}, {}, {}, "synthetic failure"});
+      uct.push_back({seed, 0, "failed", {}, {}, {}, failure_error});
       btt.push_back(uct.back());
       continue;
     }

@@ -43,6 +43,7 @@ struct ModelEvaluator : Evaluator {
   Model model;
   double noise = 0.0;         // relative amplitude, varies with point and seed
   double failure_rate = 0.0;  // share of points that fail, chosen by hash
+  std::string failure_error = "synthetic failure";  // the failed runs' error
   std::atomic<int> requests{0};
   std::vector<EvaluationRequest> log;  // every request, in order
 

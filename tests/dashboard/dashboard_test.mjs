@@ -5,7 +5,7 @@
 // campaign from the page (a refused one first, then without and with the bearer token) and
 // cancels it there, and saves screenshots under the build directory.
 import assert from 'node:assert/strict';
-import {spawn} from 'node:child_process';
+import {spawn, spawnSync} from 'node:child_process';
 import fs from 'node:fs';
 import {createRequire} from 'node:module';
 import path from 'node:path';
@@ -36,6 +36,11 @@ const calibration = (name, maxEvaluations, tolerance) => ({kind: 'calibration', 
   job: {...JOB, effects: {heterogeneity: {weibull_m: 4}}},
   targets: {uct: {peak_load: 2000}, btt: {peak_load: 1000}},
   bounds: {fr0: [16, 1024], fs0: [16, 1024]}, max_evaluations: maxEvaluations, tolerance, seeds: [2, 3]});
+// Targets twice the tiny model's loads at the corner (F_r0 64 N, F_s0 128 N) of its bounds: the
+// search ends on the bounds, and the verdict must say which one and how to widen it.
+const BOUND = {kind: 'calibration', name: 'browser test calibration on its bounds', job: JOB,
+  targets: {uct: {peak_load: 11200}, btt: {peak_load: 1000}}, bounds: {fr0: [16, 64], fs0: [16, 128]},
+  max_evaluations: 6, tolerance: 0.02, consistency_evaluations: 0, suggest: false};
 // The one the page submits and cancels: a global search (DIRECT-L) with an unreachable tolerance
 // and a budget it cannot spend before the test cancels it.
 const LIVE = {...calibration('live calibration from the page', 1000, 1e-6), strategy: 'direct_2d', algorithm: 'direct_l'};
@@ -63,7 +68,7 @@ async function api(method, url, body) {
     body: body === undefined ? undefined : JSON.stringify(body)});
   const text = await r.text();
   if (!r.ok) throw new Error(`${method} ${url}: ${r.status} ${text}`);
-  return url.endsWith('/curve') ? text : JSON.parse(text);
+  return url.endsWith('/curve') || url.endsWith('/breaks') ? text : JSON.parse(text);
 }
 
 async function until(what, check, seconds) {
@@ -146,6 +151,7 @@ before(async () => {
   ids.sweep = (await api('POST', '/api/v1/campaigns', SWEEP)).id;
   ids.calibration = (await api('POST', '/api/v1/campaigns', calibration('browser test calibration', 10, 0.02))).id;
   ids.diagnosis = (await api('POST', '/api/v1/campaigns', DIAGNOSIS)).id;
+  ids.bound = (await api('POST', '/api/v1/campaigns', BOUND)).id;
   // Debian's chromium on a fresh profile (playwright passes the directory as --user-data-dir).
   browser = await chromium.launchPersistentContext(path.join(run, 'chromium-profile'), {
     executablePath: '/usr/bin/chromium', headless: true, deviceScaleFactor: 1,
@@ -257,6 +263,37 @@ test('a sweep: heat maps of both peak loads and their ratio, with the targets\' 
   assert.match(await page.locator('dl.facts').nth(1).innerText(), new RegExp(`peak load\\s+${num(job.result.peak_load / 1e3)} kN`));
   assert.match(await page.locator('dl.facts').nth(1).innerText(), new RegExp(`particles, bonds\\s+${job.result.particles}, ${job.result.bonds}`));
   assert.ok((await page.locator('pre.log').innerText()).length > 0);
+  // The strength as the engine defined it, and the table in model units (a sweep has no lab case).
+  assert.match(await page.locator('dl.facts').nth(1).innerText(), /strength\s+.* \(model units; UCS = F \/ A\)/);
+  assert.match(await page.locator('section', {hasText: 'Strength and stiffness (model units)'}).locator('table').innerText(),
+    /UCS \(UCS = F \/ A\)/);
+  // Stress against strain: every point of the curve.
+  const stressStrain = page.locator('figure.plot', {hasText: 'UCT stress against strain'});
+  assert.equal(await stressStrain.locator('svg.chart').getAttribute('data-points'), String(curveRows));
+  // ... with the lateral and volumetric strains the UCT measures, every point too.
+  for (const name of ['lateral', 'volumetric']) {
+    assert.equal(await stressStrain.locator(`g.series[data-series="${name}"]`).getAttribute('data-points'), String(curveRows), name);
+  }
+  // The fracture: every broken bond of breaks.csv at the end, by mode, and those up to the peak's
+  // step at the peak (when the run reached one).
+  const breaks = (await api('GET', `/api/v1/jobs/${jobId}/breaks`)).trim().split('\n').slice(1).map((l) => l.split(','));
+  assert.ok(breaks.length > 0, 'the job broke bonds');
+  const fracture = page.locator('figure.specimen-map');
+  const atPeak = breaks.filter((b) => Number(b[0]) <= job.result.peak_step);
+  assert.equal(await fracture.count(), job.result.peak_reached ? 2 : 1);
+  const atEnd = fracture.nth(job.result.peak_reached ? 1 : 0);
+  assert.equal(await atEnd.locator('svg.chart').getAttribute('data-points'), String(breaks.length));
+  if (job.result.peak_reached) assert.equal(await fracture.nth(0).locator('svg.chart').getAttribute('data-points'), String(atPeak.length));
+  for (const mode of ['tension', 'shear', 'twist', 'bending']) {
+    assert.equal(await atEnd.locator(`g.series[data-series="${mode}"]`).getAttribute('data-points'),
+      String(breaks.filter((b) => b[4] === mode).length), mode);
+  }
+  assert.ok(await atEnd.locator('.specimen-outline').count() === 1);
+  // Download links: the curve and breaks.csv of the run (no VTK was asked for).
+  assert.equal(await page.locator('a[download="breaks.csv"]').getAttribute('href'), `/api/v1/jobs/${jobId}/breaks`);
+  assert.equal(await page.locator('a[download="curve.csv"]').getAttribute('href'), `/api/v1/jobs/${jobId}/curve`);
+  await fracture.nth(0).scrollIntoViewIfNeeded();
+  await shot(page, '03b-job-fracture');
   // The curve's crosshair follows the arrow keys.
   await plots.nth(0).locator('[role="slider"]').focus();
   await page.keyboard.press('End');
@@ -278,6 +315,17 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
   await page.locator('.verdict').first().waitFor();
   assert.match(await page.locator('.verdict').first().innerText(), new RegExp(`Verdict: ${s.verdict}`));
   assert.match(await page.locator('.best-point').innerText(), new RegExp(`F_r0 = ${num(s.best.fr0)} N, F_s0 = ${num(s.best.fs0)} N`));
+  // One count of evaluations: the page and `rockcal status` show the report's progress model.
+  const m = s.progress;
+  assert.equal(m.done, s.evaluations);
+  assert.equal(m.budget, 10 + 24);
+  const count = `${m.done} of ${m.budget}`;
+  const parts = '(search 10, valley trace 24; +2 seed re-runs)';
+  assert.ok((await page.locator('.verdict + p').first().innerText()).includes(`${count} evaluations ${parts}`));
+  const cli = spawnSync(rockcal, ['status', String(ids.calibration)], {encoding: 'utf8',
+    env: {...process.env, ROCKCAL_SERVER: base, ROCKCAL_TOKEN: TOKEN}});
+  assert.equal(cli.status, 0, cli.stderr);
+  assert.ok(cli.stdout.includes(`evaluations: ${count} ${parts}`), cli.stdout);
   const fig = (title) => page.locator('figure.plot').filter({has: page.locator('figcaption strong', {hasText: title})});
   const ok = s.history.filter((r) => r.ok);
   await fig('Packing-seed scatter').waitFor();
@@ -337,6 +385,27 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
   await consistent.screenshot({path: path.join(shots, '05b-calibration-consistent-set.png')});
   log('screenshot', path.join(shots, '05b-calibration-consistent-set.png'));
   assert.deepEqual(page.problems.concat(phone.problems), []);
+});
+
+test('a calibration that ends on its bounds: the verdict names the bound and the fix', async () => {
+  const c = await until('the calibration on its bounds to finish', async () => {
+    const x = await api('GET', `/api/v1/campaigns/${ids.bound}`);
+    return finished(x) && x;
+  }, 300);
+  const s = c.summary;
+  assert.equal(s.verdict, 'compromise', s.verdict_reason);
+  const named = s.verdict_reason.match(/F_(r|s)0 = [^ ]+ N lies on its upper bound (64|128) \(widen "bounds\.f(r|s)0" above (64|128)\)/);
+  assert.ok(named, s.verdict_reason);
+  assert.doesNotMatch(s.verdict_reason, /budget/);
+  const page = await newPage();
+  await page.goto(`${base}/campaigns/${ids.bound}`);
+  const verdict = page.locator('.verdict').first();
+  await verdict.waitFor();
+  assert.ok((await verdict.innerText()).includes(named[0]), await verdict.innerText());
+  // Model-unit targets: the consistent set speaks of target loads, not lab loads.
+  assert.doesNotMatch(await page.locator('main').innerText(), /lab loads/);
+  await shot(page, '05d-calibration-on-bounds');
+  assert.deepEqual(page.problems, []);
 });
 
 test('a diagnosis: verdict and confidence, residuals before and after, candidate scores', async () => {
@@ -419,7 +488,7 @@ test('submitting from the page: the server\'s field error, the token, a live cal
   await until('two evaluations on the page', async () => (await conv.count()) > 0 && (await points()) >= 2, 120);
   const seen = await points();
   await until('a later evaluation on the page', async () => (await points()) > seen, 60);
-  assert.match(await page.locator('.verdict').first().innerText(), /Running: \d+ of 1000 evaluations/);
+  assert.match(await page.locator('.verdict').first().innerText(), /Running: \d+ of 1024 evaluations \(search 1000, valley trace 24; \+2 seed re-runs\)/);
   const state = await api('GET', `/api/v1/campaigns/${id}`);
   assert.equal(state.state, 'running');
   await shot(page, '09-calibration-running');

@@ -191,7 +191,9 @@ TEST_F(Api, SweepLifecycleOverHttp) {
   EXPECT_EQ(csv->get_header_value("Content-Type"), "text/csv");
   EXPECT_EQ(std::count(csv->body.begin(), csv->body.end(), '\n'), 5);
   EXPECT_EQ(csv->body.rfind(
-                "fr0,fs0,test,peak_load,strength,youngs_modulus,particles,wall_seconds,state", 0),
+                "fr0_n,fs0_n,test,peak_load_n,strength_pa,youngs_modulus_pa,particles,wall_seconds,"
+                "state",
+                0),
             0u);
 
   std::int64_t job_id = results["results"][0]["job_id"];

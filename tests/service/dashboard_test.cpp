@@ -162,6 +162,7 @@ TEST_F(Dashboard, TheExamplesIndexListsTheCampaignExamples) {
   }
   EXPECT_TRUE(files.count("examples/calibrate_seed_lab.json"));
   EXPECT_TRUE(files.count("examples/diagnose_seed_lab.json"));
+  EXPECT_TRUE(files.count("examples/sweep_small.json"));
   EXPECT_FALSE(files.count("examples/uct_small.json"));  // a job spec, not a campaign
 }
 

@@ -148,6 +148,11 @@ TEST_F(Ensembles, ARunWithoutAPeakIsAFailedJobWhoseResultStaysReadable) {
   auto curve = c.Get(job + "/curve");
   ASSERT_TRUE(curve);
   EXPECT_EQ(curve->status, 200);
+  // The CSV row: no values, and why in the error column (quoted: the reason has commas).
+  auto csv = c.Get("/api/v1/campaigns/" + std::to_string(id) + "/results?format=csv");
+  ASSERT_TRUE(csv);
+  EXPECT_EQ(csv->body.substr(csv->body.find('\n') + 1),
+            "61,60,uct,,,,,,failed," + row["job_id"].dump() + ",1,\"" + kNoPeak + "\"\n");
   const json stored = get_json(c, "/api/v1/results?fr0_min=61&fr0_max=61");
   ASSERT_EQ(stored["results"].size(), 1u);
   EXPECT_EQ(stored["results"][0]["no_peak"],

@@ -316,12 +316,12 @@ TEST(ResultsText, OneRowPerPointWithMeanStandardErrorAndTheRunsLeftOut) {
      "realisations": [{"seed": 1, "job_id": 7, "error": null},
                       {"seed": 2, "job_id": 8, "error": "no peak: no bond broke\nlog line"}]}]})");
   EXPECT_EQ(results_text(body),
-            "test            fr0        fs0   n failed  peak_load (mean ± se)   strength           "
-            "     youngs_modulus\n"
-            "uct              50         60   5      0  52 ± 0.707              64 ± 1.41          "
-            "     1020 ± 7.07\n"
-            "btt              67         60   1      1  67                      60                 "
-            "     -\n"
+            "test        fr0 (N)    fs0 (N)   n failed  peak_load (N, mean ± se)  "
+            "strength (Pa, mean ± se)  youngs_modulus (Pa, mean ± se)\n"
+            "uct              50         60   5      0  52 ± 0.707                "
+            "64 ± 1.41                 1020 ± 7.07\n"
+            "btt              67         60   1      1  67                        "
+            "60                        -\n"
             "runs without values (left out of the statistics):\n"
             "  btt 67/60 seed 2 (job 8): no peak: no bond broke\n");
 }

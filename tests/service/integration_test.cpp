@@ -76,8 +76,8 @@ TEST(Acceptance, TwoByTwoSweepOfUctAndBttOverHttpWithRealEngine) {
   std::string header, line;
   std::getline(lines, header);
   EXPECT_EQ(header,
-            "fr0,fs0,test,peak_load,strength,youngs_modulus,particles,wall_seconds,state,job_id,"
-            "seed");
+            "fr0_n,fs0_n,test,peak_load_n,strength_pa,youngs_modulus_pa,particles,wall_seconds,"
+            "state,job_id,seed,error");
   int rows = 0;
   while (std::getline(lines, line)) {
     ++rows;

@@ -58,5 +58,26 @@ TEST_F(StatusCli, JsonPrintsTheCampaignObject) {
   EXPECT_EQ(json::parse(now.out), done);
 }
 
+// Without --server the client reads $ROCKCAL_SERVER; a server it cannot reach is named with the
+// way to give another.
+TEST_F(StatusCli, TheServerComesFromRockcalServerWithoutTheFlag) {
+  start();
+  const std::int64_t id = submit_sweep();
+  setenv("ROCKCAL_SERVER", ("http://127.0.0.1:" + std::to_string(port)).c_str(), 1);
+  const auto r = orch::run_command({rockcal_binary(), "status", std::to_string(id), "--json"}, 60s);
+  unsetenv("ROCKCAL_SERVER");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.error;
+  EXPECT_EQ(json::parse(r.out)["id"], id);
+}
+
+TEST_F(StatusCli, AServerItCannotReachIsNamed) {
+  const auto r =
+      orch::run_command({rockcal_binary(), "list", "--server", "http://127.0.0.1:1"}, 60s);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "rockcal: cannot reach the server at http://127.0.0.1:1 (Connection error; give "
+            "its URL with --server or $ROCKCAL_SERVER)\n");
+}
+
 }  // namespace
 }  // namespace rockcal::test

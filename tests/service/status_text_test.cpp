@@ -13,8 +13,9 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 
 // A running calibration as GET /api/v1/campaigns/{id} returns it (calibration_kind.cpp's live
-// summary): 3 evaluations of 40 done, the second the best, 2 seed re-runs still to come.
-json running_calibration(json seconds_per_evaluation) {
+// summary and its progress model): 3 evaluations of 40 done, the second the best, 2 seed re-runs
+// still to come, the ETA as the model gives it.
+json running_calibration(json eta_seconds) {
   return json::parse(R"({
     "id": 7, "kind": "calibration", "name": "lab", "state": "running",
     "progress": {"total": 8, "queued": 0, "running": 2, "succeeded": 6, "failed": 0,
@@ -25,24 +26,24 @@ json running_calibration(json seconds_per_evaluation) {
                   {"index": 0, "ok": true, "fr0": 10, "fs0": 20, "misfit": 0.5},
                   {"index": 1, "ok": true, "fr0": 41.25, "fs0": 88.5, "misfit": 0.01234},
                   {"index": 2, "ok": false, "fr0": 900, "fs0": 900, "misfit": 0.001}],
-                "pace": {"wall_seconds": 100, "evaluations_timed": 3,
-                         "seconds_per_evaluation": null}}})")
+                "progress": {"unit": "evaluations", "done": 3, "budget": 40,
+                             "parts": [{"name": "search", "budget": 40}], "seed_reruns": 2,
+                             "left": 39, "fraction": 0.075, "eta_seconds": null}}})")
       .patch(json::array({{{"op", "replace"},
-                           {"path", "/summary/pace/seconds_per_evaluation"},
-                           {"value", seconds_per_evaluation}}}));
+                           {"path", "/summary/progress/eta_seconds"},
+                           {"value", eta_seconds}}}));
 }
 
 TEST(CalibrationProgress, EvaluationsOfTheBudgetBestMisfitRunningJobsAndEta) {
-  // 37 evaluations left in the budget plus 2 re-runs, at 10 s each: 390 s. The failed evaluation's
-  // penalty is no best.
-  EXPECT_EQ(progress_line(running_calibration(10.0)),
+  // The failed evaluation's penalty is no best.
+  EXPECT_EQ(progress_line(running_calibration(390.0)),
             "campaign 7 running: 3 of 40 evaluations done (+2 seed re-runs), best misfit 0.0123 "
             "at F_r0 = 41.25, F_s0 = 88.5, 2 jobs running, ETA 6m30s (full budget)");
 }
 
 TEST(CalibrationProgress, EtaUnknownUntilAnEvaluationHasRun) {
   json c = running_calibration(nullptr);
-  c["summary"]["evaluations"] = 0;
+  c["summary"]["progress"]["done"] = 0;
   c["summary"]["history"] = json::array();
   EXPECT_EQ(progress_line(c),
             "campaign 7 running: 0 of 40 evaluations done (+2 seed re-runs), 2 jobs running, "
@@ -55,19 +56,29 @@ TEST(CalibrationProgress, OneJobIsOneJob) {
   EXPECT_NE(progress_line(c).find(", 1 job running, "), std::string::npos) << progress_line(c);
 }
 
-TEST(CalibrationProgress, NeverEtaZeroWhileEvaluationsRemain) {
-  json c = running_calibration(0.01);  // cached replays: a pace of 10 ms
-  c["summary"]["evaluations"] = 39;
-  c["summary"]["scatter_runs"] = 0;
-  EXPECT_EQ(progress_line(c).substr(progress_line(c).find(", ETA")), ", ETA 1s (full budget)");
+TEST(CalibrationProgress, NothingLeftIsFinishing) {
   // Budget spent and no re-runs left: the driver is writing its report.
-  c["summary"]["evaluations"] = 40;
+  json c = running_calibration(nullptr);
+  c["summary"]["progress"]["done"] = 40;
+  c["summary"]["progress"]["left"] = 0;
   const std::string line = progress_line(c);
   EXPECT_EQ(line.substr(line.rfind(", ")), ", finishing");
 }
 
+// The budget's parts are named when it has more than the search's.
+TEST(CalibrationProgress, TheValleyTraceIsNamedInTheBudget) {
+  json c = running_calibration(390.0);
+  c["summary"]["progress"]["budget"] = 64;
+  c["summary"]["progress"]["parts"].push_back({{"name", "valley trace"}, {"budget", 24}});
+  EXPECT_EQ(progress_line(c).rfind("campaign 7 running: 3 of 64 evaluations done (search 40, "
+                                   "valley trace 24; +2 seed re-runs), best misfit",
+                                   0),
+            0u)
+      << progress_line(c);
+}
+
 TEST(CalibrationProgress, OtherKindsKeepTheJobsLine) {
-  json c = running_calibration(10.0);
+  json c = running_calibration(390.0);
   c["kind"] = "sweep";
   c.erase("summary");
   c["progress"]["eta_seconds"] = 30;
@@ -95,7 +106,10 @@ json lab_report() {
     "unique": false,
     "suggestion": {"observable": "triaxial peak at 5 MPa", "values": [5e6, 10e6],
                    "why": "separates F_s0 from F_r0 along the valley"},
-    "pace": {"wall_seconds": 754, "evaluations_timed": 23, "seconds_per_evaluation": 32.8}})");
+    "pace": {"wall_seconds": 754, "evaluations_timed": 23, "seconds_per_evaluation": 32.8},
+    "progress": {"unit": "evaluations", "done": 23, "budget": 40,
+                 "parts": [{"name": "search", "budget": 40}], "seed_reruns": 0, "left": 0,
+                 "fraction": 1, "eta_seconds": 0}})");
 }
 
 TEST(CalibrationSummary, VerdictStrengthsLoadsAgainstTargetsConsistentSetAndBudget) {
@@ -119,7 +133,7 @@ TEST(CalibrationSummary, VerdictStrengthsLoadsAgainstTargetsConsistentSetAndBudg
             "unique: no\n"
             "suggestion: measure triaxial peak at 5 MPa (5e+06, 1e+07): separates F_s0 from F_r0 "
             "along the valley\n"
-            "evaluations: 23 of 40 (1 failed), 3 packings each, stopped: tolerance_met, wall time "
+            "evaluations: 23 of 40, 1 failed, 3 packings each, stopped: tolerance_met, wall time "
             "12m34s\n");
 }
 
@@ -178,13 +192,15 @@ TEST(CalibrationSummary, NoSuccessfulEvaluationSaysSoWithoutATable) {
             {"best", nullptr},           {"evaluations", 4},
             {"failed_evaluations", 4},   {"max_evaluations", 40},
             {"stop_reason", "converged"}};
+  s["progress"] = lab_report()["progress"];
+  s["progress"]["done"] = 4;
   EXPECT_EQ(calibration_text(s),
             "verdict: failed - no evaluation succeeded\n"
-            "evaluations: 4 of 40 (4 failed), stopped: converged\n");
+            "evaluations: 4 of 40, 4 failed, stopped: converged\n");
 }
 
-// The closing line counts against the budget the progress line counted down (the quick start
-// once ended on "42 of 40" after a bar that had said "of 64").
+// The closing line counts against the budget the progress line counted down, from the same model
+// (the quick start once ended on "42 of 40" after a bar that had said "of 64").
 TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
   json s = {{"verdict", "failed"},
             {"verdict_reason", "no evaluation succeeded"},
@@ -194,14 +210,29 @@ TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
             {"max_evaluations", 40},
             {"consistency_evaluations", 24},
             {"stop_reason", "tolerance_met"}};
+  s["progress"] = lab_report()["progress"];
+  s["progress"]["done"] = 42;
+  s["progress"]["budget"] = 64;
+  s["progress"]["parts"].push_back({{"name", "valley trace"}, {"budget", 24}});
   EXPECT_EQ(calibration_text(s),
             "verdict: failed - no evaluation succeeded\n"
-            "evaluations: 42 of 64 (3 failed; budget: search 40, valley trace 24), stopped: "
+            "evaluations: 42 of 64 (search 40, valley trace 24), 3 failed, stopped: "
             "tolerance_met\n");
 }
 
+// A diagnosis's line (rockcal status and rockcal diagnose share it) carries its phase.
+TEST(CalibrationProgress, ADiagnosisLineCarriesItsPhase) {
+  json c = running_calibration(390.0);
+  c["kind"] = "diagnosis";
+  c["summary"] = {{"phase", "budget"}, {"step", 2}, {"steps", 4}, {"runs", 12}};
+  c["progress"]["eta_seconds"] = 30;
+  EXPECT_EQ(progress_line(c),
+            "campaign 7 running [#######################.......] 75% 6/8 done, 2 running, 0 "
+            "queued, ETA 30s  [2/4 budget]");
+}
+
 TEST(SweepSummary, JobCountsAndWhereTheResultsAre) {
-  json c = running_calibration(10.0);
+  json c = running_calibration(390.0);
   c["kind"] = "sweep";
   c["state"] = "failed";
   c["progress"] = {{"total", 8},  {"queued", 0},    {"running", 0}, {"succeeded", 7},

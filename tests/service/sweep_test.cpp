@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "db/store.hpp"
 #include "orchestrator/campaign_status.hpp"
 #include "orchestrator/job_identity.hpp"
 #include "orchestrator/request_error.hpp"
@@ -149,6 +150,58 @@ TEST(CampaignState, DerivedFromJobCounts) {
   EXPECT_EQ(derive_state(n, driven), "succeeded");
   driven.driver_status = "failed";
   EXPECT_EQ(derive_state(n, driven), "failed");
+}
+
+// A driver adds jobs as it goes, so the share of its jobs done can fall; the campaign's fraction
+// is the driver's own progress instead: a diagnosis's phase (with the jobs done before it and the
+// runs it plans) or a calibration's model, and never goes backwards.
+TEST(CampaignProgress, ADriversPhasesNotItsJobShareAndNeverBackwards) {
+  test::TempDir dir;
+  db::Store store{(dir.path() / "s.db").string()};
+  auto new_job = [](int k) {
+    return db::NewJob{"uct", double(k + 1), 1, "{}", "hash" + std::to_string(k)};
+  };
+  const std::int64_t id =
+      store.create_campaign("diagnosis", "d", "{}", true, {new_job(0), new_job(1)});
+  auto finish_one = [&] {
+    const auto j = store.claim_job("local");
+    ASSERT_TRUE(j);
+    db::ResultRow r;
+    r.hash = j->hash;
+    r.job_id = j->id;
+    r.test = j->test;
+    r.fr0 = j->fr0;
+    r.fs0 = j->fs0;
+    r.peak_load = 1.0;
+    r.engine_version = "v";
+    r.result = "{}";
+    ASSERT_TRUE(store.finish_success(j->id, r));
+  };
+  auto fraction = [&] { return campaign_status(store, *store.campaign(id), 1).fraction; };
+  auto phase = [&](int step, int runs, int done_before) {
+    store.set_driver_status(id, "running",
+                            json{{"phase", "p"},
+                                 {"step", step},
+                                 {"steps", 4},
+                                 {"runs", runs},
+                                 {"jobs_done_before", done_before}}
+                                .dump());
+  };
+  phase(1, 2, 0);
+  EXPECT_EQ(fraction(), 0.0);
+  finish_one();
+  EXPECT_EQ(fraction(), 0.125);
+  finish_one();
+  EXPECT_EQ(fraction(), 0.25);  // the jobs' share is 1 here
+  // The next phase adds 4 jobs: the jobs' share falls to 2 of 6, the campaign's does not.
+  for (int k = 2; k < 6; ++k) store.add_job(id, new_job(k));
+  phase(2, 4, 2);
+  EXPECT_EQ(fraction(), 0.25);
+  finish_one();
+  EXPECT_EQ(fraction(), 0.3125);
+  // A calibration states its own fraction (its evaluations of the budget).
+  store.set_driver_status(id, "running", json{{"progress", {{"fraction", 0.4}}}}.dump());
+  EXPECT_EQ(fraction(), 0.4);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// The consistent set of strengths (issue 17's report: which (F_r0, F_s0) match both lab loads
-// within their uncertainty), whether it is unique, and what would narrow it when it is not.
+// The consistent set of strengths (which (F_r0, F_s0) match both target loads within their
+// uncertainty), whether it is unique and why (the report's reason), and what would narrow it when
+// it is not.
 import {h, note, section, table} from '../dom.js';
 import {newtons, num, pm} from '../format.js';
 import {linePlot} from '../plot/line_plot.js';
@@ -10,18 +11,20 @@ const stat = (v) => (v && Number.isFinite(v.mean) ? pm(v.mean, v.se) : '–');
 export function consistentSection(s, lab, width) {
   const c = s.consistent;
   const parts = [];
+  // The report's own reason (consistent.why), never a fixed sentence.
+  const why = c && typeof c.why === 'string' && c.why ? `${c.why}.` : '';
   if (s.unique === true) {
-    parts.push(h('p', {class: 'verdict verdict-feasible'}, h('strong', {}, 'Unique: '), 'one connected set of strengths matches both loads.'));
+    parts.push(h('p', {class: 'verdict verdict-feasible'}, h('strong', {}, 'Unique: '), why));
   } else if (s.unique === false) {
-    parts.push(h('p', {class: 'verdict verdict-compromise'}, h('strong', {}, 'Not unique: '),
-      'the lab loads do not pin the strengths down; more than one pair matches them within their uncertainty.'));
+    parts.push(h('p', {class: 'verdict verdict-compromise'}, h('strong', {}, 'Not unique: '), why));
   }
+  const loads = s.targets && s.targets.units === 'lab' ? 'both lab loads' : 'both target loads (model units)';
   if (c) {
     parts.push(table([
       {label: 'quantity', value: (r) => r[0]},
       {label: 'consistent range', num: true, value: (r) => r[1]},
     ], [['F_r0 (N, model)', range(c.fr0)], ['F_s0 (N, model)', range(c.fs0)], ['F_s0 / F_r0', range(c.ratio)]],
-    {caption: 'Strengths consistent with both lab loads'}));
+    {caption: `Strengths consistent with ${loads}`}));
     const points = Array.isArray(c.points) ? c.points : [];
     if (points.length) {
       parts.push(h('div', {class: 'plots'},

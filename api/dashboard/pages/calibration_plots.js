@@ -62,7 +62,7 @@ export function planePlot(history, s, best, width) {
       points: bad.map((r) => ({x: r.fr0, y: r.fs0, key: `e${r.index}`, label: `evaluation ${r.index} failed: ${r.error}`}))});
   }
   if (s.consistent && Array.isArray(s.consistent.points)) {
-    series.push({name: 'consistent with the lab', marker: 'diamond', colour: '#009E73',
+    series.push({name: s.targets && s.targets.units === 'lab' ? 'consistent with the lab loads' : 'consistent with the targets', marker: 'diamond', colour: '#009E73',
       points: s.consistent.points.map((p, i) => ({x: p.fr0, y: p.fs0, key: `c${i}`,
         label: `consistent: F_r0 ${num(p.fr0)} N, F_s0 ${num(p.fs0)} N`}))});
   }

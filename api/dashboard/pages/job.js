@@ -1,11 +1,14 @@
-// One engine job: its state, the result's numbers, the load-displacement curve and broken bonds,
-// the log and the raw spec and result. Polled while it is queued or running.
+// One engine job: its state and files, the result's numbers (with a table in lab units when the
+// campaign has them), the load-displacement and stress-strain curves, broken bonds against
+// displacement and where they broke (at the peak and at the end), the log and the raw spec and
+// result. Polled while it is queued or running.
 import {getJson, getText} from '../api.js';
-import {badge, clear, facts, h, note, progressBar, rememberFocus, section} from '../dom.js';
-import {dateTime, duration, newtons, num, pascals} from '../format.js';
+import {badge, clear, facts, h, note, progressBar, rememberFocus, section, table} from '../dom.js';
+import {dateTime, duration, newtons, num, pascals, strengthFormula} from '../format.js';
 import {watchJson} from '../poll.js';
 import {labFactors} from './calibration.js';
-import {brokenBondsPlot, fetchCurve, loadCurvePlot} from './curves.js';
+import {brokenBondsPlot, fetchCurve, loadCurvePlot, stressStrainPlot} from './curves.js';
+import {fractureSection} from './fracture.js';
 import {plotWidth} from './layout.js';
 
 const live = (j) => j.state === 'queued' || j.state === 'running';
@@ -56,30 +59,81 @@ async function jobView(j, ctx) {
       live(j) ? ['progress', progressBar(j.progress || 0, j.state === 'queued' ? 'queued' : `${Math.round((j.progress || 0) * 100)}% of the run`)] : null,
       ['created', dateTime(j.created_at)],
       j.started_at ? ['ran', `${dateTime(j.started_at)}${j.finished_at ? ` for ${duration(j.finished_at - j.started_at)}` : ''}`] : null,
-      ['data', [h('a', {href: `/api/v1/jobs/${j.id}`}, 'JSON'), ' · ', h('a', {href: `/api/v1/jobs/${j.id}/curve`}, 'curve CSV'),
-        ' · ', h('a', {href: `/api/v1/jobs/${j.id}/log`}, 'log')]],
+      ['data', downloads(j)],
     ]),
   ];
   if (j.error) out.push(h('pre', {class: 'error', role: 'alert'}, j.error));
-  if (j.result) out.push(resultSection(r, lab));
+  if (j.result) out.push(resultSection(r, lab), labTable(r, lab));
   // A run without a peak keeps its result and curve for inspection (its job failed).
   if (j.state === 'succeeded' || j.result) {
+    const width = plotWidth(ctx.main, {columns: 2});
+    let curve = null;
     try {
-      const curve = await fetchCurve(j.id, ctx);
-      const width = plotWidth(ctx.main, {columns: 2});
-      out.push(section('Load and broken bonds', h('div', {class: 'plots'},
-        loadCurvePlot({title: `${name} load against displacement`, width, lab, curves: [{name, curve}],
-          peak: r.peak_load, caption: `${curve.load.length} points`}),
-        brokenBondsPlot({title: 'Broken bonds against displacement', width, curve, lab, bonds: r.bonds}))));
+      curve = await fetchCurve(j.id, ctx);
+      const plots = [loadCurvePlot({title: `${name} load against displacement`, width, lab, curves: [{name, curve}],
+        peak: r.peak_load, caption: `${curve.load.length} points`}),
+      brokenBondsPlot({title: 'Broken bonds against displacement', width, curve, lab, bonds: r.bonds})];
+      if ((j.test === 'uct' || j.test === 'triaxial') && r.peak_load > 0 && j.spec && j.spec.sample) {
+        plots.push(stressStrainPlot({title: `${name} stress against strain`, r, curve, height: j.spec.sample.height, width, lab}));
+      }
+      out.push(section('Load, stress and broken bonds', h('div', {class: 'plots'}, ...plots)));
     } catch (e) {
       if (e.name === 'AbortError') throw e;
       out.push(note(`No load curve: ${e.message}`));
+    }
+    if (j.test !== 'elastic') {
+      try {
+        out.push(await fractureSection(j, curve, width, ctx));
+      } catch (e) {
+        if (e.name === 'AbortError') throw e;
+        out.push(section('Fracture', note(`No broken bonds to draw: ${e.message}`)));
+      }
     }
   }
   out.push(await logSection(j, ctx));
   out.push(h('details', {}, h('summary', {}, 'Spec (canonical JSON)'), h('pre', {class: 'json'}, JSON.stringify(j.spec, null, 2))));
   if (j.result) out.push(h('details', {}, h('summary', {}, 'result.json'), h('pre', {class: 'json'}, JSON.stringify(j.result, null, 2))));
   return out;
+}
+
+// The job's files: JSON, log, and what the run that answered it left (curve, breaks, VTK).
+function downloads(j) {
+  const f = j.files || {};
+  const links = [h('a', {href: `/api/v1/jobs/${j.id}`}, 'JSON'), h('a', {href: `/api/v1/jobs/${j.id}/log`}, 'log')];
+  if (f.curve_csv) links.push(h('a', {href: f.curve_csv, download: 'curve.csv'}, 'curve.csv'));
+  if (f.breaks_csv) links.push(h('a', {href: f.breaks_csv, download: 'breaks.csv'}, 'breaks.csv'));
+  const vtk = (f.vtk || []).map((url) => {
+    const file = url.slice(url.lastIndexOf('/') + 1);
+    return h('a', {href: url, download: file}, file);
+  });
+  const out = links.flatMap((a, i) => (i ? [' · ', a] : [a]));
+  if (vtk.length) {
+    out.push(h('details', {class: 'vtk-files'}, h('summary', {}, `VTK for ParaView (${vtk.length} files: save them in one folder, open particles.pvd)`),
+      h('ul', {}, vtk.map((a) => h('li', {}, a)))));
+  } else if (j.state === 'succeeded') {
+    out.push(' · no VTK (ask for it with "output": {"vtk": true})');
+  }
+  return out;
+}
+
+// The job's strength, modulus and Poisson's ratio in model units and, when the campaign's targets
+// came in lab units, in lab units (the model specimen scaled by eq. 4's factors).
+function labTable(r, lab) {
+  const def = r.strength_definition;
+  const rows = [];
+  if (Number.isFinite(r.peak_load)) rows.push({q: 'peak load', model: newtons(r.peak_load), lab: lab ? newtons(r.peak_load * lab.force) : ''});
+  if (def && Number.isFinite(r.strength) && r.peak_reached !== false) {
+    rows.push({q: `${def.name} (${strengthFormula(def)})`, model: pascals(r.strength), lab: lab ? pascals(r.strength * lab.stress) : ''});
+  }
+  if (Number.isFinite(r.youngs_modulus)) rows.push({q: 'E, Young’s modulus', model: pascals(r.youngs_modulus), lab: lab ? pascals(r.youngs_modulus * lab.stress) : ''});
+  if (Number.isFinite(r.poisson_ratio)) rows.push({q: 'ν, Poisson’s ratio', model: num(r.poisson_ratio, 3), lab: lab ? num(r.poisson_ratio, 3) : ''});
+  const columns = [{label: 'quantity', value: (x) => x.q}, {label: 'model units', num: true, value: (x) => x.model}];
+  if (lab) columns.push({label: 'lab units (eq. 4)', num: true, value: (x) => x.lab});
+  return section(lab ? 'Strength and stiffness in lab units' : 'Strength and stiffness (model units)',
+    lab ? note('Lab units: this model specimen scaled to the lab by the campaign\'s force, length and stress factors (eq. 4). ' +
+      'Where the model specimen is not the lab specimen scaled (another size or resolution), its strengths are not the lab specimen\'s: compare the loads.')
+      : note('Model units: the campaign has no lab case to scale to.'),
+    table(columns, rows, {caption: lab ? 'model and lab units' : 'model units'}));
 }
 
 function resultSection(r, lab) {
@@ -91,7 +145,7 @@ function resultSection(r, lab) {
       r.peak_reached === false ? h('strong', {class: 'warn'}, ` — no peak: ${r.no_peak_reason || r.stop_reason}; not a result`) : '']],
     // No lab strength: a model specimen at demo resolution is not the lab specimen scaled, so the
     // mapped load is comparable and the stress is not (docs/calibration.md).
-    ['strength', [pascals(r.strength), ' (model units', r.test === 'btt' ? '; BTS = 2P / (π D t))' : r.test === 'uct' ? '; UCS = F / A)' : ')']],
+    ['strength', [pascals(r.strength), ` (model units${r.strength_definition ? `; ${strengthFormula(r.strength_definition)}` : ''})`]],
     Number.isFinite(r.youngs_modulus) ? ['Young’s modulus', pascals(r.youngs_modulus)] : null,
     Number.isFinite(r.poisson_ratio) ? ['Poisson’s ratio', num(r.poisson_ratio, 3)] : null,
     ['displacement at peak', [`${num(r.peak_displacement)} m`, lab ? ` (lab ${num(r.peak_displacement * lab.length * 1e3)} mm)` : '']],

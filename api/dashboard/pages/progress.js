@@ -7,24 +7,33 @@ export function isLive(c) {
   return c.state === 'queued' || c.state === 'running' || c.driver_status === 'running';
 }
 
+// "3 of 64 evaluations (search 40, valley trace 24; +2 seed re-runs)": a calibration's progress
+// model (the summary's "progress", the count `rockcal status` prints too).
+export function evaluationsText(model) {
+  if (!model || typeof model.budget !== 'number') return '';
+  const notes = [];
+  if (Array.isArray(model.parts) && model.parts.length > 1) notes.push(model.parts.map((p) => `${p.name} ${p.budget}`).join(', '));
+  if (model.seed_reruns > 0) notes.push(`+${model.seed_reruns} seed re-runs`);
+  return `${model.done} of ${model.budget} evaluations${notes.length ? ` (${notes.join('; ')})` : ''}`;
+}
+
 function progressOf(c) {
   const p = c.progress || {};
   const s = c.summary || {};
   const parts = [];
-  let fraction = p.fraction;
-  // A driver (calibration, diagnosis) adds jobs as it goes, so the server's ETA covers only the
-  // jobs queued now.
-  const etaText = c.driver_status ? 'queued jobs done in' : 'ETA';
-  if (c.kind === 'calibration' && typeof s.evaluations === 'number') {
-    parts.push(`${s.evaluations} of ${s.max_evaluations} evaluations`);
-    if (isLive(c)) {
-      fraction = s.max_evaluations ? s.evaluations / s.max_evaluations : fraction;
-    } else {
-      fraction = 1;
-    }
+  // The server's fraction: of the jobs for a sweep, of the driver's own progress for a calibration
+  // (its evaluations of the budget) or a diagnosis (its phases); it never goes backwards.
+  const fraction = p.fraction;
+  // A calibration's own model: evaluations of its budget and the ETA at its pace. A diagnosis adds
+  // jobs as it goes, so the server's ETA covers only the jobs queued now.
+  const model = c.kind === 'calibration' ? s.progress : null;
+  let eta = isLive(c) && typeof p.eta_seconds === 'number' && (p.queued || p.running)
+    ? `${c.driver_status ? 'queued jobs done in' : 'ETA'} ${duration(p.eta_seconds)}` : null;
+  if (model && typeof model.budget === 'number') {
+    parts.push(evaluationsText(model));
+    eta = isLive(c) && typeof model.eta_seconds === 'number' ? `ETA ${duration(model.eta_seconds)} (full budget)` : null;
   } else if (c.kind === 'diagnosis' && typeof s.phase === 'string') {
     parts.push(`phase ${s.step} of ${s.steps}: ${s.phase}`);
-    if (s.steps) fraction = (s.step - 1 + (p.fraction || 0)) / s.steps;
   }
   parts.push(`${p.succeeded ?? 0} of ${p.total ?? 0} jobs done`);
   if (p.running) parts.push(`${p.running} running`);
@@ -32,9 +41,7 @@ function progressOf(c) {
   if (p.failed) parts.push(`${p.failed} failed`);
   if (p.cancelled) parts.push(`${p.cancelled} cancelled`);
   if (p.cached) parts.push(`${p.cached} from the store`);
-  if (isLive(c) && typeof p.eta_seconds === 'number' && (p.queued || p.running)) {
-    parts.push(`${etaText} ${duration(p.eta_seconds)}`);
-  }
+  if (eta) parts.push(eta);
   return {fraction: fraction ?? 0, text: parts.join(', ')};
 }
 

@@ -1,4 +1,5 @@
-// A campaign's jobs as a table (every kind has it; the page of a kind without its own view).
+// A campaign's jobs as a table (every kind has it; the page of a kind without its own view): units
+// in the headers, and why a job has no values (its error's first line).
 import {getJson} from '../api.js';
 import {badge, h, table} from '../dom.js';
 import {newtons, num, pascals} from '../format.js';
@@ -9,10 +10,11 @@ export function resultsTable(rows, {caption} = {}) {
     {label: 'test', value: (r) => r.test},
     {label: 'F_r0 (N)', num: true, value: (r) => num(r.fr0)},
     {label: 'F_s0 (N)', num: true, value: (r) => num(r.fs0)},
-    {label: 'peak load', num: true, value: (r) => newtons(r.peak_load)},
-    {label: 'strength', num: true, value: (r) => pascals(r.strength)},
-    {label: 'E', num: true, value: (r) => pascals(r.youngs_modulus)},
+    {label: 'peak load (N)', num: true, value: (r) => newtons(r.peak_load)},
+    {label: 'strength (Pa)', num: true, value: (r) => [pascals(r.strength), r.strength_definition ? h('span', {class: 'muted'}, ` ${r.strength_definition.name}`) : '']},
+    {label: 'E (Pa)', num: true, value: (r) => pascals(r.youngs_modulus)},
     {label: 'state', value: (r) => [badge(r.state), r.cached ? ' (stored)' : '']},
+    {label: 'error', value: (r) => (r.error ? r.error.split('\n')[0] : '')},
   ], rows, {caption, rowAttrs: (r) => ({dataset: {job: r.job_id}})});
 }
 

@@ -6,6 +6,7 @@
 
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "orchestrator/diagnosis/report/svg.hpp"
+#include "orchestrator/summary_reader.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -19,12 +20,10 @@ double number(const json& v) {
   return v.is_number() ? v.get<double>() : NAN;
 }
 
+using summary::at;
+
 std::string show(const json& v, const char* format = "%.4g") {
-  if (v.is_number()) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, format, v.get<double>());
-    return buf;
-  }
+  if (v.is_number()) return summary::printed(v.get<double>(), format);
   if (v.is_string()) return escape_html(v.get<std::string>());
   if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
   return "&ndash;";
@@ -32,11 +31,6 @@ std::string show(const json& v, const char* format = "%.4g") {
 
 std::string percent(const json& v) {
   return v.is_number() ? show(json(100 * v.get<double>()), "%.1f%%") : "&ndash;";
-}
-
-const json& at(const json& j, const char* key) {
-  static const json null;
-  return j.is_object() && j.contains(key) ? j[key] : null;
 }
 
 std::string effect_name(const json& candidate) {
