@@ -13,6 +13,13 @@ if [ ! -x "$root/bin/bash" ]; then
   debootstrap --variant=minbase bookworm "$root" http://deb.debian.org/debian >/dev/null
 fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# Where this host reaches the registries through a TLS-intercepting proxy, its CA goes along (a
+# property of the host's network, not something rockcal needs): npm in the root trusts it too.
+extra_ca=()
+if [ -n "${NODE_EXTRA_CA_CERTS:-}" ] && [ -f "$NODE_EXTRA_CA_CERTS" ]; then
+  cp "$NODE_EXTRA_CA_CERTS" "$root/etc/host-extra-ca.crt"
+  extra_ca=(NODE_EXTRA_CA_CERTS=/etc/host-extra-ca.crt)
+fi
 rm -rf "$root/root/rockcal"
 git clone -q "$repo" "$root/root/rockcal"
 mounts=(proc sys dev dev/pts dev/shm)
@@ -30,7 +37,7 @@ for cmd in "bash deploy/quickstart.sh" "bash deploy/test.sh"; do
   log="check-$(echo "$cmd" | sed 's/.*\///; s/\.sh//').log"
   start=$(date +%s)
   set +e
-  chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin TERM=dumb \
+  chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin TERM=dumb "${extra_ca[@]}" \
     bash -c "cd /root/rockcal && $cmd" > "$root/root/rockcal/$log" 2>&1
   rc=$?
   set -e
