@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "api/dashboard.hpp"
+#include "api/framing.hpp"
 #include "api/http_util.hpp"
 #include "orchestrator/request_error.hpp"
 
@@ -171,6 +172,7 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
       }
     };
     std::string pattern = path_regex(route.path);
+    route_patterns_.emplace_back(pattern);
     if (route.method == "GET") server_.Get(pattern, run);
     if (route.method == "DELETE") server_.Delete(pattern, run);
     if (route.method == "POST") {
@@ -230,6 +232,16 @@ bool ApiServer::refused(const httplib::Request& req, httplib::Response& res) con
                    "); retry shortly");
     return true;
   }
+  if (auto error = framing_error(req)) {
+    send_error(res, error->status, error->what(), error->field);
+    return true;
+  }
+  if (req.method != "GET" && req.method != "HEAD" && req.method != "POST" &&
+      req.method != "DELETE") {
+    res.set_header("Allow", allowed_methods(req.path));
+    send_error(res, 405, default_message(405, req, config_.max_body_bytes));
+    return true;
+  }
   const std::string host = req.get_header_value("Host");
   if (!host_allowed(host)) {
     send_error(res, 403,
@@ -270,6 +282,16 @@ bool ApiServer::refused(const httplib::Request& req, httplib::Response& res) con
     return true;
   }
   return false;
+}
+
+std::string ApiServer::allowed_methods(const std::string& path) const {
+  std::string out;
+  for (std::size_t i = 0; i < routes_.size(); ++i) {
+    if (!std::regex_match(path, route_patterns_[i])) continue;
+    const std::string& method = routes_[i].method;
+    out += (out.empty() ? "" : ", ") + (method == "GET" ? std::string("GET, HEAD") : method);
+  }
+  return out.empty() ? "GET, HEAD" : out;  // the dashboard's pages, and 404s
 }
 
 bool ApiServer::host_allowed(const std::string& given) const {
