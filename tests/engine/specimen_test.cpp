@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "engine/loadtests/brazilian.hpp"
@@ -67,6 +68,20 @@ TEST(PeakTracker, AFallWithTooLittleDamageDoesNotEndTheTest) {
   EXPECT_EQ(t.no_peak_reason("max_strain"),
             "the load did not fall past a peak with bonds breaking before loading.max_strain; "
             "largest load 100.0 N with 0 bonds broken since seating (a failure needs 50)");
+}
+
+TEST(PeakTracker, ALoadThatIsNoNumberIsReportedAsSuch) {
+  // A run gone unstable: JSON has no text for these, and "largest load null N" read as a value.
+  PeakTracker t{0.7, 50};
+  t.start(0);
+  EXPECT_FALSE(t.update(std::numeric_limits<double>::infinity(), 0.1, 1, 0));
+  EXPECT_EQ(t.no_peak_reason("max_steps"),
+            "loading.max_steps ended the run before the load fell past a peak with bonds breaking; "
+            "largest load inf N with 0 bonds broken since seating (a failure needs 50)");
+  t.max_load = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(t.no_peak_reason("cancelled"),
+            "the run ended (cancelled) before a peak with failure; largest load NaN N with 0 bonds "
+            "broken since seating (a failure needs 50)");
 }
 
 TEST(PeakTracker, TheDamageFloorScalesWithTheBondsACrackCuts) {
@@ -248,11 +263,11 @@ TEST(BrazilianSpec, GeometryFieldsAreCheckedAndCanonical) {
             "flat_platens)");
   EXPECT_EQ(error({{"loading", {{"btt_geometry", "curved_jaws"}}}}),
             "loading.flat_angle_deg: applies to btt_geometry flattened only");
-  EXPECT_EQ(parse_job(json{{"test", "btt"},
-                           {"material", {{"kr", 8000}}},
-                           {"bond", {{"fr0", 64}, {"fs0", 64}}}})
-                .loading.btt_geometry,
-            BttGeometry::flattened);  // the default set-up
+  EXPECT_EQ(
+      parse_job(
+          json{{"test", "btt"}, {"material", {{"kr", 8000}}}, {"bond", {{"fr0", 64}, {"fs0", 64}}}})
+          .loading.btt_geometry,
+      BttGeometry::flattened);  // the default set-up
   EXPECT_EQ(error({{"loading", {{"flat_angle_deg", 90}}}}),
             "loading.flat_angle_deg: must be in [5.0, 60.0]");
   EXPECT_EQ(error({{"loading", {{"flat_angle_deg", nullptr}, {"jaw_radius_ratio", 1.5}}}}),
