@@ -112,7 +112,8 @@ void campaign_results(ApiContext& ctx, const Req& req, Res& res) {
   if (format != "json" && format != "csv") {
     throw HttpError(400, "format must be json or csv", "format");
   }
-  auto rows = ctx.service.store().campaign_results(c.id);
+  auto rows = ctx.service.store().campaign_results(c.id, query_int(req, "limit", -1, 1, 10000),
+                                                   query_int(req, "offset", 0, 0, INT64_MAX / 2));
   if (format == "csv") {
     res.set_content(results_csv(rows), "text/csv");
     return;
@@ -202,7 +203,10 @@ std::vector<Route> api_routes(ApiContext& ctx) {
       {"GET", "/api/v1/campaigns", bind(list_campaigns), {"limit", "offset"}},
       {"GET", "/api/v1/campaigns/{id}", bind(get_campaign)},
       {"DELETE", "/api/v1/campaigns/{id}", bind(cancel_campaign)},
-      {"GET", "/api/v1/campaigns/{id}/results", bind(campaign_results), {"format"}},
+      {"GET",
+       "/api/v1/campaigns/{id}/results",
+       bind(campaign_results),
+       {"format", "limit", "offset"}},
       {"GET", "/api/v1/campaigns/{id}/report.html", bind(campaign_report)},
       {"GET", "/api/v1/jobs/{id}", bind(get_job)},
       {"GET", "/api/v1/jobs/{id}/log", bind(job_log)},

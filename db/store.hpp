@@ -86,7 +86,9 @@ class Store {
   std::vector<ExecutorCounts> executor_counts();
   std::optional<JobRow> job(std::int64_t id);
   std::string job_state(std::int64_t id);  // "" if no such job
-  std::vector<JobResultRow> campaign_results(std::int64_t campaign_id);
+  // A campaign's jobs with their results, by job id: `limit` of them (-1: all) from `offset`.
+  std::vector<JobResultRow> campaign_results(std::int64_t campaign_id, std::int64_t limit = -1,
+                                             std::int64_t offset = 0);
   std::optional<ResultRow> result(const std::string& hash);
   std::vector<ResultRow> results(const ResultFilter& filter);
   DurationStats durations(std::optional<std::int64_t> campaign_id = std::nullopt);
