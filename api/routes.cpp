@@ -182,6 +182,21 @@ void query_results(ApiContext& ctx, const Req& req, Res& res) {
   send_json(res, {{"results", items}});
 }
 
+// 200 "ok", or 503 "storage_fault" while the database takes no write: a fault a write met is
+// checked again with a probe write, so that the answer clears as soon as the fault does.
+void health(ApiContext& ctx, const Req&, Res& res) {
+  auto& store = ctx.service.store();
+  auto fault = store.health().fault();
+  if (fault) fault = store.probe_write();
+  json body = {{"status", fault ? "storage_fault" : "ok"},
+               {"engine_version", rockcal::engine_version()},
+               {"workers", ctx.workers}};
+  if (fault) {
+    body["storage"] = {{"kind", fault->kind}, {"error", fault->message}, {"since", fault->since}};
+  }
+  send_json(res, body, fault ? 503 : 200);
+}
+
 }  // namespace
 
 std::vector<Route> api_routes(ApiContext& ctx) {
@@ -189,12 +204,7 @@ std::vector<Route> api_routes(ApiContext& ctx) {
     return [&ctx, fn](const Req& req, Res& res) { fn(ctx, req, res); };
   };
   return {
-      {"GET", "/healthz",
-       [&ctx](const Req&, Res& res) {
-         send_json(res, {{"status", "ok"},
-                         {"engine_version", rockcal::engine_version()},
-                         {"workers", ctx.workers}});
-       }},
+      {"GET", "/healthz", bind(health)},
       {"GET", "/metrics",
        [&ctx](const Req&, Res& res) {
          res.set_content(metrics_text(ctx.service, ctx.workers), "text/plain; version=0.0.4");

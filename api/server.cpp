@@ -160,8 +160,8 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
   });
 
   for (const auto& route : routes_) {
-    auto run = [handler = route.handler, params = route.params](const httplib::Request& req,
-                                                                httplib::Response& res) {
+    auto run = [this, handler = route.handler, params = route.params](const httplib::Request& req,
+                                                                      httplib::Response& res) {
       try {
         check_params(req, params);
         handler(req, res);
@@ -169,6 +169,10 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
         send_error(res, e.status, e.what(), e.field);
       } catch (const orch::RequestError& e) {
         send_error(res, 400, e.what(), e.field);
+      } catch (const db::SqliteError& e) {
+        const std::string kind = ctx_.service.store().note_failure(e);
+        if (kind.empty()) throw;  // not the storage: a 500
+        send_storage_fault(res, {kind, sqlite3_errstr(e.code)});
       }
     };
     std::string pattern = path_regex(route.path);

@@ -11,6 +11,7 @@
 
 #include "db/records.hpp"
 #include "db/sqlite.hpp"
+#include "db/storage_faults.hpp"
 
 namespace rockcal::db {
 
@@ -21,8 +22,9 @@ enum class FailOutcome { requeued, failed, not_running };
 
 class Store {
  public:
-  // Opens or creates the database and applies pending migrations.
-  explicit Store(std::string path);
+  // Opens or creates the database and applies pending migrations. A write waits up to
+  // `busy_timeout_ms` for another writer's lock before it fails with SQLITE_BUSY.
+  explicit Store(std::string path, int busy_timeout_ms = 10000);
   ~Store();
 
   const std::string& path() const { return path_; }
@@ -98,12 +100,25 @@ class Store {
   // Runs `fn` on a pooled connection (for tests and one-off maintenance such as integrity checks).
   void with_connection(const std::function<void(Connection&)>& fn);
 
+  // ---- storage faults (storage_faults.hpp) ----
+
+  // Records a failed write: its storage fault kind ("" when it is none, e.g. a constraint).
+  std::string note_failure(const SqliteError& e);
+  // Records a write that succeeded: the fault in force, if any, has cleared.
+  void note_success() { health_.succeeded(); }
+  const StorageHealth& health() const { return health_; }
+  // Whether the database takes a write now: a one-value write committed, waiting at most 100 ms
+  // for another writer's lock. Records the outcome; returns the fault in force.
+  std::optional<StorageFault> probe_write();
+
  private:
   class Lease;
   Lease lease();
   void give_back(std::unique_ptr<Connection> conn);
 
   std::string path_;
+  int busy_timeout_ms_;
+  StorageHealth health_;
   std::mutex pool_mutex_;
   std::vector<std::unique_ptr<Connection>> idle_;
 };
