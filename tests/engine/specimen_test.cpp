@@ -1,4 +1,4 @@
-// Specimens and the test protocol (issue 16): a peak counts only with failure, seating, the BTT's
+// Specimens and the test protocol: a peak counts only with failure, seating, the BTT's
 // loading geometries, FCC seeds that mean something, and no floaters.
 #include <gtest/gtest.h>
 
@@ -104,8 +104,9 @@ TEST(Protocol, ABrazilianTestWhoseBondsNeverBreakReportsNoPeak) {
 }
 
 TEST(Protocol, TheRandomDiscThatReportedFortyNewtonsWithoutABreakNowFailsForReal) {
-  // Before issue 16 this disc (random packing, radius ratio 1.5, D = 20, seed 2, flat platens)
-  // reported a 40 N peak with no bond broken. Now its peak, if any, comes with a crack's damage.
+  // Before seating and the failure rule this disc (random packing, radius ratio 1.5, D = 20, seed
+  // 2, flat platens) reported a 40 N peak with no bond broken. Now its peak, if any, comes with a
+  // crack's damage.
   JobSpec s = disc(20, BttGeometry::flat_platens, 2);
   s.sample.packing = "random";
   s.sample.radius_ratio = 1.5;

@@ -1,4 +1,4 @@
-// Hostile HTTP input against the real server (issue 15): deep nesting, chunked floods, cross-site
+// Hostile HTTP input against the real server: deep nesting, chunked floods, cross-site
 // and rebinding requests, idle and slow connections, query parameters and ids in odd forms, a
 // specimen whose particle estimate overflows. Each is refused with an exact error and stores
 // nothing; the server keeps answering.
