@@ -34,8 +34,8 @@ namespace {
 json parse_body(const Req& req) {
   try {
     return rockcal::parse_json_input(req.body);
-  } catch (const rockcal::JsonInputError& e) {  // malformed, or nested too deep
-    throw HttpError(400, e.what(), "(body)");
+  } catch (const rockcal::JsonInputError& e) {  // malformed, nested too deep, a key given twice
+    throw HttpError(400, e.what(), e.field.empty() ? "(body)" : e.field);
   }
 }
 

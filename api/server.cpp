@@ -94,6 +94,17 @@ void check_params(const httplib::Request& req, const std::vector<std::string>& k
   }
 }
 
+void send_unauthorized(httplib::Response& res) {
+  res.set_header("WWW-Authenticate", "Bearer");
+  send_error(res, 401, "missing or wrong bearer token (Authorization: Bearer <token>)",
+             "Authorization");
+}
+
+// The data a protected server serves only with the token (see ServerConfig::protect_reads).
+bool reads_need_token(const std::string& path) {
+  return path.rfind("/api/", 0) == 0 || path == "/metrics";
+}
+
 ConnectionLimits limits_of(const ServerConfig& c) {
   ConnectionLimits l = c.connections;
   l.max_request_bytes = c.max_body_bytes + (64u << 10);  // the body plus a generous head
@@ -266,9 +277,7 @@ bool ApiServer::refused(const httplib::Request& req, httplib::Response& res) con
       }
     }
     if (!authorized(req)) {
-      res.set_header("WWW-Authenticate", "Bearer");
-      send_error(res, 401, "missing or wrong bearer token (Authorization: Bearer <token>)",
-                 "Authorization");
+      send_unauthorized(res);
       return true;
     }
     // A cross-site HTML form can post text/plain without asking; it cannot post JSON.
@@ -280,6 +289,11 @@ bool ApiServer::refused(const httplib::Request& req, httplib::Response& res) con
                  "Content-Type");
       return true;
     }
+  }
+  if (!is_mutating(req.method) && config_.protect_reads && reads_need_token(req.path) &&
+      !authorized(req)) {
+    send_unauthorized(res);
+    return true;
   }
   if (req.get_header_value<std::uint64_t>("Content-Length") > config_.max_body_bytes) {
     send_error(res, 413, too_large_message(config_.max_body_bytes));
@@ -318,8 +332,8 @@ bool ApiServer::host_allowed(const std::string& given) const {
 bool ApiServer::authorized(const httplib::Request& req) const {
   if (!config_.token) return true;
   std::string header = req.get_header_value("Authorization");
-  const std::string prefix = "Bearer ";
-  if (header.rfind(prefix, 0) != 0) return false;
+  const std::string prefix = "bearer ";  // the scheme is case-insensitive (RFC 7235)
+  if (lower(header.substr(0, prefix.size())) != prefix) return false;
   return same_secret(header.substr(prefix.size()), *config_.token);
 }
 

@@ -20,6 +20,9 @@ struct ServerConfig {
   std::string host = "127.0.0.1";
   int port = 8080;                   // 0: any free port (see ApiServer::bind)
   std::optional<std::string> token;  // when set, POST/DELETE need "Authorization: Bearer <token>"
+  // With a token: reads of /api/ and /metrics need it too (beyond loopback, the data is not
+  // everyone's); /healthz and the dashboard's files stay open.
+  bool protect_reads = false;
   std::size_t max_body_bytes = 1 << 20;
   // Host header values served, as "name" (with the bound port) or "name:port"; "*" serves any.
   // Empty: the listen address's names (allowed_hosts_for), so that a web page in a browser cannot

@@ -85,6 +85,23 @@ TEST(HostileSpec, JsonNestedPastTheLimitIsRefusedWhileParsing) {
             0u);
 }
 
+TEST(HostileSpec, AKeyGivenTwiceInOneObjectIsRefusedNamingIt) {
+  EXPECT_EQ(input_error(R"({"test": "uct", "test": "btt"})"), "test: given more than once");
+  EXPECT_EQ(input_error(R"({"bond": {"fr0": 1, "fs0": 2, "fr0": 3}})"),
+            "bond.fr0: given more than once");
+  EXPECT_EQ(input_error(R"({"points": [{"fr0": 1}, {"fs0": 1, "fs0": 2}]})"),
+            "points.fs0: given more than once");
+  try {
+    parse_json_input(R"({"job": {"loading": {"dt": 1, "dt": "auto"}}})");
+    ADD_FAILURE() << "accepted a duplicate key";
+  } catch (const JsonInputError& e) {
+    EXPECT_EQ(e.field, "job.loading.dt");
+  }
+  // The same key in different objects, and in objects of one array, is no duplicate.
+  EXPECT_EQ(input_error(R"({"a": {"k": 1}, "b": {"k": 2}, "c": [{"k": 1}, {"k": 1}]})"),
+            "(parsed)");
+}
+
 TEST(HostileSpec, AParticleEstimateThatOverflowsIsRefused) {
   // inf / inf was NaN at 64e168e, and NaN > cap is false: the spec passed, the run never ended.
   json huge = good();
