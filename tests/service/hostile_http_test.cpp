@@ -329,5 +329,34 @@ TEST_F(HostileHttp, AParticleEstimateThatOverflowsIsRefused) {
   expect_nothing_stored();
 }
 
+TEST_F(HostileHttp, AJobOverTheStepLimitIsRefusedBeforeAnythingIsStored) {
+  start();
+  auto c = client();
+  struct Case {
+    json loading;
+    json error;
+  };
+  for (const auto& k : std::vector<Case>{
+           {{{"platen_velocity", 5e-7}},
+            {{"error",
+              "job.loading.platen_velocity: 5e-07 m/s against a wave speed of 95.7 m/s gives the "
+              "job about 157481326 time steps (limit 100000000)"},
+             {"field", "job.loading.platen_velocity"}}},
+           {{{"platen_velocity", 1e-300}},
+            {{"error",
+              "job.loading.platen_velocity: must be in [1e-09, 1e+03] m/s; 1e-300 is absurd in SI "
+              "and in model units"},
+             {"field", "job.loading.platen_velocity"}}},
+       }) {
+    json request = sweep_request({"uct"}, {50}, {60});
+    request["job"]["loading"] = k.loading;
+    auto r = c.Post("/api/v1/campaigns", request.dump(), "application/json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400);
+    EXPECT_EQ(error_of(r), k.error);
+  }
+  expect_nothing_stored();
+}
+
 }  // namespace
 }  // namespace rockcal::test
