@@ -150,7 +150,7 @@ std::string value_text(const json& v) {
   return v.is_number() ? num(v) : v.is_string() ? v.get<std::string>() : v.dump();
 }
 
-// The consistent set, the unique flag and the suggestion (issue 17's report), when present.
+// The consistent set, the unique flag and the suggestion of the report, when present.
 std::string consistency_text(const json& s) {
   std::ostringstream out;
   const json& set = at(s, "consistent");

@@ -20,6 +20,13 @@ void send_error(httplib::Response& res, int status, const std::string& message,
   send_json(res, body, status);
 }
 
+void send_storage_fault(httplib::Response& res, const db::StorageFault& fault) {
+  if (fault.kind != "full") res.set_header("Retry-After", "1");
+  send_error(res, fault.kind == "full" ? 507 : 503,
+             "storage " + fault.kind + ": " + fault.message +
+                 (fault.kind == "full" ? "; nothing was stored" : "; retry shortly"));
+}
+
 std::int64_t parse_id(const std::string& text, const std::string& what) {
   std::int64_t value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

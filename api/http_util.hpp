@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "db/storage_faults.hpp"
+
 namespace rockcal::api {
 
 // Thrown by handlers; the server turns it into {"error": ..., "field": ...} with `status`.
@@ -22,6 +24,10 @@ struct HttpError : std::runtime_error {
 void send_json(httplib::Response& res, const nlohmann::json& body, int status = 200);
 void send_error(httplib::Response& res, int status, const std::string& message,
                 const std::string& field = "");
+
+// A storage fault (db/storage_faults.hpp) as the answer to a request: 503 with Retry-After for a
+// busy database or an I/O error, 507 for a full one; the error names the kind and SQLite's reason.
+void send_storage_fault(httplib::Response& res, const db::StorageFault& fault);
 
 // A positive decimal id from a path segment in canonical form (no sign, no leading zero); anything
 // else (e.g. "../x", "01") is a 400.

@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 4096));
   s->add_option("--token-file", serve.token_file, "require this bearer token on mutating routes")
       ->check(CLI::ExistingFile);
+  s->add_flag("--protect-reads", serve.protect_reads,
+              "require the token on reads of /api/ and /metrics too (/healthz and the dashboard's "
+              "files stay open)");
   s->add_option("--engine", serve.engine, "rockcal-dem executable");
   s->add_option("--mpirun", serve.mpirun, "MPI launcher")->capture_default_str();
   s->add_option("--retries", serve.retries, "re-runs of a failed job")->capture_default_str();

@@ -83,6 +83,16 @@ std::string metrics_text(orch::JobService& service, int workers) {
   out += "rockcal_job_duration_seconds_sum " + number_text(d.sum_seconds) + "\n";
   out += "rockcal_job_duration_seconds_count " + std::to_string(d.count) + "\n";
   out += executor_metrics(service);
+  out +=
+      "# HELP rockcal_storage_faults_total Store writes that failed for a storage fault (and were "
+      "retried or answered 503/507) since the server started, by kind.\n"
+      "# TYPE rockcal_storage_faults_total counter\n";
+  const auto faults = store.health().counts();
+  for (const char* kind : {"busy", "full", "io"}) {
+    const auto it = faults.find(kind);
+    out += std::string("rockcal_storage_faults_total{kind=\"") + kind + "\"} " +
+           std::to_string(it == faults.end() ? 0 : it->second) + "\n";
+  }
   return out;
 }
 

@@ -1,4 +1,4 @@
-// Campaign kinds beyond the built-in sweep that this build includes (e.g. issue 5's calibration).
+// Campaign kinds beyond the built-in sweep that this build includes (e.g. the calibration).
 #pragma once
 
 #include "orchestrator/job_service.hpp"

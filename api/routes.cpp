@@ -34,8 +34,8 @@ namespace {
 json parse_body(const Req& req) {
   try {
     return rockcal::parse_json_input(req.body);
-  } catch (const rockcal::JsonInputError& e) {  // malformed, or nested too deep
-    throw HttpError(400, e.what(), "(body)");
+  } catch (const rockcal::JsonInputError& e) {  // malformed, nested too deep, a key given twice
+    throw HttpError(400, e.what(), e.field.empty() ? "(body)" : e.field);
   }
 }
 
@@ -112,7 +112,8 @@ void campaign_results(ApiContext& ctx, const Req& req, Res& res) {
   if (format != "json" && format != "csv") {
     throw HttpError(400, "format must be json or csv", "format");
   }
-  auto rows = ctx.service.store().campaign_results(c.id);
+  auto rows = ctx.service.store().campaign_results(c.id, query_int(req, "limit", -1, 1, 10000),
+                                                   query_int(req, "offset", 0, 0, INT64_MAX / 2));
   if (format == "csv") {
     res.set_content(results_csv(rows), "text/csv");
     return;
@@ -224,6 +225,21 @@ void query_results(ApiContext& ctx, const Req& req, Res& res) {
   send_json(res, {{"results", items}});
 }
 
+// 200 "ok", or 503 "storage_fault" while the database takes no write: a fault a write met is
+// checked again with a probe write, so that the answer clears as soon as the fault does.
+void health(ApiContext& ctx, const Req&, Res& res) {
+  auto& store = ctx.service.store();
+  auto fault = store.health().fault();
+  if (fault) fault = store.probe_write();
+  json body = {{"status", fault ? "storage_fault" : "ok"},
+               {"engine_version", rockcal::engine_version()},
+               {"workers", ctx.workers}};
+  if (fault) {
+    body["storage"] = {{"kind", fault->kind}, {"error", fault->message}, {"since", fault->since}};
+  }
+  send_json(res, body, fault ? 503 : 200);
+}
+
 }  // namespace
 
 std::vector<Route> api_routes(ApiContext& ctx) {
@@ -231,12 +247,7 @@ std::vector<Route> api_routes(ApiContext& ctx) {
     return [&ctx, fn](const Req& req, Res& res) { fn(ctx, req, res); };
   };
   return {
-      {"GET", "/healthz",
-       [&ctx](const Req&, Res& res) {
-         send_json(res, {{"status", "ok"},
-                         {"engine_version", rockcal::engine_version()},
-                         {"workers", ctx.workers}});
-       }},
+      {"GET", "/healthz", bind(health)},
       {"GET", "/metrics",
        [&ctx](const Req&, Res& res) {
          res.set_content(metrics_text(ctx.service, ctx.workers), "text/plain; version=0.0.4");
@@ -245,7 +256,10 @@ std::vector<Route> api_routes(ApiContext& ctx) {
       {"GET", "/api/v1/campaigns", bind(list_campaigns), {"limit", "offset"}},
       {"GET", "/api/v1/campaigns/{id}", bind(get_campaign)},
       {"DELETE", "/api/v1/campaigns/{id}", bind(cancel_campaign)},
-      {"GET", "/api/v1/campaigns/{id}/results", bind(campaign_results), {"format"}},
+      {"GET",
+       "/api/v1/campaigns/{id}/results",
+       bind(campaign_results),
+       {"format", "limit", "offset"}},
       {"GET", "/api/v1/campaigns/{id}/report.html", bind(campaign_report)},
       {"GET", "/api/v1/jobs/{id}", bind(get_job)},
       {"GET", "/api/v1/jobs/{id}/log", bind(job_log)},

@@ -106,6 +106,9 @@ int run_serve(const ServeOptions& o, const std::string& argv0) {
   server_cfg.connections.request_timeout = ms(o.request_timeout_s);
   server_cfg.connections.keep_alive_timeout = ms(o.keep_alive_timeout_s);
   if (!o.token_file.empty()) server_cfg.token = read_token_file(o.token_file);
+  if (o.protect_reads && !server_cfg.token)
+    throw std::runtime_error("--protect-reads needs --token-file (the token reads must carry)");
+  server_cfg.protect_reads = o.protect_reads;
   // Each open connection is a descriptor: raise the soft limit as far as allowed, and say so when
   // it still cannot hold --max-connections (accept() would then wait for descriptors to free up).
   rlimit files{};

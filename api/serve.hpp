@@ -13,7 +13,8 @@ struct ServeOptions {
   int workers = 0;        // 0: cores / ranks
   int ranks_per_job = 1;  // 0: run the engine without mpirun
   std::string token_file;
-  std::string engine;  // default: rockcal-dem next to this binary, else PATH
+  bool protect_reads = false;  // reads of /api/ and /metrics need the token too
+  std::string engine;          // default: rockcal-dem next to this binary, else PATH
   std::string mpirun = "mpirun";
   int retries = 2;
   double job_timeout_s = 6 * 3600;
@@ -24,16 +25,16 @@ struct ServeOptions {
   double read_timeout_s = 5;               // one read of a request may wait this long
   double request_timeout_s = 20;           // a whole request must arrive within this
   double keep_alive_timeout_s = 5;         // idle connections are closed after this
-  std::string port_file;           // written with the bound port once listening
-  std::string executor = "local";  // local | slurm
-  std::string jobs_dir;            // default "<data-dir>/jobs"; slurm: shared with compute nodes
-  std::string mpi_hostfile;        // local: mpirun --hostfile, for ranks on several hosts
-  std::string partition;           // slurm: sbatch --partition
-  std::string account;             // slurm: sbatch --account
-  std::string time_limit;          // slurm: sbatch --time
-  std::string srun_mpi = "pmix";   // slurm: srun --mpi ("" = the cluster's MpiDefault)
-  int max_queued = 64;             // slurm: jobs submitted to Slurm at once
-  double slurm_poll_s = 10;        // slurm: seconds between squeue queries
+  std::string port_file;                   // written with the bound port once listening
+  std::string executor = "local";          // local | slurm
+  std::string jobs_dir;           // default "<data-dir>/jobs"; slurm: shared with compute nodes
+  std::string mpi_hostfile;       // local: mpirun --hostfile, for ranks on several hosts
+  std::string partition;          // slurm: sbatch --partition
+  std::string account;            // slurm: sbatch --account
+  std::string time_limit;         // slurm: sbatch --time
+  std::string srun_mpi = "pmix";  // slurm: srun --mpi ("" = the cluster's MpiDefault)
+  int max_queued = 64;            // slurm: jobs submitted to Slurm at once
+  double slurm_poll_s = 10;       // slurm: seconds between squeue queries
 };
 
 int run_serve(const ServeOptions& options, const std::string& argv0);

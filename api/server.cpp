@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "api/dashboard.hpp"
+#include "api/framing.hpp"
 #include "api/http_util.hpp"
 #include "orchestrator/request_error.hpp"
 
@@ -93,6 +94,17 @@ void check_params(const httplib::Request& req, const std::vector<std::string>& k
   }
 }
 
+void send_unauthorized(httplib::Response& res) {
+  res.set_header("WWW-Authenticate", "Bearer");
+  send_error(res, 401, "missing or wrong bearer token (Authorization: Bearer <token>)",
+             "Authorization");
+}
+
+// The data a protected server serves only with the token (see ServerConfig::protect_reads).
+bool reads_need_token(const std::string& path) {
+  return path.rfind("/api/", 0) == 0 || path == "/metrics";
+}
+
 ConnectionLimits limits_of(const ServerConfig& c) {
   ConnectionLimits l = c.connections;
   l.max_request_bytes = c.max_body_bytes + (64u << 10);  // the body plus a generous head
@@ -159,8 +171,8 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
   });
 
   for (const auto& route : routes_) {
-    auto run = [handler = route.handler, params = route.params](const httplib::Request& req,
-                                                                httplib::Response& res) {
+    auto run = [this, handler = route.handler, params = route.params](const httplib::Request& req,
+                                                                      httplib::Response& res) {
       try {
         check_params(req, params);
         handler(req, res);
@@ -168,9 +180,14 @@ ApiServer::ApiServer(orch::JobService& service, int workers, ServerConfig config
         send_error(res, e.status, e.what(), e.field);
       } catch (const orch::RequestError& e) {
         send_error(res, 400, e.what(), e.field);
+      } catch (const db::SqliteError& e) {
+        const std::string kind = ctx_.service.store().note_failure(e);
+        if (kind.empty()) throw;  // not the storage: a 500
+        send_storage_fault(res, {kind, sqlite3_errstr(e.code)});
       }
     };
     std::string pattern = path_regex(route.path);
+    route_patterns_.emplace_back(pattern);
     if (route.method == "GET") server_.Get(pattern, run);
     if (route.method == "DELETE") server_.Delete(pattern, run);
     if (route.method == "POST") {
@@ -230,6 +247,16 @@ bool ApiServer::refused(const httplib::Request& req, httplib::Response& res) con
                    "); retry shortly");
     return true;
   }
+  if (auto error = framing_error(req)) {
+    send_error(res, error->status, error->what(), error->field);
+    return true;
+  }
+  if (req.method != "GET" && req.method != "HEAD" && req.method != "POST" &&
+      req.method != "DELETE") {
+    res.set_header("Allow", allowed_methods(req.path));
+    send_error(res, 405, default_message(405, req, config_.max_body_bytes));
+    return true;
+  }
   const std::string host = req.get_header_value("Host");
   if (!host_allowed(host)) {
     send_error(res, 403,
@@ -250,9 +277,7 @@ bool ApiServer::refused(const httplib::Request& req, httplib::Response& res) con
       }
     }
     if (!authorized(req)) {
-      res.set_header("WWW-Authenticate", "Bearer");
-      send_error(res, 401, "missing or wrong bearer token (Authorization: Bearer <token>)",
-                 "Authorization");
+      send_unauthorized(res);
       return true;
     }
     // A cross-site HTML form can post text/plain without asking; it cannot post JSON.
@@ -265,11 +290,26 @@ bool ApiServer::refused(const httplib::Request& req, httplib::Response& res) con
       return true;
     }
   }
+  if (!is_mutating(req.method) && config_.protect_reads && reads_need_token(req.path) &&
+      !authorized(req)) {
+    send_unauthorized(res);
+    return true;
+  }
   if (req.get_header_value<std::uint64_t>("Content-Length") > config_.max_body_bytes) {
     send_error(res, 413, too_large_message(config_.max_body_bytes));
     return true;
   }
   return false;
+}
+
+std::string ApiServer::allowed_methods(const std::string& path) const {
+  std::string out;
+  for (std::size_t i = 0; i < routes_.size(); ++i) {
+    if (!std::regex_match(path, route_patterns_[i])) continue;
+    const std::string& method = routes_[i].method;
+    out += (out.empty() ? "" : ", ") + (method == "GET" ? std::string("GET, HEAD") : method);
+  }
+  return out.empty() ? "GET, HEAD" : out;  // the dashboard's pages, and 404s
 }
 
 bool ApiServer::host_allowed(const std::string& given) const {
@@ -292,8 +332,8 @@ bool ApiServer::host_allowed(const std::string& given) const {
 bool ApiServer::authorized(const httplib::Request& req) const {
   if (!config_.token) return true;
   std::string header = req.get_header_value("Authorization");
-  const std::string prefix = "Bearer ";
-  if (header.rfind(prefix, 0) != 0) return false;
+  const std::string prefix = "bearer ";  // the scheme is case-insensitive (RFC 7235)
+  if (lower(header.substr(0, prefix.size())) != prefix) return false;
   return same_secret(header.substr(prefix.size()), *config_.token);
 }
 

@@ -1,4 +1,5 @@
-// The HTTP server: registers the route table, turns every error into the JSON error shape, checks
+// The HTTP server: registers the route table, turns every error into the JSON error shape, refuses
+// requests of ambiguous framing (api/framing.hpp) and methods no route takes (405), checks
 // Host (and Origin) against the allowed hosts, the bearer token and Content-Type on mutating
 // requests and the query parameters of each route, and caps body sizes and connections.
 #pragma once
@@ -6,6 +7,7 @@
 #include <httplib.h>
 
 #include <optional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@ struct ServerConfig {
   std::string host = "127.0.0.1";
   int port = 8080;                   // 0: any free port (see ApiServer::bind)
   std::optional<std::string> token;  // when set, POST/DELETE need "Authorization: Bearer <token>"
+  // With a token: reads of /api/ and /metrics need it too (beyond loopback, the data is not
+  // everyone's); /healthz and the dashboard's files stay open.
+  bool protect_reads = false;
   std::size_t max_body_bytes = 1 << 20;
   // Host header values served, as "name" (with the bound port) or "name:port"; "*" serves any.
   // Empty: the listen address's names (allowed_hosts_for), so that a web page in a browser cannot
@@ -46,13 +51,16 @@ class ApiServer {
  private:
   bool authorized(const httplib::Request& req) const;
   bool host_allowed(const std::string& host) const;
-  // Answers requests the route handlers must not see (wrong Host, token or Content-Type, too
-  // large, over the connection cap); true when it did.
+  // The methods the routes at `path` answer, for a 405's Allow header.
+  std::string allowed_methods(const std::string& path) const;
+  // Answers requests the route handlers must not see (over the connection cap, ambiguous framing,
+  // a method no route takes, wrong Host, token or Content-Type, too large); true when it did.
   bool refused(const httplib::Request& req, httplib::Response& res) const;
 
   ApiContext ctx_;
   ServerConfig config_;
   std::vector<Route> routes_;
+  std::vector<std::regex> route_patterns_;  // path_regex of each route, in the same order
   HttpServer server_;
   int bound_port_ = 0;
   std::vector<std::string> default_hosts_;  // allowed_hosts_for(host), set by bind()

@@ -50,7 +50,8 @@ json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s) {
   if (c.driver_status) j["driver_status"] = *c.driver_status;
   if (c.summary) {
     j["summary"] = parsed_or_null(c.summary);
-    // A calibration's answer sits at the top level, where issue 5's clients look for it.
+    // A calibration's answer sits at the top level, where clients of the first calibration API look
+    // for it.
     if (j["summary"].is_object() && j["summary"].contains("best")) j["best"] = j["summary"]["best"];
   }
   return j;

@@ -56,7 +56,7 @@ CREATE TABLE results (
 );
 CREATE INDEX results_by_point ON results (test, fr0, fs0);
 )sql"},
-      // A run that ended without a peak ("peak_reached": false; issue 16) is a failed job whose
+      // A run that ended without a peak ("peak_reached": false) is a failed job whose
       // result stays for inspection: no_peak says why, and the value columns are emptied so that
       // nothing takes its largest load for a peak. Stored runs are judged by the rule of new ones
       // (orch::no_peak_reason), except that engines before 0.2.0 also wrote peak_reached false for

@@ -26,8 +26,9 @@ double now_seconds() {
   return duration<double>(system_clock::now().time_since_epoch()).count();
 }
 
-Store::Store(std::string path) : path_(std::move(path)) {
-  auto conn = std::make_unique<Connection>(path_);
+Store::Store(std::string path, int busy_timeout_ms)
+    : path_(std::move(path)), busy_timeout_ms_(busy_timeout_ms) {
+  auto conn = std::make_unique<Connection>(path_, busy_timeout_ms_);
   migrate(*conn);
   give_back(std::move(conn));
 }
@@ -43,7 +44,7 @@ Store::Lease Store::lease() {
       return Lease(*this, std::move(conn));
     }
   }
-  return Lease(*this, std::make_unique<Connection>(path_));
+  return Lease(*this, std::make_unique<Connection>(path_, busy_timeout_ms_));
 }
 
 void Store::give_back(std::unique_ptr<Connection> conn) {

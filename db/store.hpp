@@ -11,6 +11,7 @@
 
 #include "db/records.hpp"
 #include "db/sqlite.hpp"
+#include "db/storage_faults.hpp"
 
 namespace rockcal::db {
 
@@ -21,8 +22,9 @@ enum class FailOutcome { requeued, failed, not_running };
 
 class Store {
  public:
-  // Opens or creates the database and applies pending migrations.
-  explicit Store(std::string path);
+  // Opens or creates the database and applies pending migrations. A write waits up to
+  // `busy_timeout_ms` for another writer's lock before it fails with SQLITE_BUSY.
+  explicit Store(std::string path, int busy_timeout_ms = 10000);
   ~Store();
 
   const std::string& path() const { return path_; }
@@ -86,7 +88,9 @@ class Store {
   std::vector<ExecutorCounts> executor_counts();
   std::optional<JobRow> job(std::int64_t id);
   std::string job_state(std::int64_t id);  // "" if no such job
-  std::vector<JobResultRow> campaign_results(std::int64_t campaign_id);
+  // A campaign's jobs with their results, by job id: `limit` of them (-1: all) from `offset`.
+  std::vector<JobResultRow> campaign_results(std::int64_t campaign_id, std::int64_t limit = -1,
+                                             std::int64_t offset = 0);
   std::optional<ResultRow> result(const std::string& hash);
   std::vector<ResultRow> results(const ResultFilter& filter);
   DurationStats durations(std::optional<std::int64_t> campaign_id = std::nullopt);
@@ -96,12 +100,25 @@ class Store {
   // Runs `fn` on a pooled connection (for tests and one-off maintenance such as integrity checks).
   void with_connection(const std::function<void(Connection&)>& fn);
 
+  // ---- storage faults (storage_faults.hpp) ----
+
+  // Records a failed write: its storage fault kind ("" when it is none, e.g. a constraint).
+  std::string note_failure(const SqliteError& e);
+  // Records a write that succeeded: the fault in force, if any, has cleared.
+  void note_success() { health_.succeeded(); }
+  const StorageHealth& health() const { return health_; }
+  // Whether the database takes a write now: a one-value write committed, waiting at most 100 ms
+  // for another writer's lock. Records the outcome; returns the fault in force.
+  std::optional<StorageFault> probe_write();
+
  private:
   class Lease;
   Lease lease();
   void give_back(std::unique_ptr<Connection> conn);
 
   std::string path_;
+  int busy_timeout_ms_;
+  StorageHealth health_;
   std::mutex pool_mutex_;
   std::vector<std::unique_ptr<Connection>> idle_;
 };

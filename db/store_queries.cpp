@@ -1,12 +1,37 @@
 // The store's reads. Plain SELECTs on a pooled connection; WAL lets them run beside a writer.
 #include <string>
 
+#include "db/job_queries.hpp"
 #include "db/row_readers.hpp"
 #include "db/store.hpp"
 
 namespace rockcal::db {
 
 using namespace detail;
+
+namespace {
+
+std::string campaign_scope(bool one_campaign) {
+  return one_campaign ? "campaign_id = ?1" : "?1 IS NULL";
+}
+
+}  // namespace
+
+std::string job_counts_sql(bool one_campaign) {
+  return "SELECT state, COUNT(*), SUM(cached) FROM jobs WHERE " + campaign_scope(one_campaign) +
+         " GROUP BY state";
+}
+
+std::string running_jobs_sql(bool one_campaign) {
+  return std::string("SELECT ") + kJobColumns + " FROM jobs WHERE state = 'running' AND " +
+         campaign_scope(one_campaign) + " ORDER BY id";
+}
+
+std::string job_durations_sql(bool one_campaign) {
+  return "SELECT COUNT(*), COALESCE(SUM(finished_at - started_at), 0) FROM jobs "
+         "WHERE state = 'succeeded' AND cached = 0 AND started_at IS NOT NULL AND " +
+         campaign_scope(one_campaign);
+}
 
 std::optional<CampaignRow> Store::campaign(std::int64_t id) {
   auto conn = lease();
@@ -36,9 +61,7 @@ std::int64_t Store::campaign_count() {
 
 StateCounts Store::counts(std::optional<std::int64_t> campaign_id) {
   auto conn = lease();
-  auto st = conn->prepare(
-      "SELECT state, COUNT(*), SUM(cached) FROM jobs WHERE (?1 IS NULL OR campaign_id = ?1) "
-      "GROUP BY state");
+  auto st = conn->prepare(job_counts_sql(campaign_id.has_value()));
   st.bind_all(campaign_id);
   StateCounts c;
   while (st.step()) {
@@ -55,9 +78,7 @@ StateCounts Store::counts(std::optional<std::int64_t> campaign_id) {
 
 std::vector<JobRow> Store::running_jobs(std::optional<std::int64_t> campaign_id) {
   auto conn = lease();
-  auto st = conn->prepare(std::string("SELECT ") + kJobColumns +
-                          " FROM jobs WHERE state = 'running' AND (?1 IS NULL OR campaign_id = ?1) "
-                          "ORDER BY id");
+  auto st = conn->prepare(running_jobs_sql(campaign_id.has_value()));
   st.bind_all(campaign_id);
   std::vector<JobRow> out;
   while (st.step()) out.push_back(read_job(st));
@@ -103,15 +124,16 @@ std::string Store::job_state(std::int64_t id) {
   return st.step() ? st.text(0) : std::string();
 }
 
-std::vector<JobResultRow> Store::campaign_results(std::int64_t campaign_id) {
+std::vector<JobResultRow> Store::campaign_results(std::int64_t campaign_id, std::int64_t limit,
+                                                  std::int64_t offset) {
   auto conn = lease();
   // The curve is left out (NULL): a results table never needs it and it is the bulk of a row.
   std::string sql = "SELECT " + prefixed(kJobColumns, "j.") + ", " +
                     without_curve(prefixed(kResultColumns, "r.")) +
                     " FROM jobs j LEFT JOIN results r ON r.hash = j.hash AND j.state = 'succeeded' "
-                    "WHERE j.campaign_id = ? ORDER BY j.id";
+                    "WHERE j.campaign_id = ? ORDER BY j.id LIMIT ? OFFSET ?";
   auto st = conn->prepare(sql);
-  st.bind_all(campaign_id);
+  st.bind_all(campaign_id, limit, offset);
   std::vector<JobResultRow> out;
   while (st.step()) {
     JobResultRow row{read_job(st), std::nullopt};
@@ -144,10 +166,7 @@ std::vector<ResultRow> Store::results(const ResultFilter& f) {
 
 DurationStats Store::durations(std::optional<std::int64_t> campaign_id) {
   auto conn = lease();
-  auto st = conn->prepare(
-      "SELECT COUNT(*), COALESCE(SUM(finished_at - started_at), 0) FROM jobs "
-      "WHERE state = 'succeeded' AND cached = 0 AND started_at IS NOT NULL "
-      "AND (?1 IS NULL OR campaign_id = ?1)");
+  auto st = conn->prepare(job_durations_sql(campaign_id.has_value()));
   st.bind_all(campaign_id);
   st.step();
   return {st.int64(0), st.real(1)};

@@ -6,6 +6,7 @@
 
 #include <istream>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
@@ -16,11 +17,15 @@ namespace rockcal {
 // needs 3 and a campaign request 5; the limit leaves room for any honest document.
 inline constexpr int kMaxJsonDepth = 64;
 
-// Malformed JSON (syntax, invalid UTF-8, a number that overflows a double) or JSON nested deeper
-// than kMaxJsonDepth. The message says which: "malformed JSON: ..." or "JSON nested deeper than
-// 64 levels (the limit)".
+// Malformed JSON (syntax, invalid UTF-8, a number that overflows a double), JSON nested deeper
+// than kMaxJsonDepth, or an object that names a key twice (which of the two values counts is
+// nowhere written down). The message says which: "malformed JSON: ...", "JSON nested deeper than
+// 64 levels (the limit)" or "job.bond.fr0: given more than once"; `field` is the duplicate key's
+// dotted path (keys of the enclosing objects; array positions are left out), else empty.
 struct JsonInputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  std::string field;
+  explicit JsonInputError(const std::string& message, std::string field_path = "")
+      : std::runtime_error(message), field(std::move(field_path)) {}
 };
 
 // Parses one JSON document with the nesting limit; throws JsonInputError.

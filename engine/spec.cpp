@@ -4,12 +4,38 @@
 #include <cstdio>
 #include <set>
 
+#include "engine/run_cost.hpp"
 #include "engine/units.hpp"
 
 namespace rockcal {
 namespace {
 
 using nlohmann::json;
+
+// Physical values span many orders of magnitude between SI lab units (a grain of 1e-4 m, kr of
+// 1e8 N/m, 2700 kg/m^3) and the model units of eq. 4 (radius 1, kr 8000, density 1); these bounds
+// lie orders of magnitude beyond both, so that only absurd values (1e-300, 1e20 N/m) are refused
+// here. What the values give together (time steps, the platen against the wave speed) is checked
+// after parsing.
+struct Magnitudes {
+  double lo, hi;
+  const char* unit;
+};
+constexpr Magnitudes kDensityRange{1e-6, 1e6, "kg/m^3"};
+constexpr Magnitudes kStiffnessRange{1e-6, 1e13, "N/m"};
+constexpr Magnitudes kModulusRange{1e-6, 1e13, "Pa"};
+constexpr Magnitudes kSpeedRange{1e-9, 1e3, "m/s"};
+constexpr Magnitudes kTimeStepRange{1e-15, 1e3, "s"};
+// A platen faster than this fraction of the specimen's compression-wave speed strikes it: an
+// impact, not a quasi-static test (the seed case runs at 5e-4 of it).
+constexpr double kMaxPlatenWaveFraction = 0.1;
+
+// Three significant digits: "95.7", "1e-06", "1e+13".
+std::string three_digits(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
 
 // Reads one JSON object, remembering which keys were consumed so unknown keys can be reported.
 class ObjectReader {
@@ -42,6 +68,17 @@ class ObjectReader {
   double positive(const std::string& key, double fallback) {
     double x = number(key).value_or(fallback);
     if (!(x > 0)) throw SpecError(field(key), "must be positive");
+    return x;
+  }
+
+  // A positive physical value within `range` (see Magnitudes).
+  double magnitude(const std::string& key, double fallback, const Magnitudes& range) {
+    double x = positive(key, fallback);
+    if (x < range.lo || x > range.hi) {
+      throw SpecError(field(key), "must be in [" + three_digits(range.lo) + ", " +
+                                      three_digits(range.hi) + "] " + range.unit + "; " +
+                                      three_digits(x) + " is absurd in SI and in model units");
+    }
     return x;
   }
 
@@ -104,10 +141,7 @@ class ObjectReader {
 
 // A count for a message: whole up to a billion, then three significant digits ("1.39e+23").
 std::string count_text(double x) {
-  if (x < 1e9) return std::to_string(std::llround(x));
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", x);
-  return text;
+  return x < 1e9 ? std::to_string(std::llround(x)) : three_digits(x);
 }
 
 // Particles in the larger of the UCT cylinder and the BTT disc at the FCC density. Computed from
@@ -171,15 +205,10 @@ MaterialSpec parse_material(ObjectReader& root) {
   const json* v = root.find("material");
   if (!v) throw SpecError("material", "is required");
   ObjectReader r(*v, "material");
-  m.density_kg_m3 = r.positive("density", m.density_kg_m3);
-  if (auto kr = r.number("kr")) {
-    if (!(*kr > 0)) throw SpecError("material.kr", "must be positive");
-    m.kr_n_m = *kr;
-  }
-  if (auto e = r.number("youngs_modulus")) {
-    if (!(*e > 0)) throw SpecError("material.youngs_modulus", "must be positive");
-    m.youngs_modulus_pa = *e;
-  }
+  m.density_kg_m3 = r.magnitude("density", m.density_kg_m3, kDensityRange);
+  if (r.number("kr")) m.kr_n_m = r.magnitude("kr", 1.0, kStiffnessRange);
+  if (r.number("youngs_modulus"))
+    m.youngs_modulus_pa = r.magnitude("youngs_modulus", 1.0, kModulusRange);
   if (m.kr_n_m && m.youngs_modulus_pa) {
     throw SpecError("material.youngs_modulus", "give either kr or youngs_modulus, not both");
   }
@@ -263,13 +292,13 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
   const json* v = root.find("loading");
   if (!v) return l;
   ObjectReader r(*v, "loading");
-  l.platen_velocity_m_s = r.positive("platen_velocity", l.platen_velocity_m_s);
+  l.platen_velocity_m_s = r.magnitude("platen_velocity", l.platen_velocity_m_s, kSpeedRange);
   if (const json* dt = r.find("dt")) {
     if (dt->is_string()) {
       if (dt->get<std::string>() != "auto")
         throw SpecError("loading.dt", "must be \"auto\" or a positive number");
     } else {
-      l.dt_s = r.positive("dt", 1.0);
+      l.dt_s = r.magnitude("dt", 1.0, kTimeStepRange);
     }
   }
   l.dt_safety = r.in_range("dt_safety", l.dt_safety, 0.01, 1.0, false);
@@ -359,6 +388,43 @@ OutputSpec parse_output(ObjectReader& root, const SampleSpec& sample) {
   return o;
 }
 
+// The run's length, bounded before it starts: the platen well below the wave speed, and at most
+// kMaxSteps time steps in all (run_cost.hpp).
+void check_cost(const JobSpec& run) {
+  const double c = wave_speed(run);
+  const double v = run.loading.platen_velocity_m_s;
+  if (run.test != TestKind::elastic && !(v <= kMaxPlatenWaveFraction * c)) {
+    throw SpecError("loading.platen_velocity",
+                    ObjectReader::fmt(v) + " m/s is over " +
+                        ObjectReader::fmt(kMaxPlatenWaveFraction) +
+                        " of the specimen's wave speed (" + three_digits(c) +
+                        " m/s from material and sample): an impact, not a quasi-static test");
+  }
+  const double steps = estimated_steps(run);
+  if (steps <= static_cast<double>(kMaxSteps)) return;
+  const std::string about =
+      std::isfinite(steps) ? "about " + count_text(steps) : "an unbounded number of";
+  const std::string limit = " (limit " + count_text(static_cast<double>(kMaxSteps)) + ")";
+  // Name what made it long: a given step finer than the automatic one, a rate study's slower runs,
+  // two-rate loading's slow phase, or else the platen speed against the material's wave speed.
+  JobSpec alternative = run;
+  alternative.loading.dt_s.reset();
+  if (run.loading.dt_s && estimated_steps(alternative) <= kMaxSteps)
+    throw SpecError("loading.dt", "of " + ObjectReader::fmt(*run.loading.dt_s) +
+                                      " s gives the job " + about + " time steps" + limit);
+  alternative = run;
+  alternative.loading.rate_study = false;
+  if (run.loading.rate_study && estimated_steps(alternative) <= kMaxSteps)
+    throw SpecError("loading.rate_study_runs",
+                    "gives the job " + about + " time steps in all its runs" + limit);
+  alternative.loading.slow_factor = 1.0;
+  if (run.loading.slow_factor < 1.0 && estimated_steps(alternative) <= kMaxSteps)
+    throw SpecError("loading.slow_factor", "gives the job " + about + " time steps" + limit);
+  throw SpecError("loading.platen_velocity",
+                  ObjectReader::fmt(v) + " m/s against a wave speed of " + three_digits(c) +
+                      " m/s gives the job " + about + " time steps" + limit);
+}
+
 JobSpec parse_body(ObjectReader& r, TestKind test, const std::optional<BondSpec>& bond = {}) {
   JobSpec s;
   s.test = test;
@@ -378,7 +444,7 @@ JobSpec parse_body(ObjectReader& r, TestKind test, const std::optional<BondSpec>
     // Extreme density, stiffness or radius (overflow or underflow): no step could be taken.
     throw SpecError("material",
                     "density, stiffness and particle radius give a critical time step of " +
-                        ObjectReader::fmt(limit) + " s: no usable step");
+                        three_digits(limit) + " s: no usable step");
   }
   if (run.loading.dt_s) {
     // An explicit step above the stability limit would blow up silently; refuse it up front.
@@ -387,6 +453,7 @@ JobSpec parse_body(ObjectReader& r, TestKind test, const std::optional<BondSpec>
                       "exceeds the stability limit " + ObjectReader::fmt(limit) + " s");
     }
   }
+  check_cost(run);
   return s;
 }
 

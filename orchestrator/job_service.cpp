@@ -32,7 +32,7 @@ JobService::JobService(ServiceConfig config, std::unique_ptr<Executor> executor)
     if (lock_fd_ >= 0) close(lock_fd_);
     throw std::runtime_error("another rockcal server is using " + config_.data_dir.string());
   }
-  store_ = std::make_unique<db::Store>(config_.db_path.string());
+  store_ = std::make_unique<db::Store>(config_.db_path.string(), config_.busy_timeout_ms);
   kinds_.add(sweep_kind());
   auto reattached = recover();
   PoolConfig pool;

@@ -27,6 +27,7 @@ struct ServiceConfig {
   int max_attempts = 3;
   std::chrono::milliseconds job_timeout{std::chrono::hours(6)};
   std::chrono::milliseconds poll_interval{100};  // the longest wait between looks at a job
+  int busy_timeout_ms = 10000;  // a store write waits this long for another writer's lock
   Limits limits;
 };
 

@@ -52,10 +52,34 @@ void WorkerPool::resume(const db::JobRow& job, const std::string& handle) {
   resumed_.emplace_back(job, handle);
 }
 
-db::FailOutcome WorkerPool::fail(const db::JobRow& job, const std::string& reason,
-                                 const std::string& error, bool retryable) {
+void WorkerPool::fail(const db::JobRow& job, const std::string& reason, const std::string& error,
+                      bool retryable, std::stop_token stop) {
   failures_.add(reason);
-  return store_.finish_failure(job.id, error, retryable, config_.max_attempts);
+  store_write([&] { store_.finish_failure(job.id, error, retryable, config_.max_attempts); }, stop);
+}
+
+bool WorkerPool::pause(std::chrono::milliseconds wait, std::stop_token stop) {
+  const auto until = Clock::now() + wait;
+  while (!stop.stop_requested() && Clock::now() < until)
+    std::this_thread::sleep_for(std::min(wait, std::chrono::milliseconds(50)));
+  return !stop.stop_requested();
+}
+
+bool WorkerPool::store_write(const std::function<void()>& write, std::stop_token stop) {
+  for (auto wait = config_.storage_backoff;;
+       wait = std::min(wait * 2, config_.storage_backoff_max)) {
+    try {
+      write();
+      store_.note_success();
+      return true;
+    } catch (const db::SqliteError& e) {
+      const std::string kind = store_.note_failure(e);
+      if (kind.empty()) throw;
+      if (wait == config_.storage_backoff)  // once per write, as one line
+        std::cerr << "rockcal: storage " + kind + " (" + e.what() + "); retrying\n";
+    }
+    if (!pause(wait, stop)) return false;
+  }
 }
 
 void WorkerPool::work(std::stop_token stop) {
@@ -76,6 +100,9 @@ void WorkerPool::work(std::stop_token stop) {
     } else {
       try {
         job = store_.claim_job(executor_.name());
+      } catch (const db::SqliteError& e) {
+        if (store_.note_failure(e).empty())
+          std::cerr << "rockcal: claiming a job failed: " << e.what() << "\n";
       } catch (const std::exception& e) {
         std::cerr << "rockcal: claiming a job failed: " << e.what() << "\n";
       }
@@ -92,7 +119,7 @@ void WorkerPool::work(std::stop_token stop) {
         // stopped the job, which counts as a failed attempt (so a persistent error cannot loop).
         std::cerr << "rockcal: job " << job->id << ": " << e.what() << "\n";
         try {
-          fail(*job, "worker_error", std::string("worker error: ") + e.what(), true);
+          fail(*job, "worker_error", std::string("worker error: ") + e.what(), true, stop);
         } catch (const std::exception&) {
           // Still running in the store; the next start-up re-queues it.
         }
@@ -119,14 +146,24 @@ void WorkerPool::execute(const db::JobRow& job, std::stop_token stop) {
   std::filesystem::path dir;
   std::string handle;
   try {
-    dir = prepare_job_dir(config_.jobs_dir, job);
+    // A job directory that cannot be written may be a passing fault (a full or remounted disk):
+    // tried again with back-off before the attempt counts as failed.
+    auto backoff = config_.start_backoff;
+    for (int tries = 1;; ++tries, backoff *= 2) {
+      try {
+        dir = prepare_job_dir(config_.jobs_dir, job);
+        break;
+      } catch (const std::exception&) {
+        if (tries >= config_.start_tries || !pause(backoff, stop)) throw;
+      }
+    }
     LaunchRequest request{
         dir, dir / "log", {"run", (dir / "job.json").string(), "--out", dir.string()}};
     handle = executor_.launch(request);
     store_.set_handle(job.id, handle);
   } catch (const std::exception& e) {
     if (!handle.empty()) executor_.cancel(handle);
-    fail(job, "start", std::string("could not start: ") + e.what(), true);
+    fail(job, "start", std::string("could not start: ") + e.what(), true, stop);
     on_job_done_(job.id);
     wake();  // it may have been re-queued
     return;
@@ -159,7 +196,7 @@ void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir
     if (status.finished) break;
     auto now = Clock::now();
     if (status.pending != shown_pending) {
-      store_.set_pending(job.id, status.pending);
+      store_write([&] { store_.set_pending(job.id, status.pending); }, stop);
       shown_pending = status.pending;
       // The job timeout counts run time, not time spent waiting in the scheduler's queue.
       if (!status.pending) started = now;
@@ -168,7 +205,12 @@ void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir
       // A scheduler's job goes on without us; the next server re-attaches to it.
       if (executor_.jobs_outlive_server()) return;
       executor_.cancel(handle);
-      store_.requeue(job.id, "server stopped while the job ran");
+      try {
+        store_.requeue(job.id, "server stopped while the job ran");
+      } catch (const db::SqliteError& e) {
+        // Still running in the store; the next start-up re-queues it.
+        store_.note_failure(e);
+      }
       return;
     }
     if (now >= next_cancel_check) {
@@ -183,8 +225,12 @@ void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir
     if (now >= next_progress) {
       next_progress = now + config_.progress_interval;
       auto p = read_progress(dir);
-      if (p && p != last_progress) store_.set_progress(job.id, *p);
-      last_progress = p;
+      try {
+        if (p && p != last_progress) store_.set_progress(job.id, *p);
+        last_progress = p;
+      } catch (const db::SqliteError& e) {
+        if (store_.note_failure(e).empty()) throw;  // progress can wait for the next look
+      }
     }
     if (!status.pending && now - started > config_.job_timeout) {
       status = executor_.cancel(handle);
@@ -200,28 +246,31 @@ void WorkerPool::monitor(const db::JobRow& job, const std::filesystem::path& dir
   if (timed_out) {
     auto seconds = std::chrono::duration_cast<std::chrono::seconds>(config_.job_timeout).count();
     fail(job, "job_timeout", failure_text("timed out after " + std::to_string(seconds) + " s", dir),
-         true);
+         true, stop);
   } else if (status.ending == Ending::failed) {
     // The scheduler's verdict (Slurm TIMEOUT, NODE_FAIL, ...): retried like any failed run.
     std::string reason = status.scheduler_state;
     for (char& c : reason) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    fail(job, reason, failure_text(status.reason, dir), true);
+    fail(job, reason, failure_text(status.reason, dir), true, stop);
   } else if (status.ending == Ending::cancelled) {
-    store_.finish_cancelled(job.id, status.reason);
+    store_write([&] { store_.finish_cancelled(job.id, status.reason); }, stop);
   } else if (status.ending == Ending::requeue) {
-    store_.requeue(job.id, status.reason);
+    store_write([&] { store_.requeue(job.id, status.reason); }, stop);
     wake();
   } else if (status.exit_code == 0 && status.signal == 0) {
+    std::optional<db::ResultRow> result;
     try {
-      store_.finish_success(job.id, read_result(dir, job));
+      result = read_result(dir, job);
     } catch (const std::exception& e) {
-      fail(job, "no_result", failure_text(std::string("exit 0 but ") + e.what(), dir), true);
+      fail(job, "no_result", failure_text(std::string("exit 0 but ") + e.what(), dir), true, stop);
     }
+    // A result that cannot be stored now (a full disk, a held lock) is stored once it can.
+    if (result) store_write([&] { store_.finish_success(job.id, *result); }, stop);
   } else {
     // Exit 2 is an invalid spec: running it again cannot help.
     bool retryable = !(status.signal == 0 && status.exit_code == 2);
     fail(job, status.signal ? "signal" : "exit_code",
-         failure_text("engine " + status.describe(), dir), retryable);
+         failure_text("engine " + status.describe(), dir), retryable, stop);
   }
   on_job_done_(job.id);
 }

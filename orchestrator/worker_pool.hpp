@@ -19,6 +19,7 @@ namespace rockcal::orch {
 
 // Failed attempts by reason since the server started ("exit_code", "signal", "job_timeout",
 // "no_result", "start", "worker_error", or a scheduler's state such as "timeout", "node_fail").
+// Storage faults a write met (and retried) are counted by the store (Store::health()).
 class FailureCounts {
  public:
   void add(const std::string& reason);
@@ -38,6 +39,14 @@ struct PoolConfig {
   std::chrono::milliseconds first_poll_interval{1};  // the first wait; x1.5 after each look
   std::chrono::milliseconds cancel_check_interval{300};
   std::chrono::milliseconds progress_interval{1000};
+  // Back-off for store writes that meet a storage fault: the first wait, doubled after each try
+  // up to the second.
+  std::chrono::milliseconds storage_backoff{50};
+  std::chrono::milliseconds storage_backoff_max{2000};
+  // A job directory that cannot be prepared (a transient filesystem fault) is tried start_tries
+  // times, waiting start_backoff, doubled after each try, before the attempt counts as failed.
+  int start_tries = 5;
+  std::chrono::milliseconds start_backoff{250};
 };
 
 class WorkerPool {
@@ -61,9 +70,16 @@ class WorkerPool {
  private:
   void work(std::stop_token stop);
   void execute(const db::JobRow& job, std::stop_token stop);
-  // Records a failed attempt (counted by `reason`); returns what became of the job.
-  db::FailOutcome fail(const db::JobRow& job, const std::string& reason, const std::string& error,
-                       bool retryable);
+  // Records a failed attempt (counted by `reason`), through store_write.
+  void fail(const db::JobRow& job, const std::string& reason, const std::string& error,
+            bool retryable, std::stop_token stop);
+  // Runs a store write; while it fails for a storage fault (db/storage_faults.hpp: a lock held, a
+  // full disk), retries it with back-off (storage_backoff, doubling up to storage_backoff_max)
+  // until it succeeds or the pool stops. Other errors propagate. False when stopped first: the job
+  // then stays running in the store, and the next start-up re-queues it.
+  bool store_write(const std::function<void()>& write, std::stop_token stop);
+  // Waits `wait`, or less if the pool stops; false when it stops.
+  static bool pause(std::chrono::milliseconds wait, std::stop_token stop);
   // Watches a launched job until it ends, is cancelled or times out, and records the outcome.
   void monitor(const db::JobRow& job, const std::filesystem::path& dir, const std::string& handle,
                std::stop_token stop);

@@ -31,10 +31,8 @@ export function setToken(value) {
 
 async function request(method, path, {body, accept = 'application/json', signal} = {}) {
   const headers = {Accept: accept};
-  if (method !== 'GET') {
-    headers['Content-Type'] = 'application/json';
-    if (token()) headers.Authorization = `Bearer ${token()}`;
-  }
+  if (method !== 'GET') headers['Content-Type'] = 'application/json';
+  if (token()) headers.Authorization = `Bearer ${token()}`;  // reads too, for --protect-reads
   let response;
   try {
     response = await fetch(path, {

@@ -18,7 +18,11 @@ TestResult run_compression_test(const JobSpec& spec, const RunHooks& hooks);
 void tally_breaks(const JobSpec& spec, TestResult& r);
 
 // Elastic test: the UCT specimen compressed by a small strain and relaxed; E and nu from the
-// stress and strain measured in the interior, away from the free surface and the platens.
+// stress and strain measured in the interior, away from the free surface and the platens. Each of
+// its two stages loads over kElasticLoadTransits elastic-wave transit times (quasi-static), then
+// holds until at rest, for at most kElasticHoldLimitTransits.
+constexpr double kElasticLoadTransits = 20.0;
+constexpr double kElasticHoldLimitTransits = 400.0;
 TestResult run_elastic_test(const JobSpec& spec, const RunHooks& hooks);
 
 // Rate study of a UCT or BTT: the test at a sequence of halving platen speeds, starting where the

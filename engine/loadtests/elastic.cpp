@@ -12,9 +12,7 @@
 namespace rockcal {
 namespace {
 
-constexpr double kLoadTransits = 20.0;  // loading time in elastic-wave transit times: quasi-static
-constexpr double kHoldTransits = 20.0;  // then held this long (at least) to let the damping settle
-constexpr double kHoldLimitTransits = 400.0;  // ... and at most this long
+constexpr double kHoldTransits = 20.0;        // held this long (at least) to let the damping settle
 constexpr double kSettledEnergyRatio = 1e-8;  // kinetic / stored energy that counts as at rest
 constexpr double kMaxSeatRadii = 2.0;  // seating closes the platens by at most this many radii
 
@@ -32,9 +30,9 @@ TestResult run_elastic_test(const JobSpec& job, const RunHooks& hooks) {
   const double diameter = spec.sample.diameter_m;
 
   const double transit_s = wave_transit_time(spec);
-  const double t_load = kLoadTransits * transit_s;
+  const double t_load = kElasticLoadTransits * transit_s;
   const double t_hold_min = kHoldTransits * transit_s;
-  const double t_hold_max = kHoldLimitTransits * transit_s;
+  const double t_hold_max = kElasticHoldLimitTransits * transit_s;
   const std::int64_t max_steps =
       spec.loading.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
 

@@ -50,7 +50,13 @@ bool PeakTracker::update(double load, double closure, std::int64_t step, std::in
 }
 
 std::string PeakTracker::no_peak_reason(const std::string& stop_reason) const {
-  auto num = [](double x) { return nlohmann::json(x).dump(); };
+  // JSON's shortest form for a number; a load that is not one (a run gone unstable) as "NaN" or
+  // "inf", never JSON's "null".
+  auto num = [](double x) {
+    if (std::isnan(x)) return std::string("NaN");
+    if (std::isinf(x)) return std::string(x > 0 ? "inf" : "-inf");
+    return nlohmann::json(x).dump();
+  };
   std::string why;
   if (stop_reason == "max_strain")
     why = "the load did not fall past a peak with bonds breaking before loading.max_strain";

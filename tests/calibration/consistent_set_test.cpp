@@ -1,4 +1,4 @@
-// Focus: the consistent set and the suggestion (issue 17 item 2). Two loads need not pin two
+// Focus: the consistent set and the suggestion. Two loads need not pin two
 // strengths: a twin whose loads stay on target along a curve must be reported `unique: false` with
 // its truth inside the set, and with the observable that tells the set's members apart; a
 // well-posed twin must be `unique: true` with its strengths recovered.

@@ -1,4 +1,4 @@
-// Focus: the multi-fidelity correction (issue 17 item 3). A coarse search, then Newton steps on the
+// Focus: the multi-fidelity correction. A coarse search, then Newton steps on the
 // fine specimen with the coarse model's Jacobian: the fine loads must meet the targets in a few
 // fine evaluations, the fine point must be the fine model's solution, and the report must say which
 // resolution each evaluation ran at.

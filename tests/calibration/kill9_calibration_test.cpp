@@ -1,7 +1,8 @@
-// Issue 5's acceptance: kill -9 the real `rockcal serve` in the middle of a calibration, restart it
-// on the same database: the campaign finishes, and no evaluation that had finished before the crash
-// runs again (its jobs are answered from the store, the optimiser replays its history).
-// The engine is the power-law formula script, so the test is about the service, not the physics.
+// Crash recovery of a calibration: kill -9 the real `rockcal serve` in the middle of a calibration,
+// restart it on the same database: the campaign finishes, and no evaluation that had finished
+// before the crash runs again (its jobs are answered from the store, the optimiser replays its
+// history). The engine is the power-law formula script, so the test is about the service, not the
+// physics.
 #include <gtest/gtest.h>
 
 #include <cstdlib>

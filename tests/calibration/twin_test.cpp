@@ -1,4 +1,4 @@
-// The twin test (issue 5's acceptance): targets produced by the engine itself at a known
+// The twin test: targets produced by the engine itself at a known
 // (F_r0, F_s0); the calibration, running the real rockcal-dem, must recover both loads within 2%
 // and both strengths within 10% in at most 40 evaluations. Tiny samples, so it takes seconds per
 // point.

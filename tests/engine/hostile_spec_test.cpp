@@ -1,11 +1,12 @@
-// Hostile job input (issue 15): JSON nested past the limit, sizes whose particle estimate
-// overflows, materials that give no time step, the per-job cost limits, templates validated with
-// a given bond, and packing builders asked for absurd sizes: each refused at once, with the error
-// a user can act on.
+// Hostile job input: JSON nested past the limit, sizes whose particle estimate overflows,
+// materials that give no time step, absurd physical values, the per-job cost limits (particles
+// and time steps), templates validated with a given bond, and packing builders asked for absurd
+// sizes: each refused at once, with the error a user can act on.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <limits>
+#include <vector>
 
 #include "engine/json_input.hpp"
 #include "engine/packing/fcc.hpp"
@@ -84,6 +85,23 @@ TEST(HostileSpec, JsonNestedPastTheLimitIsRefusedWhileParsing) {
             0u);
 }
 
+TEST(HostileSpec, AKeyGivenTwiceInOneObjectIsRefusedNamingIt) {
+  EXPECT_EQ(input_error(R"({"test": "uct", "test": "btt"})"), "test: given more than once");
+  EXPECT_EQ(input_error(R"({"bond": {"fr0": 1, "fs0": 2, "fr0": 3}})"),
+            "bond.fr0: given more than once");
+  EXPECT_EQ(input_error(R"({"points": [{"fr0": 1}, {"fs0": 1, "fs0": 2}]})"),
+            "points.fs0: given more than once");
+  try {
+    parse_json_input(R"({"job": {"loading": {"dt": 1, "dt": "auto"}}})");
+    ADD_FAILURE() << "accepted a duplicate key";
+  } catch (const JsonInputError& e) {
+    EXPECT_EQ(e.field, "job.loading.dt");
+  }
+  // The same key in different objects, and in objects of one array, is no duplicate.
+  EXPECT_EQ(input_error(R"({"a": {"k": 1}, "b": {"k": 2}, "c": [{"k": 1}, {"k": 1}]})"),
+            "(parsed)");
+}
+
 TEST(HostileSpec, AParticleEstimateThatOverflowsIsRefused) {
   // inf / inf was NaN at 64e168e, and NaN > cap is false: the spec passed, the run never ended.
   json huge = good();
@@ -102,14 +120,88 @@ TEST(HostileSpec, AParticleEstimateThatOverflowsIsRefused) {
 }
 
 TEST(HostileSpec, MaterialsThatGiveNoUsableTimeStepAreRefused) {
+  // Each value within its bounds, the three together give no step: a grain of 1e-200 m weighs 0.
   json j = good();
-  j["material"] = {{"density", 1e-300}, {"kr", 1e300}, {"nu", 0.2}};  // underflows to 0
+  j["sample"] = {{"diameter", 1e-199}, {"height", 3e-199}, {"radius", 1e-200}};
   EXPECT_EQ(refusal(j),
-            "material: density, stiffness and particle radius give a critical time step of 0.0 s: "
+            "material: density, stiffness and particle radius give a critical time step of 0 s: "
             "no usable step");
-  j["material"] = {{"density", 1e300}, {"kr", 1e-300}, {"nu", 0.2}};  // overflows
-  EXPECT_EQ(refusal(j).rfind("material: density, stiffness and particle radius give", 0), 0u)
-      << refusal(j);
+  j["sample"] = {{"diameter", 1e201}, {"height", 3e201}, {"radius", 1e200}};  // overflows
+  EXPECT_EQ(refusal(j),
+            "material: density, stiffness and particle radius give a critical time step of inf s: "
+            "no usable step");
+}
+
+TEST(HostileSpec, AbsurdPhysicalValuesAreRefusedNamingTheField) {
+  struct Case {
+    std::string pointer;
+    double value;
+    std::string refusal;
+  };
+  for (const auto& k : std::vector<Case>{
+           {"/material/kr", 1e20,
+            "material.kr: must be in [1e-06, 1e+13] N/m; 1e+20 is absurd in SI and in model units"},
+           {"/material/youngs_modulus", 1e-300,
+            "material.youngs_modulus: must be in [1e-06, 1e+13] Pa; 1e-300 is absurd in SI and in "
+            "model units"},
+           {"/material/density", 1e-300,
+            "material.density: must be in [1e-06, 1e+06] kg/m^3; 1e-300 is absurd in SI and in "
+            "model units"},
+           {"/material/density", 1e300,
+            "material.density: must be in [1e-06, 1e+06] kg/m^3; 1e+300 is absurd in SI and in "
+            "model units"},
+           {"/loading/platen_velocity", 1e-300,
+            "loading.platen_velocity: must be in [1e-09, 1e+03] m/s; 1e-300 is absurd in SI and in "
+            "model units"},
+           {"/loading/platen_velocity", 1e300,
+            "loading.platen_velocity: must be in [1e-09, 1e+03] m/s; 1e+300 is absurd in SI and in "
+            "model units"},
+           {"/loading/dt", 1e-300,
+            "loading.dt: must be in [1e-15, 1e+03] s; 1e-300 is absurd in SI and in model units"},
+       }) {
+    json j = good();
+    if (k.pointer == "/material/youngs_modulus") j["material"].erase("kr");
+    j[json::json_pointer(k.pointer)] = k.value;
+    EXPECT_EQ(refusal(j), k.refusal) << k.pointer;
+  }
+  // In bounds, yet faster than a tenth of the wave speed (95.7 m/s for this material): an impact.
+  EXPECT_EQ(refusal(with("/loading/platen_velocity", 20.0)),
+            "loading.platen_velocity: 20.0 m/s is over 0.1 of the specimen's wave speed (95.7 m/s "
+            "from material and sample): an impact, not a quasi-static test");
+  EXPECT_EQ(refusal(with("/loading/platen_velocity", 9.0)), "(accepted)");
+}
+
+TEST(HostileSpec, EveryJobHasABoundedStepCount) {
+  // The small UCT's step count grows as 1 / platen speed.
+  EXPECT_EQ(refusal(with("/loading/platen_velocity", 1e-6)),
+            "loading.platen_velocity: 1e-06 m/s against a wave speed of 95.7 m/s gives the job "
+            "about 183728400 time steps (limit 100000000)");
+  EXPECT_EQ(refusal(with("/loading/platen_velocity", 2e-6)), "(accepted)");
+  // A given step far below the automatic one is what makes the run long: it is named.
+  EXPECT_EQ(refusal(with("/loading/dt", 1e-9)),
+            "loading.dt: of 1e-09 s gives the job about 1.72e+10 time steps (limit 100000000)");
+  // A stiffer material at the same speed: the wave speed, and the steps, grow with sqrt(kr).
+  EXPECT_EQ(refusal(with("/material/kr", 1e13)),
+            "loading.platen_velocity: 0.05 m/s against a wave speed of 3.39e+06 m/s gives the job "
+            "about 129915707 time steps (limit 100000000)");
+  // Two-rate loading and a rate study multiply the runs' length: the field that did is named.
+  json slow = with("/loading/platen_velocity", 5e-5);
+  EXPECT_EQ(refusal(slow), "(accepted)");
+  slow["loading"]["slow_factor"] = 0.01;
+  EXPECT_EQ(refusal(slow),
+            "loading.slow_factor: gives the job about 356860850 time steps (limit 100000000)");
+  json study = with("/loading/platen_velocity", 2e-4);
+  study["loading"]["rate_study"] = true;
+  study["loading"]["rate_study_runs"] = 6;
+  EXPECT_EQ(refusal(study),
+            "loading.rate_study_runs: gives the job about 116669906 time steps in all its runs "
+            "(limit 100000000)");
+  study["loading"]["rate_study"] = false;
+  EXPECT_EQ(refusal(study), "(accepted)");
+  // A step limit bounds each run whatever the speed.
+  json capped = with("/loading/platen_velocity", 1e-6);
+  capped["loading"]["max_steps"] = 1000000;
+  EXPECT_EQ(refusal(capped), "(accepted)");
 }
 
 TEST(HostileSpec, PerJobCostLimits) {

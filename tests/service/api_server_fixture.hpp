@@ -21,13 +21,16 @@ struct ApiServerFixture : ::testing::Test {
   std::thread thread;
   int port = 0;
 
-  // `configure` may change the server's settings (limits, allowed hosts) before it binds.
+  // `configure` may change the server's settings (limits, allowed hosts) before it binds, and
+  // `configure_service` the service's (e.g. the store's busy timeout).
   void start(std::optional<std::string> token = std::nullopt, std::size_t max_jobs = 100,
-             const std::function<void(api::ServerConfig&)>& configure = {}) {
+             const std::function<void(api::ServerConfig&)>& configure = {},
+             const std::function<void(orch::ServiceConfig&)>& configure_service = {}) {
     orch::ServiceConfig cfg;
     cfg.db_path = dir.path() / "api.db";
     cfg.workers = 2;
     cfg.limits.max_jobs_per_campaign = max_jobs;
+    if (configure_service) configure_service(cfg);
     orch::LocalExecutorConfig exec;
     exec.engine = fake_engine();
     exec.ranks = 0;

@@ -164,6 +164,48 @@ TEST_F(Api, TokenGuardsEveryMutatingRoute) {
   auto g = c.Get("/api/v1/campaigns/1");
   ASSERT_TRUE(g);
   EXPECT_EQ(g->status, 200);
+  // The scheme's name is case-insensitive.
+  auto lower = c.Delete("/api/v1/campaigns/1", {{"Authorization", "bearer s3cret-token"}});
+  ASSERT_TRUE(lower);
+  EXPECT_NE(lower->status, 401) << lower->body;
+}
+
+TEST_F(Api, ProtectedReadsNeedTheTokenButHealthAndTheDashboardDoNot) {
+  start(std::string("s3cret-token"), 100, [](api::ServerConfig& sc) { sc.protect_reads = true; });
+  auto c = client();
+  for (const std::string path : {"/api/v1/campaigns", "/api/v1/campaigns/1", "/api/v1/results",
+                                 "/api/v1/jobs/1/log", "/metrics"}) {
+    auto r = c.Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 401) << path;
+    EXPECT_EQ(json::parse(r->body),
+              json({{"error", "missing or wrong bearer token (Authorization: Bearer <token>)"},
+                    {"field", "Authorization"}}))
+        << path;
+  }
+  for (const std::string path : {"/healthz", "/"}) {
+    auto r = c.Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 200) << path;
+  }
+  auto r = c.Get("/api/v1/campaigns", {{"Authorization", "BEARER s3cret-token"}});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+}
+
+TEST_F(Api, AKeyGivenTwiceIsRefusedNamingItAndStoresNothing) {
+  start();
+  auto c = client();
+  std::string body = sweep_request({"uct"}, {31}, {1}).dump();
+  const std::string bond = "\"bond\":{";
+  body.replace(body.find(bond), bond.size(), bond + "\"fr0\":1,\"fr0\":2,");
+  auto r = c.Post("/api/v1/campaigns", body, "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(json::parse(r->body),
+            json({{"error", "job.bond.fr0: given more than once"}, {"field", "job.bond.fr0"}}))
+      << body;
+  expect_nothing_stored();
 }
 
 TEST_F(Api, SweepLifecycleOverHttp) {

@@ -1,4 +1,4 @@
-// A bounded fuzz run over the request parsers (issue 15): mutated campaign requests through the
+// A bounded fuzz run over the request parsers: mutated campaign requests through the
 // service's path (body text -> parse_json_input -> JobService::plan_campaign, every kind) and
 // mutated job specs through the engine's (read_job, and json_text for what it prints). No input may
 // crash or hang them, and every refusal must be the clean error the API turns into a 400

@@ -1,4 +1,4 @@
-// Hostile HTTP input against the real server (issue 15): deep nesting, chunked floods, cross-site
+// Hostile HTTP input against the real server: deep nesting, chunked floods, cross-site
 // and rebinding requests, idle and slow connections, query parameters and ids in odd forms, a
 // specimen whose particle estimate overflows. Each is refused with an exact error and stores
 // nothing; the server keeps answering.
@@ -326,6 +326,35 @@ TEST_F(HostileHttp, AParticleEstimateThatOverflowsIsRefused) {
                                 "job.sample.diameter: specimen would hold about 1.39e+23 "
                                 "particles (limit 2000000)"},
                                {"field", "job.sample.diameter"}}));
+  expect_nothing_stored();
+}
+
+TEST_F(HostileHttp, AJobOverTheStepLimitIsRefusedBeforeAnythingIsStored) {
+  start();
+  auto c = client();
+  struct Case {
+    json loading;
+    json error;
+  };
+  for (const auto& k : std::vector<Case>{
+           {{{"platen_velocity", 5e-7}},
+            {{"error",
+              "job.loading.platen_velocity: 5e-07 m/s against a wave speed of 95.7 m/s gives the "
+              "job about 157481326 time steps (limit 100000000)"},
+             {"field", "job.loading.platen_velocity"}}},
+           {{{"platen_velocity", 1e-300}},
+            {{"error",
+              "job.loading.platen_velocity: must be in [1e-09, 1e+03] m/s; 1e-300 is absurd in SI "
+              "and in model units"},
+             {"field", "job.loading.platen_velocity"}}},
+       }) {
+    json request = sweep_request({"uct"}, {50}, {60});
+    request["job"]["loading"] = k.loading;
+    auto r = c.Post("/api/v1/campaigns", request.dump(), "application/json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400);
+    EXPECT_EQ(error_of(r), k.error);
+  }
   expect_nothing_stored();
 }
 

@@ -1,7 +1,7 @@
-// Acceptance (issue 4): the real `rockcal serve` on a free loopback port with a temporary database
-// and the real rockcal-dem under mpirun runs a 2x2 sweep of UCT and BTT over HTTP; the 8 results,
-// the CSV export and the cache (a resubmission runs no new job) are checked, and the CLI client
-// is driven against the same server.
+// Acceptance of the service: the real `rockcal serve` on a free loopback port with a temporary
+// database and the real rockcal-dem under mpirun runs a 2x2 sweep of UCT and BTT over HTTP; the 8
+// results, the CSV export and the cache (a resubmission runs no new job) are checked, and the CLI
+// client is driven against the same server.
 #include <gtest/gtest.h>
 
 #include <cstdio>

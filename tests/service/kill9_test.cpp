@@ -1,4 +1,4 @@
-// Crash recovery (issue 4): kill -9 the real server in the middle of a sweep run by the real engine
+// Crash recovery: kill -9 the real server in the middle of a sweep run by the real engine
 // under mpirun, restart it on the same file: the orphaned mpirun process groups are found and
 // stopped, the running jobs re-queued, the sweep finishes with exactly one result per point, no
 // process is left behind, and PRAGMA integrity_check says ok.

@@ -1,4 +1,4 @@
-// Load (issue 4): 50 concurrent clients query and submit on loopback against the real server for
+// Load: 50 concurrent clients query and submit on loopback against the real server for
 // ROCKCAL_LOAD_SECONDS (default 10 s in the default suite; the issue's figure is 30 s: run with
 // ROCKCAL_LOAD_SECONDS=30). No 5xx, no "database is locked", no request lost: a request dropped
 // without an answer is resent once and must then succeed, and drops must stay below 1 in 1,000.

@@ -87,7 +87,7 @@ TEST(CalibrationProgress, OtherKindsKeepTheJobsLine) {
             "queued, ETA 30s");
 }
 
-// A finished calibration's report (report_json.cpp) with lab units, ensembles of 3 and issue 17's
+// A finished calibration's report (report_json.cpp) with lab units, ensembles of 3 and the
 // consistent set, unique flag and suggestion.
 json lab_report() {
   return json::parse(R"({
