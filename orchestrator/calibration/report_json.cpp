@@ -301,7 +301,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"strategy",
              {{"requested", to_string(c.strategy)},
               {"used", r.strategy_used},
-              {"algorithm", c.algorithm}}},
+              {"algorithm", c.strategy == Strategy::bayes ? json(nullptr) : json(c.algorithm)}}},
             {"homogeneity", homogeneity_json(r.homogeneity)},
             {"tolerance", c.tolerance},
             {"realisations", r.ensemble.realisations},

@@ -41,6 +41,11 @@ const calibration = (name, maxEvaluations, tolerance) => ({kind: 'calibration', 
 const BOUND = {kind: 'calibration', name: 'browser test calibration on its bounds', job: JOB,
   targets: {uct: {peak_load: 11200}, btt: {peak_load: 1000}}, bounds: {fr0: [16, 64], fs0: [16, 128]},
   max_evaluations: 6, tolerance: 0.02, consistency_evaluations: 0, suggest: false};
+// A Bayesian calibration toward the tiny model's own loads at (64, 128) N: its answer is a
+// posterior, and the page draws its credible region over (F_r0, F_s0).
+const BAYES = {kind: 'calibration', name: 'browser test bayes calibration', job: JOB,
+  targets: {uct: {peak_load: 5640}, btt: {peak_load: 506}}, bounds: {fr0: [16, 256], fs0: [32, 512]},
+  strategy: 'bayes', max_evaluations: 16, tolerance: 0.02, suggest: false};
 // The one the page submits and cancels: a global search (DIRECT-L) with an unreachable tolerance
 // and a budget it cannot spend before the test cancels it.
 const LIVE = {...calibration('live calibration from the page', 1000, 1e-6), strategy: 'direct_2d', algorithm: 'direct_l'};
@@ -152,6 +157,7 @@ before(async () => {
   ids.calibration = (await api('POST', '/api/v1/campaigns', calibration('browser test calibration', 10, 0.02))).id;
   ids.diagnosis = (await api('POST', '/api/v1/campaigns', DIAGNOSIS)).id;
   ids.bound = (await api('POST', '/api/v1/campaigns', BOUND)).id;
+  ids.bayes = (await api('POST', '/api/v1/campaigns', BAYES)).id;
   // Debian's chromium on a fresh profile (playwright passes the directory as --user-data-dir).
   browser = await chromium.launchPersistentContext(path.join(run, 'chromium-profile'), {
     executablePath: '/usr/bin/chromium', headless: true, deviceScaleFactor: 1,
@@ -405,6 +411,30 @@ test('a calibration that ends on its bounds: the verdict names the bound and the
   // Model-unit targets: the consistent set speaks of target loads, not lab loads.
   assert.doesNotMatch(await page.locator('main').innerText(), /lab loads/);
   await shot(page, '05d-calibration-on-bounds');
+  assert.deepEqual(page.problems, []);
+});
+
+test('a bayes calibration: the posterior, its intervals and its region drawn over (F_r0, F_s0)', async () => {
+  const c = await until('the bayes calibration to finish', async () => {
+    const x = await api('GET', `/api/v1/campaigns/${ids.bayes}`);
+    return finished(x) && x;
+  }, 300);
+  const p = c.summary.posterior;
+  assert.ok(p && p.region && p.region.spans.length > 0, JSON.stringify(c.summary).slice(0, 400));
+  const page = await newPage();
+  await page.goto(`${base}/campaigns/${ids.bayes}`);
+  const region = page.locator('figure.posterior-region');
+  await region.waitFor();
+  // The region's outline is one closed line; every successful run is a mark; the estimate a star.
+  const outline = region.locator('g.series[data-series="90% credible region"] path.line');
+  assert.equal(await outline.count(), 1);
+  const runs = c.summary.history.filter((r) => r.ok).length;
+  assert.equal(Number(await region.locator('g.series[data-series="run"]').getAttribute('data-points')), runs);
+  const text = await page.locator('main').innerText();
+  assert.ok(text.includes(p.why), p.why);
+  assert.ok(text.includes(`From ${p.runs} runs at ${p.points} points`));
+  assert.match(text, /a default: the request did not state it/);
+  await shot(page, '05e-calibration-posterior');
   assert.deepEqual(page.problems, []);
 });
 

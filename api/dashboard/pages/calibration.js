@@ -7,6 +7,7 @@ import {h, note, section, table} from '../dom.js';
 import {newtons, num, pct, pm, signed} from '../format.js';
 import {bestCurves} from './calibration_curves.js';
 import {consistentSection} from './calibration_consistent.js';
+import {posteriorSection} from './calibration_posterior.js';
 import {convergencePlot, loadsPlot, planePlot, scatterPlot} from './calibration_plots.js';
 import {evaluationsText, isLive} from './progress.js';
 import {plotWidth} from './layout.js';
@@ -33,7 +34,11 @@ export async function renderCalibration(c, ctx) {
   const lab = labFactors(s);
   const best = s.best || bestSoFar(history);
   out.append(verdictSection(c, s, best, lab));
-  if (s.consistent || s.unique !== undefined) out.append(consistentSection(s, lab, plotWidth(ctx.main, {columns: 2})));
+  if (s.posterior) {
+    out.append(posteriorSection(s, history, plotWidth(ctx.main, {columns: 1})));
+  } else if (s.consistent || s.unique !== undefined) {
+    out.append(consistentSection(s, lab, plotWidth(ctx.main, {columns: 2})));
+  }
   const width = plotWidth(ctx.main, {columns: 2});
   const plots = [];
   if (history.length) {
@@ -109,7 +114,9 @@ function verdictSection(c, s, best, lab) {
       columns.push({label: 'simulated (lab)', num: true, value: (r) => r.labSim},
         {label: 'target (lab)', num: true, value: (r) => r.labTarget});
     }
-    parts.push(h('h3', {}, best.soFar ? 'Best point so far' : 'Best point'),
+    // A bayes calibration's answer is its posterior (below); its "best" is the check batch run at
+    // the estimate.
+    parts.push(h('h3', {}, s.posterior ? 'Check runs at the estimate' : best.soFar ? 'Best point so far' : 'Best point'),
       h('p', {class: 'best-point'}, `F_r0 = ${num(best.fr0)} N, F_s0 = ${num(best.fs0)} N (model units)`,
         labBest ? `; lab F_r0 = ${newtons(labBest.fr0)}, F_s0 = ${newtons(labBest.fs0)}`
           : lab ? `; lab F_r0 = ${newtons(best.fr0 * lab.force)}, F_s0 = ${newtons(best.fs0 * lab.force)}` : '',
