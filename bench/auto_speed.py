@@ -18,15 +18,13 @@ R 1, density 1, friction 0.6. Runs are kept in OUT/NAME/, so a rerun only runs w
 (delete OUT after rebuilding the engine); --log appends one JSON line per run as it finishes.
 """
 import argparse
-import concurrent.futures
-import json
 import math
 import os
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "bench", "effects"))
-from engine_runs import run_job  # noqa: E402
+from engine_runs import add_run_options, run_all  # noqa: E402
 
 
 def job(test, size, bond, speed, a, seed):
@@ -48,25 +46,15 @@ def name_of(test, size, bond, speed, seed):
     return "%s_d%g_%g_%g_%s_s%d" % (test, size, bond[0], bond[1], s, seed)
 
 
-def run_all(a, runs):
-    """runs: [(key, spec)] -> {key: result}, logging each as it finishes."""
-    engine = os.path.join(a.build, "engine", "rockcal-dem")
-    out = {}
-    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-        futures = {pool.submit(run_job, engine, os.path.join(a.out, name_of(*k)), spec): k
-                   for k, spec in runs}
-        for f in concurrent.futures.as_completed(futures):
-            k = futures[f]
-            r = f.result()
-            out[k] = r
-            if a.log:
-                q = r.get("loading_rate", {})
-                with open(a.log, "a") as log:
-                    log.write(json.dumps({"run": name_of(*k), "peak_load": r.get("peak_load"),
-                                          "peak_reached": r.get("peak_reached"),
-                                          "loading_rate": q, "steps": r.get("steps"),
-                                          "wall_seconds": r.get("wall_seconds")}) + "\n")
-    return out
+def line_of(name, r):
+    return {"run": name, "peak_load": r.get("peak_load"), "peak_reached": r.get("peak_reached"),
+            "loading_rate": r.get("loading_rate", {}), "steps": r.get("steps"),
+            "wall_seconds": r.get("wall_seconds")}
+
+
+def run_keyed(a, runs):
+    """runs: [(key, spec)] -> {key: result}."""
+    return run_all(a, [(k, name_of(*k), spec) for k, spec in runs], line_of)
 
 
 def peak(r):
@@ -89,7 +77,7 @@ def homogeneity(a):
                 for seed in range(1, a.seeds + 1):
                     k = (test, a.size, bond, speed, seed)
                     runs.append((k, job(test, a.size, bond, speed, a, seed)))
-    results = run_all(a, runs)
+    results = run_keyed(a, runs)
     print("| test | speed | F_r0 | F_s0 | peak load | kinetic/bond energy | peak transits | p to next |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     for test in ("uct", "btt"):
@@ -118,7 +106,7 @@ def rate(a):
     speeds = [(a.fixed, 0)] + [("auto", t) for t in transits]
     runs = [((test, a.size, bond, speed, 1), job(test, a.size, bond, speed, a, 1))
             for test in ("uct", "btt") for speed in speeds]
-    results = run_all(a, runs)
+    results = run_keyed(a, runs)
     print("| test | speed | platen speed | peak load | change | kinetic/bond energy | peak transits"
           " | steps | wall s |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
@@ -143,20 +131,13 @@ def rate(a):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("mode", choices=["homogeneity", "rate"])
-    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "runs", "auto_speed"))
-    ap.add_argument("--log")
-    ap.add_argument("--size", type=float, default=10)
+    add_run_options(ap, ROOT, "auto_speed", size=10, auto_transits=20, slow_factor=1.0)
     ap.add_argument("--scales", default="2,20,200")
     ap.add_argument("--ratio", type=float, default=1.0)
-    ap.add_argument("--seeds", type=int, default=1)
     ap.add_argument("--bond", default="64,64")
     ap.add_argument("--transits", default="2.5,5,10,20,40")
-    ap.add_argument("--auto-transits", type=float, default=20)
     ap.add_argument("--fixed", type=float, default=0.05)
-    ap.add_argument("--slow-factor", type=float, default=1.0)
     ap.add_argument("--max-strain", type=float, default=0.2)
-    ap.add_argument("--jobs", type=int, default=1)
     a = ap.parse_args()
     homogeneity(a) if a.mode == "homogeneity" else rate(a)
 
