@@ -13,9 +13,11 @@
 namespace rockcal {
 
 // A bond-controlled peak comes within a few bond failure strains (about 5 at F_s0 = F_r0 in the
-// UCT). The auto speed holds for this many; past them the peak, if any, is set by the large-strain
-// geometry of a damaged specimen (not by the strengths alone), and the platens speed up so that
-// the rest of max_strain takes at most kLateTransits wave transits.
+// UCT). The auto speed holds for this many; past them the platens speed up so that the rest of
+// max_strain takes at most kLateTransits wave transits (a damaged specimen can carry the load to
+// large strains, and a weak rock's auto speed would take millions of steps to get there). A peak
+// after that window may be set by the large-strain geometry rather than by the strengths
+// (docs/loading-rate.md measures both cases).
 constexpr double kBondControlledWindow = 25.0;
 constexpr double kLateTransits = 500.0;
 

@@ -45,7 +45,7 @@ struct LoadingRate {
   double kinetic_energy_ratio = 0.0;  // kinetic / bond energy at the peak (its last curve row)
   double min_transits = 0.0;          // quasi-static when peak_transits >= min_transits
   double late_velocity_m_s = 0.0;     // auto: the speed past the bond-controlled window, if reached
-  bool late_peak = false;             // the peak came after that window: not a bond-controlled peak
+  bool late_peak = false;             // the peak came after that window (and at the faster speed)
   bool quasi_static() const { return peak_transits >= min_transits; }
 };
 
