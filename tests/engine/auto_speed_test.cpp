@@ -116,3 +116,25 @@ TEST(AutoSpeed, PeakLoadIsHomogeneousOfDegreeOneOverAHundredfoldStrengthRange) {
     RecordProperty(std::string("exponent_") + to_string(test), std::to_string(p));
   }
 }
+
+// A weak rock whose UCT is carried past its bonds' failure to large strains (compressed bonds,
+// F_s0 = 3.64 F_r0): the auto speed holds for kBondControlledWindow failure strains, then speeds
+// up, so the run's length is bounded by the window plus kLateTransits transits (at the weak
+// rock's own auto speed, the 10% max_strain alone would take 20 x 0.1 / 4e-5 = 50,000 transits),
+// and the result flags the peak as late.
+TEST(AutoSpeed, PastTheBondControlledWindowThePlatensSpeedUpAndTheRunIsBounded) {
+  const JobSpec s = tiny(TestKind::uct, 0.64, 2.33);
+  const TestResult r = run_test(s);
+  ASSERT_TRUE(r.loading_rate);
+  const LoadingRate& q = *r.loading_rate;
+  EXPECT_DOUBLE_EQ(q.late_velocity_m_s, late_platen_speed(s));
+  EXPECT_GT(q.late_velocity_m_s, 10.0 * q.platen_velocity_m_s);
+  const double transit = wave_transit_time(s);
+  const double window_s =
+      kBondControlledWindow * bond_failure_strain(s) * 16.0 / (2.0 * q.platen_velocity_m_s);
+  const double bound_s = window_s + (kLateTransits + 10.0) * transit;  // + seating and ramps
+  EXPECT_LT(static_cast<double>(r.steps) * r.dt_s, bound_s);
+  ASSERT_TRUE(r.peak_reached) << r.no_peak_reason;
+  EXPECT_TRUE(q.late_peak);
+  RecordProperty("steps", std::to_string(r.steps));
+}
