@@ -59,6 +59,20 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
     out["strength_definition"] = to_json(*definition);
   if (!r.peak_reached) out["no_peak_reason"] = r.no_peak_reason;
   out["peak_step"] = r.peak_step;  // breaks.csv rows up to it are the damage at the peak
+  if (r.loading_rate) {
+    const LoadingRate& q = *r.loading_rate;
+    out["loading_rate"] = {
+        {"platen_velocity", q.platen_velocity_m_s},
+        {"auto", q.automatic},
+        {"bond_failure_strain", q.bond_failure_strain},
+        {"wave_transit_time", q.wave_transit_s},
+        {"peak_transits", r.peak_reached ? json(q.peak_transits) : json()},
+        {"kinetic_energy_ratio", r.peak_reached ? json(q.kinetic_energy_ratio) : json()},
+        {"quasi_static_transits", q.min_transits},
+        {"quasi_static", r.peak_reached ? json(q.quasi_static()) : json()},
+        {"late_velocity", q.late_velocity_m_s > 0 ? json(q.late_velocity_m_s) : json()},
+        {"late_peak", r.peak_reached ? json(q.late_peak) : json()}};
+  }
   out["seating"] = {{"load", r.seating.load_n},
                     {"closure", r.seating.closure_m},
                     {"step", r.seating.step},

@@ -1,5 +1,7 @@
 #include "engine/run_cost.hpp"
 
+#include "engine/loadtests/loading_speed.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -47,11 +49,17 @@ double estimated_steps(const JobSpec& run) {
         travel / l.slow_factor + kRamps * ramp + kOtherTransits * aspect * transit;
     return std::min(seconds / dt, cap);
   };
-  double steps = steps_at(l.platen_velocity_m_s);
+  // "auto": the bond-controlled window at the rock's own speed, then the rest of max_strain at the
+  // late speed (loadtests/loading_speed.hpp); a given speed throughout.
+  const double speed = l.platen_velocity_m_s ? *l.platen_velocity_m_s : late_platen_speed(run);
+  double steps = steps_at(speed);
+  if (!l.platen_velocity_m_s) {
+    steps += std::min(kBondControlledWindow * l.auto_transits * transit / (l.slow_factor * dt), cap);
+  }
   // A rate study's runs after the probe: at halving speeds from half the job's (or slower).
   if (l.rate_study) {
     for (std::int64_t k = 1; k <= l.rate_study_runs; ++k)
-      steps += steps_at(l.platen_velocity_m_s / std::ldexp(1.0, static_cast<int>(k)));
+      steps += steps_at(platen_speed(run) / std::ldexp(1.0, static_cast<int>(k)));
   }
   return std::isnan(steps) ? INFINITY : steps;
 }

@@ -1,5 +1,7 @@
 #include "engine/spec.hpp"
 
+#include "engine/loadtests/loading_speed.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -292,7 +294,21 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
   const json* v = root.find("loading");
   if (!v) return l;
   ObjectReader r(*v, "loading");
-  l.platen_velocity_m_s = r.magnitude("platen_velocity", l.platen_velocity_m_s, kSpeedRange);
+  if (const json* v = r.find("platen_velocity")) {
+    if (v->is_string()) {
+      if (v->get<std::string>() != "auto")
+        throw SpecError("loading.platen_velocity", "must be \"auto\" or a positive number");
+      l.platen_velocity_m_s.reset();
+    } else {
+      l.platen_velocity_m_s =
+          r.magnitude("platen_velocity", l.platen_velocity_m_s.value_or(0.05), kSpeedRange);
+    }
+  }
+  if (r.number("auto_transits")) {
+    if (l.platen_velocity_m_s)
+      throw SpecError("loading.auto_transits", "applies to platen_velocity \"auto\" only");
+    l.auto_transits = r.in_range("auto_transits", l.auto_transits, 1.0, 1000.0, false);
+  }
   if (const json* dt = r.find("dt")) {
     if (dt->is_string()) {
       if (dt->get<std::string>() != "auto")
@@ -392,7 +408,7 @@ OutputSpec parse_output(ObjectReader& root, const SampleSpec& sample) {
 // kMaxSteps time steps in all (run_cost.hpp).
 void check_cost(const JobSpec& run) {
   const double c = wave_speed(run);
-  const double v = run.loading.platen_velocity_m_s;
+  const double v = platen_speed(run);
   if (run.test != TestKind::elastic && !(v <= kMaxPlatenWaveFraction * c)) {
     throw SpecError("loading.platen_velocity",
                     ObjectReader::fmt(v) + " m/s is over " +
@@ -539,8 +555,7 @@ nlohmann::json to_json(const JobSpec& s) {
   j["material"] = mat;
   j["bond"] = {{"fr0", s.bond.fr0_n}, {"fs0", s.bond.fs0_n}};
   j["contact"] = {{"friction", s.contact.friction}};
-  json l = {{"platen_velocity", s.loading.platen_velocity_m_s},
-            {"dt_safety", s.loading.dt_safety},
+  json l = {{"dt_safety", s.loading.dt_safety},
             {"ramp_fraction", s.loading.ramp_fraction},
             {"stop_load_fraction", s.loading.stop_load_fraction},
             {"max_strain", s.loading.max_strain},
@@ -550,6 +565,13 @@ nlohmann::json to_json(const JobSpec& s) {
             {"slow_trigger_broken_fraction", s.loading.slow_trigger_broken_fraction},
             {"rate_study", s.loading.rate_study},
             {"rate_study_runs", s.loading.rate_study_runs}};
+  // A given speed keeps the canonical form it always had; "auto" carries its one parameter.
+  if (s.loading.platen_velocity_m_s) {
+    l["platen_velocity"] = *s.loading.platen_velocity_m_s;
+  } else {
+    l["platen_velocity"] = "auto";
+    l["auto_transits"] = s.loading.auto_transits;
+  }
   if (s.loading.dt_s)
     l["dt"] = *s.loading.dt_s;
   else

@@ -85,9 +85,13 @@ struct ContactSpec {
 constexpr double kBttMaxStrain = 0.1;
 
 struct LoadingSpec {
-  double platen_velocity_m_s = 0.05;  // each platen moves at this speed towards the centre
-  std::optional<double> dt_s;         // nullopt = "auto"
-  double dt_safety = 0.5;             // fraction of the critical step used by "auto"
+  // Each platen moves at this speed towards the centre. nullopt = "auto": the speed follows from
+  // the bonds' failure strain so that the platens close by it in auto_transits elastic-wave
+  // transits (loadtests/loading_speed.hpp); use platen_speed() for the speed a run uses.
+  std::optional<double> platen_velocity_m_s = 0.05;
+  double auto_transits = 20.0;  // "auto" speed only
+  std::optional<double> dt_s;   // nullopt = "auto"
+  double dt_safety = 0.5;       // fraction of the critical step used by "auto"
   double ramp_fraction = 0.01;  // speed ramps over this fraction of the run (>= 2 wave transits)
   double stop_load_fraction = 0.7;  // stop once the load falls to this fraction of the peak
   double max_strain = 0.05;         // stop at this platen strain (total closure / length);

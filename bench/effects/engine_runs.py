@@ -29,3 +29,35 @@ def run_job(engine, out, spec):
         return {}
     with open(result) as f:
         return json.load(f)
+
+
+def add_run_options(parser, root, out_name, size, auto_transits, slow_factor):
+    """--build, --out (runs/OUT_NAME), --log and --jobs: where the engine is, where runs are kept,
+    the file that gets one JSON line per finished run, and how many run at once; --size (D/R),
+    --seeds, and the loading: --auto-transits, --slow-factor."""
+    parser.add_argument("--build", default=os.path.join(root, "build"))
+    parser.add_argument("--out", default=os.path.join(root, "runs", out_name))
+    parser.add_argument("--log")
+    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--size", type=float, default=size)
+    parser.add_argument("--seeds", type=int, default=1)
+    parser.add_argument("--auto-transits", type=float, default=auto_transits)
+    parser.add_argument("--slow-factor", type=float, default=slow_factor)
+
+
+def run_all(options, runs, line_of):
+    """Runs [(key, name, spec)] with options.jobs at once (cached in OUT/NAME); appends
+    line_of(name, result) to options.log as each finishes. Returns {key: result}."""
+    import concurrent.futures
+    engine = os.path.join(options.build, "engine", "rockcal-dem")
+    results = {}
+    with concurrent.futures.ThreadPoolExecutor(options.jobs) as pool:
+        futures = {pool.submit(run_job, engine, os.path.join(options.out, name), spec): (key, name)
+                   for key, name, spec in runs}
+        for future in concurrent.futures.as_completed(futures):
+            key, name = futures[future]
+            results[key] = future.result()
+            if options.log:
+                with open(options.log, "a") as log:
+                    log.write(json.dumps(line_of(name, results[key])) + "\n")
+    return results

@@ -10,7 +10,8 @@ EffectDef rate_effect() {
   e.name = "rate";
   e.doc =
       "Multiplies loading.platen_velocity by speed_factor (the job's platen speed stays in the "
-      "job as written, so the canonical form does not compound it).";
+      "job as written, so the canonical form does not compound it); an \"auto\" speed through "
+      "loading.auto_transits, divided by the factor.";
   e.params = {{.name = "speed_factor",
                .unit = "",
                .lo = 0.125,
@@ -21,7 +22,10 @@ EffectDef rate_effect() {
                .doc = "platen speed / the job's platen speed"}};
   e.defaults = {4.0};
   e.apply_spec = [](JobSpec& spec, const EffectValues& v) {
-    spec.loading.platen_velocity_m_s *= v.at("speed_factor");
+    if (spec.loading.platen_velocity_m_s)
+      *spec.loading.platen_velocity_m_s *= v.at("speed_factor");
+    else
+      spec.loading.auto_transits /= v.at("speed_factor");
   };
   return e;
 }

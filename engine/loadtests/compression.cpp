@@ -8,6 +8,7 @@
 #include "engine/confinement.hpp"
 #include "engine/effects/effect.hpp"
 #include "engine/loadtests/driver.hpp"
+#include "engine/loadtests/loading_speed.hpp"
 #include "engine/loadtests/modulus.hpp"
 #include "engine/loadtests/peak.hpp"
 #include "engine/loadtests/run_clock.hpp"
@@ -19,24 +20,36 @@ namespace rockcal {
 namespace {
 
 // Platen speed over time: a ramp up to the loading speed, then (two-rate loading) a ramp of the
-// same length down to the slow speed once damage has started.
+// same length down to the slow speed once damage has started. The auto speed also ramps up to its
+// late speed once the closure has passed the window of a bond-controlled peak.
 constexpr double kRampTransits = 2.0;
 
 struct SpeedSchedule {
   double fast_m_s, slow_factor, ramp_s;
+  double late_m_s = 0.0;      // the speed past the window (auto speed only); <= fast_m_s: none
   double slow_from_s = -1.0;  // when the slow-down started; < 0 while intact
+  double late_from_s = -1.0;  // when the speed-up started; < 0 before
 
   void slow_down_from(double t) {
     if (slow_from_s < 0 && slow_factor < 1.0) slow_from_s = t;
   }
+  void speed_up_from(double t) {
+    if (late_from_s < 0 && late_m_s > fast_m_s) late_from_s = t;
+  }
+  // How far a ramp that started at t0 has got at t (0 before it starts, 1 once over).
+  double ramped(double t, double t0) const {
+    if (t0 < 0 || t < t0) return 0.0;
+    return ramp_s > 0 ? std::min(1.0, (t - t0) / ramp_s) : 1.0;
+  }
   // True once the slow speed is reached: the fast phase's (partly inertial) peak no longer counts.
   bool slow_phase(double t) const { return slow_from_s >= 0 && t >= slow_from_s + ramp_s; }
-  bool changing(double t) const { return t < ramp_s || (slow_from_s >= 0 && !slow_phase(t)); }
+  bool changing(double t) const {
+    return t < ramp_s || (slow_from_s >= 0 && !slow_phase(t)) ||
+           (late_from_s >= 0 && t < late_from_s + ramp_s);
+  }
   double speed_at(double t) const {
-    const double up = ramp_s > 0 ? std::min(1.0, t / ramp_s) : 1.0;
-    if (slow_from_s < 0) return fast_m_s * up;
-    const double down = ramp_s > 0 ? std::min(1.0, (t - slow_from_s) / ramp_s) : 1.0;
-    return fast_m_s * up * (1.0 - (1.0 - slow_factor) * down);
+    const double base = fast_m_s * ramped(t, 0.0) + (late_m_s - fast_m_s) * ramped(t, late_from_s);
+    return base * (1.0 - (1.0 - slow_factor) * ramped(t, slow_from_s));
   }
 };
 
@@ -85,7 +98,7 @@ std::string seat(Simulation& sim, const JobSpec& spec, RunClock& clock, std::int
   Wall& top = sim.walls[kTopPlaten];
   const double length = loaded_length(spec);
   const double gap0 = top.point.z() - bottom.point.z();
-  const SpeedSchedule approach{spec.loading.platen_velocity_m_s, 1.0, t_ramp};
+  const SpeedSchedule approach{platen_speed(spec), 1.0, t_ramp};
   seating.load_n = seating_load(spec);
   double t = 0.0;
   for (;;) {
@@ -151,10 +164,15 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   RunClock clock(hooks, spec.output.progress_seconds);
   const LoadingSpec& ld = spec.loading;
   const double length = loaded_length(spec);
-  const double speed = ld.platen_velocity_m_s;
+  const double speed = platen_speed(spec);
   const double t_max = ld.max_strain * length / (2.0 * speed);  // both platens move
-  // Speed changes take at least kRampTransits wave transits, or the platens ring the specimen.
-  const double t_ramp = std::max(ld.ramp_fraction * t_max, kRampTransits * wave_transit_time(spec));
+  const double transit = wave_transit_time(spec);
+  // Speed changes take at least kRampTransits wave transits, or the platens ring the specimen. A
+  // given speed ramps over ramp_fraction of the run at most; the auto speed over kRampTransits,
+  // the same time whatever the strengths (which keeps the run homogeneous in them).
+  const double t_ramp = ld.platen_velocity_m_s
+                            ? std::max(ld.ramp_fraction * t_max, kRampTransits * transit)
+                            : kRampTransits * transit;
   const std::int64_t max_steps = ld.max_steps.value_or(std::numeric_limits<std::int64_t>::max());
   // Curve rows and VTK frames are spaced by platen closure, so a slowed-down phase is not
   // oversampled.
@@ -173,11 +191,22 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   count_specimen(sim, r);
   PeakTracker peak{ld.stop_load_fraction,
                    min_failure_breaks(r.bonds, spec.sample.diameter_m / spec.sample.radius_m)};
-  SpeedSchedule schedule{speed, ld.slow_factor, t_ramp};
+  SpeedSchedule schedule{speed, ld.slow_factor, t_ramp, late_platen_speed(spec)};
+  // The auto speed holds while a bond-controlled peak is expected; past that closure it speeds up.
+  const double late_closure = kBondControlledWindow * bond_failure_strain(spec) * length;
+  std::int64_t late_step = -1;
   bool slow_peak = false;
   const auto slow_trigger = static_cast<std::int64_t>(
       std::max(1.0, std::ceil(ld.slow_trigger_broken_fraction * static_cast<double>(r.bonds))));
   r.dt_s = sim.dt;
+  // The kinetic / bond energy ratio, sampled at every curve row (a sum over particles and bonds
+  // per row, not per step); the result reports the last sample at or before the peak.
+  double energy_ratio = 0.0, energy_ratio_at_peak = 0.0;
+  auto sample_energy = [&] {
+    double e[2] = {kinetic_energy(sim.particles), bond_energy(sim.bonds, sim.particles)};
+    reduce_sum(sim.domain, e, 2);
+    energy_ratio = e[1] > 0.0 ? e[0] / e[1] : 0.0;
+  };
   double load = 0.0, closure = 0.0;  // closure counts from the seated state
   double seat_closure = 0.0;
   int frame = 0;
@@ -229,6 +258,10 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   double t = 0.0;
   while (r.stop_reason.empty()) {
     if (sim.broken_total >= slow_trigger) schedule.slow_down_from(t);
+    if (closure >= late_closure && late_step < 0 && schedule.late_m_s > speed) {
+      schedule.speed_up_from(t);
+      late_step = sim.step;
+    }
     const double v = schedule.speed_at(t + 0.5 * sim.dt);
     bottom.velocity = Vec3(0, 0, v);
     top.velocity = Vec3(0, 0, -v);
@@ -247,7 +280,9 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     if (closure >= next_curve) {
       r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total, lateral_strain()});
       next_curve = closure + curve_spacing;
+      sample_energy();
     }
+    if (peak.peak_step == sim.step) energy_ratio_at_peak = energy_ratio;
     if (hooks.on_frame && closure >= next_frame) {
       snapshot();
       next_frame = closure + frame_spacing;
@@ -275,6 +310,15 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   r.peak_displacement_m = peak.peak_closure;
   r.peak_step = peak.peak_step;
   r.broken_at_peak = peak.broken_at_peak;
+  r.loading_rate = LoadingRate{speed,
+                               !ld.platen_velocity_m_s,
+                               bond_failure_strain(spec),
+                               transit,
+                               (r.peak_step - r.seating.step) * sim.dt / transit,
+                               energy_ratio_at_peak,
+                               kQuasiStaticTransits,
+                               late_step >= 0 ? schedule.late_m_s : 0.0,
+                               late_step >= 0 && r.peak_step >= late_step};
   if (!r.peak_reached) r.no_peak_reason = peak.no_peak_reason(r.stop_reason);
   r.strength_pa = strength_pa(spec, r.peak_load_n);
   if (spec.test != TestKind::btt && r.peak_reached) {

@@ -3,6 +3,7 @@
 
 #include "engine/effects/effect.hpp"
 #include "engine/loadtests/driver.hpp"
+#include "engine/loadtests/loading_speed.hpp"
 #include "engine/loadtests/specimen.hpp"
 
 namespace rockcal {
@@ -50,16 +51,17 @@ TestResult run_rate_study(const JobSpec& job, const RunHooks& hooks) {
         "rate study run at platen speed " + nlohmann::json(v).dump() + " m/s: " + r.no_peak_reason;
     return r;
   };
-  if (!probe.peak_reached) return no_peak(probe, spec.loading.platen_velocity_m_s);
+  const double probe_speed = platen_speed(spec);
+  if (!probe.peak_reached) return no_peak(probe, probe_speed);
   const double length = loaded_length(spec);
   const double strain_at_peak = std::max(probe.peak_displacement_m / length, 1e-4);
   const double v_quasi_static =
       strain_at_peak * length / (2.0 * kTransitsToPeak * wave_transit_time(spec));
   // Then rate_study_runs runs at halving speeds, the first no faster than half the probe's.
-  double v = std::min(0.5 * spec.loading.platen_velocity_m_s, v_quasi_static);
+  double v = std::min(0.5 * probe_speed, v_quasi_static);
 
   RateStudy study;
-  study.speeds_m_s.push_back(spec.loading.platen_velocity_m_s);
+  study.speeds_m_s.push_back(probe_speed);
   study.peaks_n.push_back(probe.peak_load_n);
   study.wall_seconds.push_back(probe.wall_seconds);
   TestResult slowest = probe;

@@ -38,6 +38,20 @@ struct RateStudy {
   bool converged = false;   // peaks converged geometrically; otherwise the error is a bound guess
 };
 
+// How fast the test loaded and how quasi-static its peak was (loadtests/loading_speed.hpp).
+struct LoadingRate {
+  double platen_velocity_m_s = 0.0;  // the speed used (each platen)
+  bool automatic = false;            // loading.platen_velocity "auto"
+  double bond_failure_strain = 0.0;
+  double wave_transit_s = 0.0;        // elastic-wave transit time along the loaded length
+  double peak_transits = 0.0;         // from the seated state to the peak, in wave transits
+  double kinetic_energy_ratio = 0.0;  // kinetic / bond energy at the peak (its last curve row)
+  double min_transits = 0.0;          // quasi-static when peak_transits >= min_transits
+  double late_velocity_m_s = 0.0;     // auto: the speed past the bond-controlled window, if reached
+  bool late_peak = false;             // the peak came after that window (and at the faster speed)
+  bool quasi_static() const { return peak_transits >= min_transits; }
+};
+
 // The state the measurement starts from (loadtests/seating.hpp).
 struct Seating {
   double load_n = 0.0;            // seating load the platens closed to
@@ -76,6 +90,7 @@ struct TestResult {
   std::vector<CurvePoint> curve;
   std::vector<BreakEvent> breaks;
   std::optional<RateStudy> rate_study;
+  std::optional<LoadingRate> loading_rate;  // loading tests (not the elastic test)
 };
 
 struct Progress {

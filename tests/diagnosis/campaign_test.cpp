@@ -196,6 +196,21 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
   }
 }
 
+// The diagnosis sets platen speeds itself (lab loading rates, the budget's half speed), so a
+// template with the engine's "auto" speed is refused, naming the field.
+TEST(DiagnosisRequest, AutoPlatenSpeedIsRefused) {
+  json r = request();
+  r["job"]["loading"]["platen_velocity"] = "auto";
+  try {
+    parse_diagnosis_campaign(r);
+    FAIL() << "accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "job.loading.platen_velocity: the diagnosis sets platen speeds itself (the lab's "
+              "loading rates, the error budget's half speed): give a number, not \"auto\"");
+  }
+}
+
 TEST(DiagnosisRequest, TheDecisionRuleDefaultsAndIsRead) {
   DiagnosisCampaign c = parse_diagnosis_campaign(request());
   EXPECT_EQ(c.decision.gap_budgets, 1.0);

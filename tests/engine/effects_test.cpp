@@ -170,7 +170,7 @@ TEST(Effects, ValueAtWalksFromNeutralToStrong) {
 TEST(Effects, SpecHooksChangeTheEffectiveSpecOnly) {
   JobSpec job = cylinder({{"rate", {}}, {"platen_friction", {{"mu", 0.25}}}, {"packing", {}}});
   const JobSpec run = effective_spec(job);
-  EXPECT_DOUBLE_EQ(run.loading.platen_velocity_m_s, 4 * job.loading.platen_velocity_m_s);
+  EXPECT_DOUBLE_EQ(*run.loading.platen_velocity_m_s, 4 * *job.loading.platen_velocity_m_s);
   EXPECT_DOUBLE_EQ(run.loading.platen_friction, 0.25);
   EXPECT_EQ(run.sample.packing, "random");
   EXPECT_DOUBLE_EQ(run.sample.radius_ratio, 1.5);

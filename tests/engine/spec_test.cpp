@@ -118,15 +118,15 @@ TEST(Spec, EffectsStayInTheCanonicalFormAsWritten) {
   ASSERT_EQ(s.effects.size(), 2u);
   EXPECT_EQ(s.effects.at("rate").at("speed_factor"), 4.0);  // default filled in
   EXPECT_EQ(s.effects.at("flaws").at("crack_radius"), 0.0);
-  EXPECT_DOUBLE_EQ(s.loading.platen_velocity_m_s, 0.05);                 // the job as written ...
-  EXPECT_DOUBLE_EQ(effective_spec(s).loading.platen_velocity_m_s, 0.2);  // ... and as run
+  EXPECT_DOUBLE_EQ(*s.loading.platen_velocity_m_s, 0.05);                 // the job as written ...
+  EXPECT_DOUBLE_EQ(*effective_spec(s).loading.platen_velocity_m_s, 0.2);  // ... and as run
   const json c = to_json(s);
   EXPECT_EQ(c["effects"]["rate"]["speed_factor"], 4.0);
   EXPECT_EQ(c["loading"]["platen_velocity"], 0.05);
   // Idempotent: parsing the canonical form gives the same job, not a compounded speed.
   EXPECT_EQ(parse_job(c), s);
   EXPECT_EQ(to_json(parse_job(c)), c);
-  EXPECT_DOUBLE_EQ(effective_spec(parse_job(c)).loading.platen_velocity_m_s, 0.2);
+  EXPECT_DOUBLE_EQ(*effective_spec(parse_job(c)).loading.platen_velocity_m_s, 0.2);
   // A job without effects keeps the canonical form (and identity) it had before effects existed.
   EXPECT_FALSE(to_json(parse_job(good())).contains("effects"));
   // A spec-changing effect's values are validated as the run will see them.

@@ -13,7 +13,7 @@ RunConditions resolve(const Observation& o, const JobSpec& model) {
   r.height_m = c.height_m.value_or(model.sample.height_m);
   r.thickness_m = c.thickness_m.value_or(model.sample.thickness_m.value_or(0.5 * r.diameter_m));
   r.confining_pressure_pa = c.confining_pressure_pa;
-  r.platen_velocity_m_s = c.loading_rate_m_s.value_or(model.loading.platen_velocity_m_s);
+  r.platen_velocity_m_s = c.loading_rate_m_s.value_or(template_platen_speed(model));
   return r;
 }
 

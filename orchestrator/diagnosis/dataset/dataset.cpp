@@ -230,4 +230,12 @@ bool is_triaxial(TestKind test) {
   return test == TestKind::triaxial;
 }
 
+double template_platen_speed(const JobSpec& model) {
+  if (!model.loading.platen_velocity_m_s)
+    throw orch::RequestError("job.loading.platen_velocity",
+                             "the diagnosis sets platen speeds itself (the lab's loading rates, "
+                             "the error budget's half speed): give a number, not \"auto\"");
+  return *model.loading.platen_velocity_m_s;
+}
+
 }  // namespace rockcal::diagnosis

@@ -99,4 +99,9 @@ Dataset in_model_units(const Dataset& d);
 // dataset.
 void check_model_scale(const Dataset& d, const JobSpec& job_template);
 
+// The job template's platen speed, which a condition without a loading rate runs at. The
+// diagnosis sets speeds itself (the lab's loading rates, the error budget's half speed), so it
+// needs a number: throws orch::RequestError ("job.loading.platen_velocity") for "auto".
+double template_platen_speed(const JobSpec& model_template);
+
 }  // namespace rockcal::diagnosis

@@ -160,11 +160,14 @@ JobSpec parse_template(orch::JsonFields& root) {
                                "is set by the diagnosis; leave it out of the template");
     }
   }
+  JobSpec model;
   try {
-    return parse_job_template(t, TestKind::uct, BondSpec{64.0, 64.0});
+    model = parse_job_template(t, TestKind::uct, BondSpec{64.0, 64.0});
   } catch (const SpecError& e) {
     throw orch::under("job", e);
   }
+  template_platen_speed(model);
+  return model;
 }
 
 Dataset parse_dataset(orch::JsonFields& root) {

@@ -40,12 +40,15 @@ JobSpec check_twin_template(const json& job_template) {
     const BondSpec defaults;
     probe["bond"] = {{"fr0", defaults.fr0_n}, {"fs0", defaults.fs0_n}};
   }
+  JobSpec model;
   try {
     parse_job_template(probe, TestKind::btt);
-    return parse_job_template(probe, TestKind::uct);
+    model = parse_job_template(probe, TestKind::uct);
   } catch (const SpecError& e) {
     throw orch::under("job", e);
   }
+  template_platen_speed(model);
+  return model;
 }
 
 double round_to_two_digits(double x) {
@@ -77,7 +80,7 @@ TwinDesign make_twin_design(const json& job_template, const RunJobs& run) {
   const double D = d.model.sample.diameter_m;
   const double H = d.model.sample.height_m;
   const double t = d.model.sample.btt_thickness();
-  const double v = d.model.loading.platen_velocity_m_s;
+  const double v = template_platen_speed(d.model);
   const Conditions cylinder{D, H, std::nullopt, 0.0, v};
   const Conditions disc{D, std::nullopt, t, 0.0, v};
 

@@ -1,0 +1,140 @@
+// The "auto" platen speed: it follows the bonds' failure strain, so a run is quasi-static by its
+// reported measure whatever the strengths, and the peak load is homogeneous of degree 1 in them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/loadtests/driver.hpp"
+#include "engine/loadtests/loading_speed.hpp"
+#include "engine/loadtests/specimen.hpp"
+
+using namespace rockcal;
+using nlohmann::json;
+
+namespace {
+
+// A tiny specimen of the default kind (seeded FCC, flattened disc), K_r 8000, nu 0.2.
+JobSpec tiny(TestKind test, double fr0, double fs0) {
+  JobSpec s;
+  s.test = test;
+  s.sample.diameter_m = 8;
+  s.sample.height_m = 16;
+  s.material.kr_n_m = 8000;
+  s.bond = {fr0, fs0};
+  s.loading.platen_velocity_m_s.reset();  // "auto"
+  s.loading.max_strain = 0.1;
+  return s;
+}
+
+std::string refusal(const json& loading) {
+  json j = {{"test", "uct"},
+            {"material", {{"kr", 8000}}},
+            {"bond", {{"fr0", 64}, {"fs0", 64}}},
+            {"loading", loading}};
+  try {
+    parse_job(j);
+  } catch (const SpecError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST(AutoSpeed, SpecTakesAutoWithItsTransitsAndKeepsNumbersAsTheyWere) {
+  json j = {{"test", "uct"},
+            {"material", {{"kr", 8000}}},
+            {"bond", {{"fr0", 64}, {"fs0", 64}}},
+            {"loading", {{"platen_velocity", "auto"}, {"auto_transits", 40}}}};
+  const JobSpec s = parse_job(j);
+  EXPECT_FALSE(s.loading.platen_velocity_m_s);
+  EXPECT_EQ(s.loading.auto_transits, 40.0);
+  const json c = to_json(s);
+  EXPECT_EQ(c["loading"]["platen_velocity"], "auto");
+  EXPECT_EQ(c["loading"]["auto_transits"], 40.0);
+  EXPECT_EQ(parse_job(c), s);
+  // A numeric speed keeps the canonical form it had (no auto_transits key).
+  j["loading"] = {{"platen_velocity", 0.05}};
+  EXPECT_FALSE(to_json(parse_job(j))["loading"].contains("auto_transits"));
+  EXPECT_EQ(refusal({{"platen_velocity", "fast"}}),
+            "loading.platen_velocity: must be \"auto\" or a positive number");
+  EXPECT_EQ(refusal({{"platen_velocity", 0.05}, {"auto_transits", 10}}),
+            "loading.auto_transits: applies to platen_velocity \"auto\" only");
+  EXPECT_EQ(refusal({{"platen_velocity", "auto"}, {"auto_transits", 0.5}}),
+            "loading.auto_transits: must be in [1.0, 1000.0]");
+}
+
+TEST(AutoSpeed, SpeedClosesTheBondFailureStrainInTheGivenTransits) {
+  const JobSpec s = tiny(TestKind::uct, 64, 64);
+  // K_s = K_r (1 - 3 nu) / (1 + nu) = K_r / 3 at nu 0.2: tension fails first, at F_r0 / K_r.
+  EXPECT_DOUBLE_EQ(bond_failure_strain(s), 64.0 / 8000.0 / 2.0);
+  EXPECT_DOUBLE_EQ(bond_failure_strain(tiny(TestKind::uct, 64, 8)), 3.0 * 8.0 / 8000.0 / 2.0);
+  const double closure_time = bond_failure_strain(s) * 16.0 / (2.0 * platen_speed(s));
+  EXPECT_DOUBLE_EQ(closure_time, 20.0 * wave_transit_time(s));
+  // Proportional to the strengths: what keeps a run homogeneous in them.
+  EXPECT_DOUBLE_EQ(platen_speed(tiny(TestKind::uct, 6.4, 6.4)), 0.1 * platen_speed(s));
+  // The rate effect divides the transits, i.e. multiplies the speed.
+  JobSpec fast = s;
+  fast.effects["rate"] = {{"speed_factor", 4.0}};
+  EXPECT_DOUBLE_EQ(platen_speed(effective_spec(fast)), 4.0 * platen_speed(s));
+}
+
+// A stiff rock (UCS/E about 1e-3: F 4 at K_r 8000) loaded at the seed's fixed 0.05 m/s reaches its
+// peak within a few wave transits; the auto speed makes the same run quasi-static by the measure
+// the result reports (the peak at least kQuasiStaticTransits transits after seating).
+TEST(AutoSpeed, StiffRockIsQuasiStaticAtTheAutoSpeedAndNotAtTheFixedOne) {
+  JobSpec s = tiny(TestKind::uct, 4, 4);
+  const TestResult automatic = run_test(s);
+  s.loading.platen_velocity_m_s = 0.05;
+  const TestResult fixed = run_test(s);
+  ASSERT_TRUE(automatic.peak_reached);
+  ASSERT_TRUE(fixed.peak_reached);
+  ASSERT_TRUE(automatic.loading_rate && fixed.loading_rate);
+  EXPECT_TRUE(automatic.loading_rate->automatic);
+  EXPECT_TRUE(automatic.loading_rate->quasi_static());
+  EXPECT_GE(automatic.loading_rate->peak_transits, kQuasiStaticTransits);
+  EXPECT_FALSE(automatic.loading_rate->late_peak);  // bond-controlled
+  EXPECT_FALSE(fixed.loading_rate->quasi_static());
+  EXPECT_LT(fixed.loading_rate->peak_transits, 10.0);
+  // The particles move far more at the fixed speed's peak.
+  EXPECT_GT(fixed.loading_rate->kinetic_energy_ratio,
+            10.0 * automatic.loading_rate->kinetic_energy_ratio);
+  RecordProperty("peak_transits_auto", std::to_string(automatic.loading_rate->peak_transits));
+  RecordProperty("peak_transits_fixed", std::to_string(fixed.loading_rate->peak_transits));
+}
+
+// Scaling both strengths by 100 scales the peak load by 100^p with p within 0.1 of 1, for the UCT
+// and the BTT, over the strengths of UCS/E about 2e-4 to 2e-2.
+TEST(AutoSpeed, PeakLoadIsHomogeneousOfDegreeOneOverAHundredfoldStrengthRange) {
+  for (TestKind test : {TestKind::uct, TestKind::btt}) {
+    const TestResult weak = run_test(tiny(test, 0.64, 0.64));
+    const TestResult strong = run_test(tiny(test, 64, 64));
+    ASSERT_TRUE(weak.peak_reached) << to_string(test);
+    ASSERT_TRUE(strong.peak_reached) << to_string(test);
+    const double p = std::log(strong.peak_load_n / weak.peak_load_n) / std::log(100.0);
+    EXPECT_NEAR(p, 1.0, 0.1) << to_string(test);
+    RecordProperty(std::string("exponent_") + to_string(test), std::to_string(p));
+  }
+}
+
+// A weak rock whose UCT is carried past its bonds' failure to large strains (compressed bonds,
+// F_s0 = 3.64 F_r0): the auto speed holds for kBondControlledWindow failure strains, then speeds
+// up, so the run's length is bounded by the window plus kLateTransits transits (at the weak
+// rock's own auto speed, the 10% max_strain alone would take 20 x 0.1 / 4e-5 = 50,000 transits),
+// and the result flags the peak as late.
+TEST(AutoSpeed, PastTheBondControlledWindowThePlatensSpeedUpAndTheRunIsBounded) {
+  const JobSpec s = tiny(TestKind::uct, 0.64, 2.33);
+  const TestResult r = run_test(s);
+  ASSERT_TRUE(r.loading_rate);
+  const LoadingRate& q = *r.loading_rate;
+  EXPECT_DOUBLE_EQ(q.late_velocity_m_s, late_platen_speed(s));
+  EXPECT_GT(q.late_velocity_m_s, 10.0 * q.platen_velocity_m_s);
+  const double transit = wave_transit_time(s);
+  const double window_s =
+      kBondControlledWindow * bond_failure_strain(s) * 16.0 / (2.0 * q.platen_velocity_m_s);
+  const double bound_s = window_s + (kLateTransits + 10.0) * transit;  // + seating and ramps
+  EXPECT_LT(static_cast<double>(r.steps) * r.dt_s, bound_s);
+  ASSERT_TRUE(r.peak_reached) << r.no_peak_reason;
+  EXPECT_TRUE(q.late_peak);
+  RecordProperty("steps", std::to_string(r.steps));
+}
