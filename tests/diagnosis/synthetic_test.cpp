@@ -153,6 +153,17 @@ TEST(Diagnosis, ABaseFitOnTheBoundsIsReported) {
       api::diagnosis_text(r.summary).find("The base model's fit lies on the bounds (fr0 lower)"),
       std::string::npos);
   EXPECT_EQ(api::diagnosis_text(inside.summary).find("lies on the bounds"), std::string::npos);
+  // Strengths the bounds chose judge nothing: the verdict is undetermined, its miss stated.
+  EXPECT_EQ(r.summary["verdict"]["label"], "undetermined");
+  EXPECT_EQ(r.summary["verdict"]["reason"].get<std::string>().rfind(
+                "undetermined: the base model's fit lies on the search box (fr0 lower): its "
+                "strengths are the bounds', not the data's; widen the bounds; the base model "
+                "misses its calibration observations by ",
+                0),
+            0u)
+      << r.summary["verdict"]["reason"];
+  EXPECT_EQ(r.summary["verdict"]["confidence"]["level"], "none");
+  EXPECT_EQ(inside.summary["verdict"]["label"], "no effect needed");
 }
 
 TEST(Diagnosis, AnEffectTheStrengthsAbsorbIsNotIdentifiable) {
@@ -228,7 +239,15 @@ TEST(Diagnosis, WithoutHeldOutDataLocatesTheGapAndJudgesNothing) {
   r.summary = to_json(r.report, r.campaign);
   const json& v = r.summary["verdict"];
   EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
-  EXPECT_NE(v["reason"].get<std::string>().find("no held-out observations"), std::string::npos);
+  // Not "no effect needed, confidence high": undetermined, with the calibration miss stated.
+  EXPECT_EQ(v["label"], "undetermined");
+  EXPECT_EQ(v["confidence"]["level"], "none");
+  EXPECT_EQ(v["reason"].get<std::string>().rfind(
+                "undetermined: no held-out observations, so no effect can be judged; the base "
+                "model misses its calibration observations by ",
+                0),
+            0u)
+      << v["reason"];
   ASSERT_EQ(r.summary["observations"].size(), calibration.size());
   for (const json& o : r.summary["observations"]) EXPECT_TRUE(o["base"]["residual"].is_number());
   EXPECT_LT(r.summary["ratio"]["min"].get<double>(), r.summary["ratio"]["max"].get<double>());

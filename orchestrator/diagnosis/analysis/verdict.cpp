@@ -199,4 +199,48 @@ std::string confidence_level(const Confidence& c) {
   return "low";
 }
 
+std::string verdict_label(const std::vector<CandidateResult>& candidates, const Verdict& v) {
+  return v.undetermined ? "undetermined" : verdict_label(candidates, v.candidate);
+}
+
+std::vector<std::string> on_bounds(const std::vector<double>& z) {
+  constexpr double kOnBound = 1e-3;  // of the unit cube: 0.3% of F on the default log box
+  static const char* const names[] = {"fr0", "fs0", "s"};
+  std::vector<std::string> out;
+  for (std::size_t d = 0; d < z.size() && d < 3; ++d) {
+    if (z[d] <= kOnBound) out.push_back(std::string(names[d]) + " lower");
+    if (z[d] >= 1.0 - kOnBound) out.push_back(std::string(names[d]) + " upper");
+  }
+  return out;
+}
+
+void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Confidence& conf) {
+  const std::string miss = e.calibration_miss
+                               ? "the base model misses its calibration observations by " +
+                                     fixed(*e.calibration_miss, 2) + " budgets"
+                               : "the base model's calibration residuals are unknown";
+  std::string cause;
+  if (e.held_out_observations == 0) {
+    cause = "no held-out observations, so no effect can be judged";
+  } else if (!e.base_has_held_out) {
+    cause = "the base model has no held-out residual (its runs failed)";
+  } else if (!e.base_on_bounds.empty()) {
+    std::string where;
+    for (const std::string& b : e.base_on_bounds) where += (where.empty() ? "" : ", ") + b;
+    cause = "the base model's fit lies on the search box (" + where +
+            "): its strengths are the bounds', not the data's; widen the bounds";
+  }
+  if (!cause.empty()) {
+    v.undetermined = true;
+    v.candidate = -1;
+    v.reason = "undetermined: " + cause + "; " + miss;
+    conf.level = "none";
+    return;
+  }
+  if (v.candidate < 0 && e.calibration_miss && *e.calibration_miss > rule.gap_budgets) {
+    v.reason += "; " + miss + ", which no candidate explains";
+    conf.level = "low";
+  }
+}
+
 }  // namespace rockcal::diagnosis

@@ -36,6 +36,7 @@ struct Confidence {
 struct Verdict {
   int candidate = -1;  // index into candidates; -1 = no effect needed
   int runner_up = -1;
+  bool undetermined = false;  // the data cannot judge any effect (temper_verdict)
   std::string reason;
 };
 
@@ -94,5 +95,24 @@ std::string confidence_level(const Confidence& c);
 
 // "heterogeneity", or "no effect needed".
 std::string verdict_label(const std::vector<CandidateResult>& candidates, int index);
+// The verdict's label: "undetermined" when it is, else verdict_label.
+std::string verdict_label(const std::vector<CandidateResult>& candidates, const Verdict& v);
+
+// The fitted coordinates (unit cube: F_r0, F_s0, s) that sit on the search box ("fr0 lower",
+// "s upper"): there the fit is the bound, not an optimum.
+std::vector<std::string> on_bounds(const std::vector<double>& z);
+
+// What the data let the verdict say. Nothing held out, no held-out residual of the base model, or
+// a base fit on the box's bounds: no effect can be judged, and the verdict is "undetermined"
+// with the calibration miss stated (its confidence "none"). A "no effect needed" beside a
+// calibration miss beyond the decision rule's budgets is never more than "low" confidence.
+struct Evidence {
+  int held_out_observations = 0;
+  bool base_has_held_out = false;
+  std::vector<std::string> base_on_bounds;
+  std::optional<double> calibration_miss;  // the base's calibration rms in budgets
+};
+void temper_verdict(const DecisionRule& rule, const Evidence& evidence, Verdict& verdict,
+                    Confidence& confidence);
 
 }  // namespace rockcal::diagnosis

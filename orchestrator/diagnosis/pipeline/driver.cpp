@@ -335,14 +335,16 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   conf.level = confidence_level(conf);
   report.ratio = ratio_range(c.targets, samples[0].outcomes);
   count_failures(report, c, samples);
-  if (count_role(c.targets, Role::held_out) == 0) {
-    report.verdict.reason =
-        "no held-out observations: the gap is located (calibration residuals, UCT/BTT ratio "
-        "range) but no effect can be judged";
-    return report;
-  }
+  Evidence evidence;
+  evidence.held_out_observations = count_role(c.targets, Role::held_out);
+  evidence.base_has_held_out = report.candidates[0].confirmed_rms.held_out.has_value();
+  evidence.base_on_bounds = on_bounds(report.candidates[0].calibration.z);
+  evidence.calibration_miss = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
+                                             c.targets, judged, Role::calibration);
+  temper_verdict(c.decision, evidence, report.verdict, conf);
   // Without held-out residuals there is nothing to judge; say what stopped the runs.
-  if (!report.candidates[0].confirmed_rms.held_out && !report.first_error.empty()) {
+  if (evidence.held_out_observations > 0 && !evidence.base_has_held_out &&
+      !report.first_error.empty()) {
     report.verdict.reason += " (first failure: " + report.first_error + ")";
   }
   return report;

@@ -51,19 +51,6 @@ json parameter_json(const CandidateResult& c) {
           {"s", c.point.s}};
 }
 
-// The fitted coordinates that sit on the search box ("fr0 lower", "s upper"): there the fit is the
-// bound, not an optimum, and the data may want strengths the bounds exclude.
-json on_bounds(const std::vector<double>& z) {
-  constexpr double kOnBound = 1e-3;  // of the unit cube: 0.3% of F on the default log box
-  static const char* const names[] = {"fr0", "fs0", "s"};
-  json out = json::array();
-  for (std::size_t d = 0; d < z.size() && d < 3; ++d) {
-    if (z[d] <= kOnBound) out.push_back(std::string(names[d]) + " lower");
-    if (z[d] >= 1.0 - kOnBound) out.push_back(std::string(names[d]) + " upper");
-  }
-  return out;
-}
-
 json candidate_json(const CandidateResult& c, const std::vector<Target>& targets,
                     const std::vector<double>& lab) {
   json j = {{"effect", c.candidate.is_base() ? json(nullptr) : json(c.candidate.effect)},
@@ -80,7 +67,7 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
               {"fs0", c.point.fs0_n},
               {"misfit", num(c.calibration.misfit)},
               {"evaluations", c.calibration.evaluations},
-              {"on_bounds", on_bounds(c.calibration.z)}};
+              {"on_bounds", json(on_bounds(c.calibration.z))}};
   j["rms"] = {{"surface", rms_json(c.surface_rms)},
               {"confirmed", c.confirmed ? rms_json(c.confirmed_rms) : json(nullptr)}};
   j["predicted_residuals"] = by_target(targets, residuals(c.predicted, lab));
@@ -174,7 +161,8 @@ json verdict_json(const DiagnosisResult& r) {
   const CandidateResult& base = r.candidates[0];
   const int v = r.verdict.candidate;
   json j = {{"effect", v >= 0 ? json(r.candidates[v].candidate.effect) : json(nullptr)},
-            {"label", verdict_label(r.candidates, v)},
+            {"label", verdict_label(r.candidates, r.verdict)},
+            {"undetermined", r.verdict.undetermined},
             {"reason", r.verdict.reason}};
   const CandidateResult& after = v >= 0 ? r.candidates[v] : base;
   j["parameter"] = parameter_json(after);
