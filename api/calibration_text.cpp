@@ -273,6 +273,16 @@ std::string calibration_text(const json& s) {
     out << posterior_text(posterior, best);
     out << "unique: " << (at(posterior, "unique") == true ? "yes" : "no") << " - "
         << value_text(at(posterior, "why")) << "\n";
+    const json& next = at(s, "suggestion");
+    if (next.is_object()) {
+      out << "next test: " << value_text(at(next, "observable")) << " - "
+          << value_text(at(next, "why")) << "\n";
+      for (const json& k : at(next, "candidates")) {
+        if (!at(k, "expected_shrinkage").is_number()) continue;
+        out << "  " << value_text(at(k, "observable")) << ": the long axis "
+            << num(100 * k["expected_shrinkage"].get<double>(), "%.0f") << "% shorter\n";
+      }
+    }
   } else if (best.is_object()) {
     const json& lab = at(best, "lab");
     const bool in_lab = lab.is_object();
@@ -317,7 +327,8 @@ std::string calibration_text(const json& s) {
   if (wall.is_number()) out << ", wall time " << duration_text(wall.get<double>());
   out << "\n";
   const json& why = at(at(s, "ensemble"), "why");
-  if (why.is_string()) out << "ensemble: " << why.get<std::string>() << "\n";
+  if (why.is_string() && !why.get<std::string>().empty())
+    out << "ensemble: " << why.get<std::string>() << "\n";
   return out.str();
 }
 

@@ -102,8 +102,12 @@ json suggestion_json(const std::optional<Suggestion>& s) {
                       {"se", v.se ? json(*v.se) : json(nullptr)}});
   }
   json candidates = json::array();
-  for (const auto& [name, spread] : s->candidates)
-    candidates.push_back({{"observable", name}, {"spread", std::expm1(spread)}});
+  for (const auto& [name, value] : s->candidates) {
+    if (s->expected_shrinkage)
+      candidates.push_back({{"observable", name}, {"expected_shrinkage", value}});
+    else
+      candidates.push_back({{"observable", name}, {"spread", std::expm1(value)}});
+  }
   return {{"observable", s->observable},     {"unit", s->unit}, {"values", values},
           {"spread", std::expm1(s->spread)}, {"why", s->why},   {"candidates", candidates}};
 }
@@ -252,32 +256,34 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
   if (!p) return nullptr;
   json region = json::array();
   for (const RegionSpan& s : p->region) region.push_back({s.j, s.i_lo, s.i_hi});
-  json j = {
-      {"level", p->level},
-      {"estimate", {{"fr0", p->estimate.fr0_n}, {"fs0", p->estimate.fs0_n}}},
-      {"fr0", {p->fr0.lo, p->fr0.hi}},
-      {"fs0", {p->fs0.lo, p->fs0.hi}},
-      {"region",
-       {{"fr0_extent", {p->fr0_extent.lo, p->fr0_extent.hi}},
-        {"fs0_extent", {p->fs0_extent.lo, p->fs0_extent.hi}},
-        {"grid", {{"cells", p->grid_cells},
-                  {"fr0", {c.fr0_n.lo, c.fr0_n.hi}},
-                  {"fs0", {c.fs0_n.lo, c.fs0_n.hi}},
-                  {"scale", "log"}}},
-        {"spans", region}}},
-      {"bounds_reached", p->bounds_reached},
-      {"bounded", p->bounds_reached.empty()},
-      {"uct", predicted_json(p->uct, c)},
-      {"btt", predicted_json(p->btt, c)},
-      {"lab_uncertainty", {{"uct", p->uct.lab_sd}, {"btt", p->btt.lab_sd},
-                           {"source", p->lab_stated ? "request" : "default"}}},
-      {"discrepancy", p->discrepancy},
-      {"unique_width", p->unique_width},
-      {"unique", p->unique},
-      {"why", p->why},
-      {"runs", p->runs},
-      {"points", p->points},
-      {"rounds", p->rounds}};
+  json j = {{"level", p->level},
+            {"estimate", {{"fr0", p->estimate.fr0_n}, {"fs0", p->estimate.fs0_n}}},
+            {"fr0", {p->fr0.lo, p->fr0.hi}},
+            {"fs0", {p->fs0.lo, p->fs0.hi}},
+            {"region",
+             {{"fr0_extent", {p->fr0_extent.lo, p->fr0_extent.hi}},
+              {"fs0_extent", {p->fs0_extent.lo, p->fs0_extent.hi}},
+              {"grid",
+               {{"cells", p->grid_cells},
+                {"fr0", {c.fr0_n.lo, c.fr0_n.hi}},
+                {"fs0", {c.fs0_n.lo, c.fs0_n.hi}},
+                {"scale", "log"}}},
+              {"spans", region}}},
+            {"bounds_reached", p->bounds_reached},
+            {"bounded", p->bounds_reached.empty()},
+            {"uct", predicted_json(p->uct, c)},
+            {"btt", predicted_json(p->btt, c)},
+            {"lab_uncertainty",
+             {{"uct", p->uct.lab_sd},
+              {"btt", p->btt.lab_sd},
+              {"source", p->lab_stated ? "request" : "default"}}},
+            {"discrepancy", p->discrepancy},
+            {"unique_width", p->unique_width},
+            {"unique", p->unique},
+            {"why", p->why},
+            {"runs", p->runs},
+            {"points", p->points},
+            {"rounds", p->rounds}};
   if (c.targets.scaling) {
     const BondPoint lab = bonds_to_lab(p->estimate, *c.targets.scaling);
     const Scaling& s = *c.targets.scaling;

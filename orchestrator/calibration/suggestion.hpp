@@ -30,8 +30,11 @@ struct Suggestion {
   std::vector<ObservableValue> values;  // at the set's ends, smallest F_s0/F_r0 first
   double spread = 0.0;                  // |ln(last / first)|
   std::string why;
-  // Every candidate measured, with its spread: the suggestion is the largest.
+  // Every candidate measured, with its spread: the suggestion is the largest. With
+  // `expected_shrinkage` (the bayes strategy's next test) the value is instead the expected
+  // shortening of the credible region's long axis, a fraction.
   std::vector<std::pair<std::string, double>> candidates;
+  bool expected_shrinkage = false;
 };
 
 // Nothing when the set is unique or has fewer than two distinct points. Throws

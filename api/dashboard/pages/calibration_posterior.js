@@ -77,5 +77,15 @@ export function posteriorSection(s, history, width) {
     x: {label: 'F_r0, bond normal strength (N, log)', log: true},
     y: {label: 'F_s0, bond shear strength (N, log)', log: true}});
   plot.classList.add('posterior-region');
-  return section('The answer: a posterior', facts, strengths, loads, unique, plot);
+  const parts = [facts, strengths, loads, unique, plot];
+  const next = s.suggestion;
+  if (next && Array.isArray(next.candidates)) {
+    parts.push(h('p', {class: 'next-test'}, h('strong', {}, 'Next test: '), `${next.observable} — ${next.why}.`),
+      table([
+        {label: 'further test', value: (k) => k.observable},
+        {label: 'expected shortening of the long axis', num: true, value: (k) => pct(k.expected_shrinkage, 0)},
+      ], next.candidates.filter((k) => Number.isFinite(k.expected_shrinkage)),
+      {caption: 'What each test from the engine’s menu would do to the region, measured to the targets’ uncertainty'}));
+  }
+  return section('The answer: a posterior', ...parts);
 }

@@ -132,6 +132,7 @@ std::optional<Suggestion> next_test(const Emulators& m,
     k.shrinkage = k.resolved ? shrink(axis.variance, k.slope, lab_sd) : 0.0;
 
   Suggestion s;
+  s.expected_shrinkage = true;
   for (const Measured& k : measured) s.candidates.push_back({k.observable, k.shrinkage});
   const Measured& top = *std::max_element(
       measured.begin(), measured.end(),
