@@ -77,6 +77,8 @@ class Search {
         report.suggestion = next_test(*model_, history_, c_, evaluator_, batch_);
       } catch (const EvaluationCancelled&) {
         report.stop_reason = StopReason::cancelled;
+      } catch (const std::runtime_error&) {
+        // An emulator of a further test that cannot be fitted (too few moduli): no suggestion.
       }
     }
   }
