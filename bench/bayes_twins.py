@@ -1,0 +1,140 @@
+#!/usr/bin/env python3
+"""Coverage of the bayes calibration's credible region on real-engine twins (docs/inference.md).
+
+Each twin: a truth (F_r0, F_s0) drawn log-uniformly inside the main job's box (seeded by the twin's
+number), the "lab" = the engine's own mean over --lab-packings packings at the truth (a sweep with
+realisations; seeds far from the calibration's), stated to the standard error those packings give
+(at least 2%); then the main job's request (examples/calibrate_seed_lab.json, its specimen and
+budget) with those model-unit targets. Recorded: whether the truth lies in the 90% region (its
+cells on the log grid), the intervals, the verdict, runs and wall time.
+
+Resumes: rows already in --out (one JSON object per line) are kept and their twins skipped, so it
+may be run in parts; commit the file as it grows.
+
+  bench/bayes_twins.py [--build build] [--twins 10] [--out bench/results/bayes_twins_d20.jsonl]
+On demand only (3-5 minutes a twin on 2 idle cores); it builds nothing.
+"""
+import argparse
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def call(url, body=None):
+    data = None if body is None else json.dumps(body).encode()
+    req = urllib.request.Request(url, data=data, headers={"Content-Type": "application/json"})
+    with urllib.request.urlopen(req, timeout=120) as r:
+        return json.load(r)
+
+
+def start_server(build, work):
+    port_file = os.path.join(work, "port")
+    log = open(os.path.join(work, "serve.log"), "w")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.Popen(
+        [os.path.join(build, "api", "rockcal"), "serve", "--db", os.path.join(work, "twins.db"),
+         "--listen", "127.0.0.1:0", "--port-file", port_file, "--workers", "2",
+         "--ranks-per-job", "0"], stdout=log, stderr=subprocess.STDOUT, env=env)
+    for _ in range(300):
+        if os.path.exists(port_file) and open(port_file).read().strip():
+            return proc, "http://127.0.0.1:" + open(port_file).read().strip()
+        time.sleep(0.1)
+    proc.kill()
+    sys.exit("bayes_twins: the server did not start (see serve.log)")
+
+
+def finish(url, cid):
+    while True:
+        c = call(f"{url}/api/v1/campaigns/{cid}")
+        if c["state"] in ("succeeded", "failed", "cancelled"):
+            return c
+        time.sleep(2)
+
+
+def in_region(post, fr0, fs0):
+    g = post["region"]["grid"]
+    n = g["cells"]
+    cell = lambda v, r: min(n - 1, max(0, int(math.floor(math.log(v / r[0]) / math.log(r[1] / r[0]) * n))))
+    i, j = cell(fr0, g["fr0"]), cell(fs0, g["fs0"])
+    return any(s[0] == j and s[1] <= i <= s[2] for s in post["region"]["spans"])
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--twins", type=int, default=10)
+    ap.add_argument("--lab-packings", type=int, default=4)
+    ap.add_argument("--request", default=os.path.join(ROOT, "examples", "calibrate_seed_lab.json"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "bayes_twins_d20.jsonl"))
+    a = ap.parse_args()
+    os.makedirs(os.path.dirname(a.out), exist_ok=True)
+    done = {}
+    if os.path.exists(a.out):
+        for line in open(a.out):
+            if line.strip():
+                row = json.loads(line)
+                done[row["twin"]] = row
+    base = json.load(open(a.request))
+    work = tempfile.mkdtemp(prefix="rockcal-bayes-twins.")
+    proc, url = start_server(a.build, work)
+    try:
+        for twin in range(1, a.twins + 1):
+            if twin in done:
+                continue
+            rng = random.Random(twin)
+            truth = [math.exp(rng.uniform(math.log(15), math.log(80))),
+                     math.exp(rng.uniform(math.log(30), math.log(160)))]
+            t0 = time.time()
+            job = json.loads(json.dumps(base["job"]))
+            job["sample"]["seed"] = 100000 + 100 * twin  # the lab's packings, not the search's
+            sweep = call(f"{url}/api/v1/campaigns", {
+                "kind": "sweep", "name": f"bayes twin {twin}: lab", "tests": ["uct", "btt"],
+                "job": job, "points": [truth], "realisations": a.lab_packings})
+            rows = call(f"{url}/api/v1/campaigns/{finish(url, sweep['id'])['id']}/results")["results"]
+            lab = {}
+            for test in ("uct", "btt"):
+                logs = [math.log(r["peak_load"]) for r in rows
+                        if r["test"] == test and r.get("peak_load")]
+                if len(logs) < 2:
+                    break
+                m = sum(logs) / len(logs)
+                sd = math.sqrt(sum((x - m) ** 2 for x in logs) / (len(logs) - 1))
+                lab[test] = (math.exp(m), max(0.02, sd / math.sqrt(len(logs))))
+            if len(lab) < 2:
+                row = {"twin": twin, "truth": truth, "error": "the lab runs had no peak"}
+            else:
+                req = json.loads(json.dumps(base))
+                req["name"] = f"bayes twin {twin}"
+                req["targets"] = {"uct": {"peak_load": lab["uct"][0]}, "btt": {"peak_load": lab["btt"][0]}}
+                req.setdefault("inference", {})["lab_uncertainty"] = {"uct": lab["uct"][1], "btt": lab["btt"][1]}
+                cal = finish(url, call(f"{url}/api/v1/campaigns", req)["id"])
+                s = cal.get("summary") or {}
+                post = s.get("posterior")
+                row = {"twin": twin, "truth": truth, "lab_sd": [lab["uct"][1], lab["btt"][1]],
+                       "verdict": s.get("verdict"), "wall_seconds": round(time.time() - t0, 1)}
+                if post:
+                    row.update({"inside": in_region(post, *truth), "fr0": post["fr0"], "fs0": post["fs0"],
+                                "estimate": post["estimate"], "runs": post["runs"], "unique": post["unique"]})
+            done[twin] = row
+            with open(a.out, "a") as f:
+                f.write(json.dumps(row) + "\n")
+            print(json.dumps(row), flush=True)
+    finally:
+        proc.terminate()
+        proc.wait()
+    rows = [r for r in done.values() if "inside" in r]
+    if rows:
+        k = sum(r["inside"] for r in rows)
+        print(f"coverage: truth inside the 90% region in {k} of {len(rows)} twins")
+
+
+if __name__ == "__main__":
+    main()
