@@ -81,6 +81,10 @@ bool fill_record(EvaluationRecord& r, const EvaluationOutcome& outcome,
   return true;
 }
 
+double failure_floor(const CalibrationCampaign& c) {
+  return (c.weight_uct + c.weight_btt) * std::pow(std::log(10.0), 2);
+}
+
 EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome& outcome,
                                 const std::string& phase) {
   EvaluationRecord r;
@@ -97,8 +101,7 @@ EvaluationRecord Ledger::record(const BondPoint& point, const EvaluationOutcome&
 // but the penalty stays on the scale of its neighbourhood: a global "worst ever" penalty next to
 // the optimum wrecks BOBYQA's quadratic model and stalls it there.
 double Ledger::failure_penalty(const BondPoint& point) const {
-  const Weights w = weights();
-  const double floor = (w.uct + w.btt) * std::pow(std::log(10.0), 2);  // a factor 10 off on both
+  const double floor = failure_floor(campaign_);
   const double du = std::log(campaign_.fr0_n.hi / campaign_.fr0_n.lo);
   const double dv = std::log(campaign_.fs0_n.hi / campaign_.fs0_n.lo);
   std::vector<std::pair<double, double>> by_distance;  // (distance, misfit)

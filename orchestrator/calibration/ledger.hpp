@@ -37,6 +37,10 @@ struct EvaluationRecord {
 bool fill_record(EvaluationRecord& r, const EvaluationOutcome& outcome,
                  const CalibrationCampaign& campaign);
 
+// The misfit a failed evaluation is given where nothing nearer says more: a factor 10 off on both
+// loads.
+double failure_floor(const CalibrationCampaign& campaign);
+
 // Thrown (not an error) when the search must end: budget spent, or both targets met. It unwinds
 // through NLopt and the strategies to the driver.
 struct SearchDone {};

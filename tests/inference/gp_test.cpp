@@ -18,7 +18,7 @@ using testing::ln_uct;
 GpData noisy(int n, double sd, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, sd);
-  GpData d{latin_square(n, seed), Eigen::VectorXd(n), Eigen::VectorXd::Constant(n, sd * sd)};
+  GpData d{latin_square(n, seed), Eigen::VectorXd(n), Eigen::VectorXd::Constant(n, sd * sd), {}};
   for (int i = 0; i < n; ++i) d.y(i) = ln_uct(d.x.row(i).transpose()) + noise(rng);
   return d;
 }

@@ -20,7 +20,7 @@ struct Pair {
 
 Pair exact_emulators() {
   const Eigen::MatrixXd x = latin_square(40, 11);
-  GpData u{x, Eigen::VectorXd(40), Eigen::VectorXd::Constant(40, 1e-6)}, b = u;
+  GpData u{x, Eigen::VectorXd(40), Eigen::VectorXd::Constant(40, 1e-6), {}}, b = u;
   for (int i = 0; i < 40; ++i) {
     u.y(i) = ln_uct(x.row(i).transpose());
     b.y(i) = ln_btt(x.row(i).transpose());

@@ -82,6 +82,10 @@ std::vector<double> emulator_shares(const Emulators& m) {
   return inference::emulator_share(m.grid, m.targets);
 }
 
+BondPoint posterior_estimate(const Emulators& m, const CalibrationCampaign& c) {
+  return from_unit(inference::density_peak(m.grid, m.emulators(), m.targets), c);
+}
+
 bool in_credible_region(const PosteriorSummary& s, const BondPoint& p,
                         const CalibrationCampaign& c) {
   const Eigen::Vector2d u = to_unit(p, c);

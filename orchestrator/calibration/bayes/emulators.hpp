@@ -29,6 +29,9 @@ Emulators fit_emulators(const std::vector<EvaluationRecord>& history, const Cali
 
 std::vector<double> emulator_shares(const Emulators& m);
 
+// The posterior's density peak, in model units (the summary's estimate).
+BondPoint posterior_estimate(const Emulators& m, const CalibrationCampaign& c);
+
 // Whether p lies in the summary's credible region (one of its cells on the log box).
 bool in_credible_region(const PosteriorSummary& s, const BondPoint& p,
                         const CalibrationCampaign& c);

@@ -131,7 +131,7 @@ class Search {
       EvaluationOutcome missing;
       missing.error = "the evaluator returned no outcome";
       if (!fill_record(r, i < outcomes.size() ? outcomes[i] : missing, c_)) {
-        r.misfit = (c_.weight_uct + c_.weight_btt) * std::pow(std::log(10.0), 2);
+        r.misfit = failure_floor(c_);
       }
       history_.push_back(r);
       if (r.phase == "check") check_.push_back(r);
@@ -151,7 +151,7 @@ class Search {
     const int left = c_.max_evaluations - launched_;
     if (model_ && (converged_ || left <= batch_)) {
       // The check batch: the estimate on `batch` packings (fewer when seeds do not matter).
-      const BondPoint estimate = summarise(*model_, c_, rounds_).estimate;
+      const BondPoint estimate = posterior_estimate(*model_, c_);
       std::vector<Run> runs;
       const int n = c_.seed_matters ? std::min(batch_, left) : 1;
       for (int k = 0; k < n; ++k) runs.push_back(run_at(estimate, "check"));
@@ -237,7 +237,7 @@ class Search {
     best.sample_seed = check_.front().sample_seed;
     if (uct.empty() || btt.empty() ||
         !fill_record(best, outcome_of(orch::make_ensemble(uct), orch::make_ensemble(btt)), c_)) {
-      best.misfit = (c_.weight_uct + c_.weight_btt) * std::pow(std::log(10.0), 2);
+      best.misfit = failure_floor(c_);
     }
     return best;
   }

@@ -10,13 +10,12 @@ namespace {
 // One target's emulator with the pending runs added as observations of noise tau^2, one run's
 // variance (their values do not enter the variance).
 struct Conditioned {
-  const Gp* gp;
   Eigen::MatrixXd x;  // training rows then pending rows
   Eigen::LLT<Eigen::MatrixXd> chol;
 };
 
 Conditioned condition(const Gp& gp, const Eigen::MatrixXd& pending, double tau2) {
-  Conditioned c{&gp, Eigen::MatrixXd(gp.data.x.rows() + pending.rows(), gp.data.x.cols()), {}};
+  Conditioned c{Eigen::MatrixXd(gp.data.x.rows() + pending.rows(), gp.data.x.cols()), {}};
   c.x << gp.data.x, pending;
   Eigen::MatrixXd k = cross_covariance(gp, c.x, c.x);
   const int n = int(gp.data.x.rows());

@@ -91,12 +91,6 @@ double negative_likelihood(unsigned, const double* theta, double*, void* data) {
 
 }  // namespace
 
-double matern52(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& length) {
-  const double r = std::sqrt(((a - b).array() / length.array()).square().sum());
-  const double s5r = std::sqrt(5.0) * r;
-  return (1.0 + s5r + 5.0 * r * r / 3.0) * std::exp(-s5r);
-}
-
 Gp condition_gp(GpData data, const GpHyper& hyper) {
   check(data);
   Gp gp;

@@ -63,8 +63,6 @@ struct Gp {
   double log_likelihood = 0.0;       // the restricted log-likelihood at the hyperparameters
 };
 
-double matern52(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& length);
-
 // Fits the hyperparameters and factorises. Needs at least 2 points; throws std::invalid_argument
 // on mismatched sizes, coordinates outside [0, 1] or non-finite values.
 Gp fit_gp(GpData data, const GpOptions& options = {});
