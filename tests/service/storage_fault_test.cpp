@@ -102,6 +102,8 @@ TEST_F(StorageFaults, AHeldWriteLockIsAnswered503AndTheResultIsStoredAfter) {
   ASSERT_TRUE(poll_until([&] { return service->store().counts(id).running == 1; }, 10s));
   sqlite3* holder = nullptr;
   ASSERT_EQ(sqlite3_open((dir.path() / "api.db").c_str(), &holder), SQLITE_OK);
+  // The service may be writing at this moment (a progress update): wait for it, then hold.
+  sqlite3_busy_timeout(holder, 5000);
   ASSERT_EQ(sqlite3_exec(holder, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr), SQLITE_OK);
   // The run ends; its result meets the lock and waits.
   ASSERT_TRUE(poll_until([&] { return faults("busy") >= 2; }, 10s));
