@@ -185,7 +185,8 @@ void parse_inference(orch::JsonFields& root, CalibrationCampaign& c) {
 
 }  // namespace
 
-// "fidelity": {"fine": {merge patch of "job"}, "corrections": n, "strength_scale": s}. The fine
+// "fidelity": {"fine": {merge patch of "job"}, "corrections": n (or with bayes "runs": n),
+// "strength_scale": s}. The fine
 // template is validated for both tests like the job itself; returns its spec, the model the lab
 // targets are mapped to (the answer is the fine specimen's).
 std::optional<JobSpec> parse_fidelity(orch::JsonFields& root, CalibrationCampaign& c) {
@@ -206,9 +207,23 @@ std::optional<JobSpec> parse_fidelity(orch::JsonFields& root, CalibrationCampaig
   }
   c.fine_patch = fine;
   c.fine_corrections = int(fields.integer("corrections", 1, 20).value_or(c.fine_corrections));
+  c.fine_runs = int(fields.integer("runs", 2, 1'000).value_or(c.fine_runs));
   c.fine_strength_scale = fields.positive("strength_scale").value_or(1.0);
   fields.reject_unknown();
   return spec;
+}
+
+// "corrections" steps the old driver's Newton corrections, "runs" budgets the bayes fine runs:
+// each only with its own strategy.
+void check_fidelity_fields(const json& campaign, const CalibrationCampaign& c) {
+  const json* f = campaign.contains("fidelity") ? &campaign.at("fidelity") : nullptr;
+  if (!f) return;
+  const bool bayes = c.strategy == Strategy::bayes;
+  if (bayes && f->contains("corrections"))
+    throw orch::RequestError("fidelity.corrections",
+                             "not with \"strategy\": \"bayes\" (use \"runs\": its fine runs)");
+  if (!bayes && f->contains("runs"))
+    throw orch::RequestError("fidelity.runs", "only with \"strategy\": \"bayes\"");
 }
 
 CalibrationCampaign parse_calibration_campaign(const json& campaign) {
@@ -247,8 +262,7 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   }
   c.strategy = parse_strategy(root);
   parse_inference(root, c);
-  if (c.strategy == Strategy::bayes && !c.fine_patch.is_null())
-    throw orch::RequestError("fidelity", "not with \"strategy\": \"bayes\" (one specimen)");
+  check_fidelity_fields(campaign, c);
   c.initial_points = int(root.integer("initial_points", 0, 64).value_or(c.initial_points));
   c.random_seed = std::uint64_t(
       root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));

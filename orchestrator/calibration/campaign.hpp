@@ -71,6 +71,9 @@ struct CalibrationCampaign {
   // (null: the search's specimen is the answer), and the fine evaluations allowed.
   nlohmann::json fine_patch = nullptr;
   int fine_corrections = 3;
+  // With "strategy": "bayes": the fine runs (UCT + BTT, one packing each) after the coarse search,
+  // pooled with the coarse runs in one two-level emulator (inference/emulator/two_level.hpp).
+  int fine_runs = 12;
   // F on the fine specimen = F of the search x this: (R_fine / R_coarse)^2 when the fine specimen
   // has smaller grains at the same stress scale (bond forces scale with the bond's area).
   double fine_strength_scale = 1.0;

@@ -13,10 +13,14 @@ int seed_reruns(const CalibrationCampaign& c) {
 nlohmann::json progress_model_json(std::size_t evaluations, const CalibrationCampaign& c,
                                    std::optional<double> seconds_per_evaluation, bool finished) {
   using nlohmann::json;
-  const int budget = c.max_evaluations + c.consistency_evaluations;
+  // The bayes strategy's fine runs follow its search (the old driver's corrections are not
+  // evaluations of the search's kind and stay outside the count).
+  const int fine = c.strategy == Strategy::bayes && !c.fine_patch.is_null() ? c.fine_runs : 0;
+  const int budget = c.max_evaluations + c.consistency_evaluations + fine;
   json parts = json::array({{{"name", "search"}, {"budget", c.max_evaluations}}});
   if (c.consistency_evaluations > 0)
     parts.push_back({{"name", "valley trace"}, {"budget", c.consistency_evaluations}});
+  if (fine > 0) parts.push_back({{"name", "fine runs"}, {"budget", fine}});
   const int done = int(evaluations);
   const int left = finished ? 0 : std::max(0, budget - done) + seed_reruns(c);
   json eta = nullptr;

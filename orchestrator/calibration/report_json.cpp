@@ -256,34 +256,39 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
   if (!p) return nullptr;
   json region = json::array();
   for (const RegionSpan& s : p->region) region.push_back({s.j, s.i_lo, s.i_hi});
-  json j = {{"level", p->level},
-            {"estimate", {{"fr0", p->estimate.fr0_n}, {"fs0", p->estimate.fs0_n}}},
-            {"fr0", {p->fr0.lo, p->fr0.hi}},
-            {"fs0", {p->fs0.lo, p->fs0.hi}},
-            {"region",
-             {{"fr0_extent", {p->fr0_extent.lo, p->fr0_extent.hi}},
-              {"fs0_extent", {p->fs0_extent.lo, p->fs0_extent.hi}},
-              {"grid",
-               {{"cells", p->grid_cells},
-                {"fr0", {c.fr0_n.lo, c.fr0_n.hi}},
-                {"fs0", {c.fs0_n.lo, c.fs0_n.hi}},
-                {"scale", "log"}}},
-              {"spans", region}}},
-            {"bounds_reached", p->bounds_reached},
-            {"bounded", p->bounds_reached.empty()},
-            {"uct", predicted_json(p->uct, c)},
-            {"btt", predicted_json(p->btt, c)},
-            {"lab_uncertainty",
-             {{"uct", p->uct.lab_sd},
-              {"btt", p->btt.lab_sd},
-              {"source", p->lab_stated ? "request" : "default"}}},
-            {"discrepancy", p->discrepancy},
-            {"unique_width", p->unique_width},
-            {"unique", p->unique},
-            {"why", p->why},
-            {"runs", p->runs},
-            {"points", p->points},
-            {"rounds", p->rounds}};
+  json j = {
+      {"level", p->level},
+      {"estimate", {{"fr0", p->estimate.fr0_n}, {"fs0", p->estimate.fs0_n}}},
+      {"fr0", {p->fr0.lo, p->fr0.hi}},
+      {"fs0", {p->fs0.lo, p->fs0.hi}},
+      {"exact_emulators",
+       {{"fr0", {p->fr0_exact.lo, p->fr0_exact.hi}}, {"fs0", {p->fs0_exact.lo, p->fs0_exact.hi}}}},
+      {"region",
+       {{"fr0_extent", {p->fr0_extent.lo, p->fr0_extent.hi}},
+        {"fs0_extent", {p->fs0_extent.lo, p->fs0_extent.hi}},
+        {"grid",
+         {{"cells", p->grid_cells},
+          {"fr0", {p->grid_fr0.lo, p->grid_fr0.hi}},
+          {"fs0", {p->grid_fs0.lo, p->grid_fs0.hi}},
+          {"scale", "log"}}},
+        {"spans", region}}},
+      {"bounds_reached", p->bounds_reached},
+      {"bounded", p->bounds_reached.empty()},
+      {"uct", predicted_json(p->uct, c)},
+      {"btt", predicted_json(p->btt, c)},
+      {"lab_uncertainty",
+       {{"uct", p->uct.lab_sd},
+        {"btt", p->btt.lab_sd},
+        {"source", p->lab_stated ? "request" : "default"}}},
+      {"discrepancy", p->discrepancy},
+      {"unique_width", p->unique_width},
+      {"unique", p->unique},
+      {"why", p->why},
+      {"runs", p->runs},
+      {"points", p->points},
+      {"resolution", p->resolution.empty() ? json(nullptr) : json(p->resolution)},
+      {"coarse_runs", p->coarse_runs},
+      {"rounds", p->rounds}};
   if (c.targets.scaling) {
     const BondPoint lab = bonds_to_lab(p->estimate, *c.targets.scaling);
     const Scaling& s = *c.targets.scaling;
@@ -326,8 +331,14 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"suggestion", suggestion_json(r.suggestion)},
             {"fidelity", r.fidelity ? to_json(*r.fidelity, c) : json(nullptr)},
             {"posterior", posterior_json(r.posterior, c)}};
-  // Which specimen each search evaluation ran on: the template's, coarse when a fine one follows.
-  for (json& row : j["history"]) row["resolution"] = c.fine_patch.is_null() ? "template" : "coarse";
+  // Which specimen each evaluation ran on: the template's, coarse when a fine one follows, fine
+  // for the bayes strategy's fine runs.
+  for (json& row : j["history"]) {
+    const std::string phase = row.value("phase", "");
+    row["resolution"] = c.fine_patch.is_null()        ? "template"
+                        : phase.rfind("fine", 0) == 0 ? "fine"
+                                                      : "coarse";
+  }
   if (r.ratio) {
     j["ratio"] = {
         {"target", r.ratio->target},

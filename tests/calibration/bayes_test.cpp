@@ -5,6 +5,7 @@
 // budget remains (timestamps of a fake pool), and its verdict names a bound the targets press on.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -172,15 +173,17 @@ TEST(BayesCalibration, AVerdictNamesTheBoundTheTargetsPressOn) {
       << r.verdict_reason;
 }
 
+// The error a campaign with `over` merged in is refused with, or "accepted".
+std::string error(const nlohmann::json& over) {
+  try {
+    testing::campaign({1000, 100}, over);
+  } catch (const orch::RequestError& e) {
+    return std::string(e.what());
+  }
+  return std::string("accepted");
+}
+
 TEST(BayesCalibration, RequestsAreRefusedNamingTheField) {
-  auto error = [](const nlohmann::json& over) {
-    try {
-      testing::campaign({1000, 100}, over);
-    } catch (const orch::RequestError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
   EXPECT_EQ(error({{"inference", {{"level", 0.9}}}}),
             "inference: only with \"strategy\": \"bayes\"");
   EXPECT_EQ(error({{"strategy", "bayes"}, {"inference", {{"level", 1.2}}}}),
@@ -252,6 +255,87 @@ TEST(BayesCalibration, AWideRegionNamesTheTestThatWouldCutItMost) {
       << r.suggestion->why;
   std::printf("%zu runs; %s: %s\n", r.history.size(), r.posterior->why.c_str(),
               r.suggestion->why.c_str());
+}
+
+// Two resolutions: the fine specimen (the "fidelity" patch: a diameter of 12 here, run as probes)
+// loads 30% more in the UCT and 15% more in the BTT than the coarse one at the same strengths,
+// times (strength scale) with half its scatter. Its strengths are what the lab's loads ask.
+constexpr double kFineUct = 1.3, kFineBtt = 1.15, kScale = 0.5;
+
+PeakLoads fine_loads(const BondPoint& fine) {
+  const PeakLoads l = testing::power_law({fine.fr0_n / kScale, fine.fs0_n / kScale});
+  return {kFineUct * l.uct_n, kFineBtt * l.btt_n};
+}
+
+struct TwoResolutionEvaluator : ScatteringEvaluator {
+  using ScatteringEvaluator::ScatteringEvaluator;
+  std::atomic<int> fine_runs{0};
+  std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> ps) override {
+    std::vector<orch::Ensemble> out;
+    for (const ProbeRequest& p : ps) {
+      if (p.patch != nlohmann::json{{"sample", {{"diameter", 12}}}}) return {};
+      const PeakLoads l = fine_loads(p.point);
+      const bool uct = p.test == TestKind::uct;
+      fine_runs += uct ? 1 : 0;
+      const double v =
+          (uct ? l.uct_n : l.btt_n) *
+          std::exp(0.5 * (uct ? sd_uct : sd_btt) * normal(p.point, p.sample_seed, uct ? 5 : 7));
+      out.push_back(orch::make_ensemble({{p.sample_seed, 0, "succeeded", v, {}, {}, ""}}));
+    }
+    return out;
+  }
+};
+
+TEST(BayesCalibration, FineRunsOnCoarseEmulatorsFindTheFineSpecimensStrengths) {
+  constexpr int kTwins = 10;
+  int inside = 0, feasible = 0;
+  for (int twin = 0; twin < kTwins; ++twin) {
+    const BondPoint probe{double(twin + 1), 13.0};
+    const double u = 0.3 + 0.4 * 0.5 * (hash_unit(probe, 17, 1) + 1);
+    const double v = 0.3 + 0.4 * 0.5 * (hash_unit(probe, 17, 2) + 1);
+    nlohmann::json over = bayes(60, 0.05);
+    over["random_seed"] = twin + 1;
+    over["job"]["sample"]["seed"] = 1 + 1000 * twin;
+    over["fidelity"] = {
+        {"fine", {{"sample", {{"diameter", 12}}}}}, {"strength_scale", kScale}, {"runs", 12}};
+    const CalibrationCampaign base = testing::campaign({1, 1}, over);
+    const BondPoint truth = from_unit({u, v}, fine_campaign(base));  // the fine strengths
+    const CalibrationCampaign c = testing::campaign(fine_loads(truth), over);
+    TwoResolutionEvaluator e(testing::power_law);
+    const CalibrationReport r = run_calibration(c, e);
+    ASSERT_TRUE(r.posterior) << twin;
+    const PosteriorSummary& p = *r.posterior;
+    EXPECT_EQ(p.resolution, "fine");
+    EXPECT_LE(e.fine_runs.load(), 12);
+    EXPECT_LE(e.runs, 60);
+    EXPECT_EQ(p.coarse_runs + p.runs, int(r.history.size()));
+    inside += in_credible_region(p, truth, fine_campaign(c)) ? 1 : 0;
+    feasible += r.verdict == Verdict::feasible ? 1 : 0;
+    if (twin == 0) {
+      std::printf("%s\n", r.verdict_reason.c_str());
+      EXPECT_NE(r.verdict_reason.find("fine runs at"), std::string::npos) << r.verdict_reason;
+      // The coarse specimen's own answer lies a resolution factor away: its strengths for these
+      // loads are about 1.15-1.3x the fine ones over the scale.
+      EXPECT_NEAR(p.estimate.fr0_n / truth.fr0_n, 1.0, 0.25);
+      EXPECT_NEAR(p.estimate.fs0_n / truth.fs0_n, 1.0, 0.25);
+    }
+  }
+  std::printf("fine truth inside the 90%% region in %d of %d twins, %d feasible\n", inside, kTwins,
+              feasible);
+  EXPECT_GE(inside, 7);
+  EXPECT_GE(feasible, kTwins / 2);
+}
+
+TEST(BayesCalibration, FidelityFieldsBelongToTheirStrategy) {
+  const nlohmann::json fine = {{"sample", {{"diameter", 12}}}};
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"fidelity", {{"fine", fine}, {"corrections", 2}}}}),
+            "fidelity.corrections: not with \"strategy\": \"bayes\" (use \"runs\": its fine runs)");
+  EXPECT_EQ(error({{"fidelity", {{"fine", fine}, {"runs", 8}}}}),
+            "fidelity.runs: only with \"strategy\": \"bayes\"");
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"fidelity", {{"fine", fine}, {"runs", 1}}}}),
+            "fidelity.runs: must be in [2, 1000]");
+  EXPECT_EQ(error({{"strategy", "bayes"}, {"fidelity", {{"fine", fine}, {"runs", 8}}}}),
+            "accepted");
 }
 
 }  // namespace

@@ -59,6 +59,32 @@ TEST(Posterior, TheRegionShrinksWithTheLabsUncertainty) {
   EXPECT_LT(narrow.mass_fraction_of_box, 0.5 * wide.mass_fraction_of_box);
 }
 
+// With few runs the emulators' variance widens the region; the exact-emulator posterior drops it
+// and keeps the lab's share, which is what more runs can reach. With exact emulators the two agree.
+TEST(Posterior, ExactEmulatorsLeaveOnlyTheLabsUncertainty) {
+  const Eigen::Vector2d truth(0.5, 0.5);
+  const std::vector<Target> t = targets_at(truth, 0.05);
+  const Eigen::MatrixXd x = latin_square(6, 3);
+  GpData u{x, Eigen::VectorXd(6), Eigen::VectorXd::Constant(6, 0.04), {}}, b = u;
+  for (int i = 0; i < 6; ++i) {
+    u.y(i) = ln_uct(x.row(i).transpose());
+    b.y(i) = ln_btt(x.row(i).transpose());
+  }
+  const Gp fu = fit_gp(u), fb = fit_gp(b);
+  const PosteriorGrid few = posterior_on_grid({&fu, &fb}, t);
+  const PosteriorGrid few_exact = with_exact_emulators(few, t);
+  EXPECT_EQ(few_exact.var.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_LT(credible_region(few_exact).mass_fraction_of_box,
+            0.8 * credible_region(few).mass_fraction_of_box);
+
+  const Pair e = exact_emulators();
+  const PosteriorGrid known = posterior_on_grid(e.both(), t);
+  EXPECT_NEAR(credible_region(with_exact_emulators(known, t)).mass_fraction_of_box,
+              credible_region(known).mass_fraction_of_box,
+              0.1 * credible_region(known).mass_fraction_of_box);
+  EXPECT_THROW(with_exact_emulators(known, {t[0]}), std::invalid_argument);
+}
+
 TEST(Posterior, ATargetBeyondTheBoxPutsTheRegionOnItsEdge) {
   const Pair e = exact_emulators();
   // Both loads far above what the strongest bonds in the box give.

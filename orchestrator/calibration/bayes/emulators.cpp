@@ -9,6 +9,7 @@
 #include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/inference/design/batch_design.hpp"
 #include "orchestrator/inference/emulator/runs.hpp"
+#include "orchestrator/inference/emulator/two_level.hpp"
 #include "orchestrator/inference/posterior/region.hpp"
 
 namespace rockcal::calibration {
@@ -51,31 +52,76 @@ std::vector<inference::Target> inference_targets(const CalibrationCampaign& c) {
           {std::log(t.btt_n), s.lab_btt, s.discrepancy}};
 }
 
-Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
-                        const CalibrationCampaign& c) {
-  Emulators m;
-  std::map<std::pair<double, double>, int> index;
+namespace {
+
+// Each distinct point's runs of both loads, in ln, on the campaign's unit box.
+struct PointsRuns {
+  std::vector<BondPoint> points;
   std::vector<inference::PointRuns> uct, btt;
+  int runs = 0;
+};
+
+PointsRuns gather(const std::vector<EvaluationRecord>& history, const CalibrationCampaign& c) {
+  PointsRuns g;
+  std::map<std::pair<double, double>, int> index;
   for (const EvaluationRecord& r : history) {
     if (!r.loads) continue;
-    auto [it, fresh] = index.try_emplace({r.point.fr0_n, r.point.fs0_n}, int(m.points.size()));
+    auto [it, fresh] = index.try_emplace({r.point.fr0_n, r.point.fs0_n}, int(g.points.size()));
     if (fresh) {
-      m.points.push_back(r.point);
-      uct.push_back({to_unit(r.point, c), {}});
-      btt.push_back({to_unit(r.point, c), {}});
+      g.points.push_back(r.point);
+      g.uct.push_back({to_unit(r.point, c), {}});
+      g.btt.push_back({to_unit(r.point, c), {}});
     }
-    uct[it->second].values.push_back(std::log(r.loads->uct_n));
-    btt[it->second].values.push_back(std::log(r.loads->btt_n));
-    ++m.runs;
+    g.uct[it->second].values.push_back(std::log(r.loads->uct_n));
+    g.btt[it->second].values.push_back(std::log(r.loads->btt_n));
+    ++g.runs;
   }
-  if (m.points.size() < 3) throw std::runtime_error("fewer than 3 points with both loads");
-  m.uct = inference::fit_gp(inference::gp_data(uct));
-  m.btt = inference::fit_gp(inference::gp_data(btt));
+  return g;
+}
+
+void finish(Emulators& m, const CalibrationCampaign& c) {
   m.run_noise[0] = inference::per_run_noise(m.uct);
   m.run_noise[1] = inference::per_run_noise(m.btt);
   m.targets = inference_targets(c);
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
+}
+
+}  // namespace
+
+Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
+                        const CalibrationCampaign& c) {
+  PointsRuns g = gather(history, c);
+  if (g.points.size() < 3) throw std::runtime_error("fewer than 3 points with both loads");
+  Emulators m;
+  m.uct = inference::fit_gp(inference::gp_data(g.uct));
+  m.btt = inference::fit_gp(inference::gp_data(g.btt));
+  m.points = std::move(g.points);
+  m.runs = g.runs;
+  finish(m, c);
   return m;
+}
+
+Emulators fit_fine_emulators(const std::vector<EvaluationRecord>& fine, const Emulators& coarse,
+                             const CalibrationCampaign& fine_c) {
+  PointsRuns g = gather(fine, fine_c);
+  if (g.points.size() < 2) throw std::runtime_error("fewer than 2 fine points with both loads");
+  Emulators m;
+  m.uct = inference::fit_two_level(coarse.uct, inference::gp_data(g.uct));
+  m.btt = inference::fit_two_level(coarse.btt, inference::gp_data(g.btt));
+  m.points = std::move(g.points);
+  m.runs = g.runs;
+  m.coarse_runs = coarse.runs;
+  finish(m, fine_c);
+  return m;
+}
+
+CalibrationCampaign fine_campaign(const CalibrationCampaign& c) {
+  CalibrationCampaign f = c;
+  f.job_template.merge_patch(c.fine_patch);
+  const double s = c.fine_strength_scale;
+  f.fr0_n = {c.fr0_n.lo * s, c.fr0_n.hi * s};
+  f.fs0_n = {c.fs0_n.lo * s, c.fs0_n.hi * s};
+  return f;
 }
 
 std::vector<double> emulator_shares(const Emulators& m) {
@@ -107,7 +153,13 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   p.fs0 = {strength_at(region.marginal_lo(1), 1, c), strength_at(region.marginal_hi(1), 1, c)};
   p.fr0_extent = {strength_at(region.lo(0), 0, c), strength_at(region.hi(0), 0, c)};
   p.fs0_extent = {strength_at(region.lo(1), 1, c), strength_at(region.hi(1), 1, c)};
+  const inference::Region exact =
+      inference::credible_region(inference::with_exact_emulators(m.grid, m.targets), s.level);
+  p.fr0_exact = {strength_at(exact.marginal_lo(0), 0, c), strength_at(exact.marginal_hi(0), 0, c)};
+  p.fs0_exact = {strength_at(exact.marginal_lo(1), 1, c), strength_at(exact.marginal_hi(1), 1, c)};
   p.grid_cells = m.grid.per_dim;
+  p.grid_fr0 = c.fr0_n;
+  p.grid_fs0 = c.fs0_n;
   std::vector<std::vector<int>> rows(m.grid.per_dim);
   for (int cell : region.cells) {
     const std::vector<int> ij = inference::cell_indices(m.grid, cell);
@@ -143,6 +195,8 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   p.discrepancy = s.discrepancy;
   p.unique_width = s.unique_width;
   p.runs = m.runs;
+  p.coarse_runs = m.coarse_runs;
+  if (m.coarse_runs > 0) p.resolution = "fine";
   p.points = int(m.points.size());
   p.rounds = rounds;
   const double wr = p.fr0.hi / p.fr0.lo, ws = p.fs0.hi / p.fs0.lo;
@@ -153,6 +207,8 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
             ": the targets do not bound the strengths there";
   } else if (wr > s.unique_width || ws > s.unique_width) {
     p.unique = false;
+    const double er = p.fr0_exact.hi / p.fr0_exact.lo, es = p.fs0_exact.hi / p.fs0_exact.lo;
+    const bool runs_can = er <= s.unique_width && es <= s.unique_width;
     p.why = sentence("the %.0f%% intervals span a factor %.3g in F_r0 and %.3g in F_s0",
                      100 * s.level, wr, ws) +
             sentence(", wider than the stated %.3g: the targets, known to %.3g%%", s.unique_width,
@@ -160,7 +216,11 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
             sentence(
                 ", allow a range of strengths (the emulators hold %.0f%% and %.0f%% of the "
                 "posterior's variance)",
-                100 * share[0] / (1 + share[0]), 100 * share[1] / (1 + share[1]));
+                100 * share[0] / (1 + share[0]), 100 * share[1] / (1 + share[1])) +
+            sentence("; with exact emulators the factors would be %.3g and %.3g", er, es) +
+            (runs_can ? ": more runs can make the strengths unique"
+                      : ": more runs cannot make them unique at this uncertainty, another test "
+                        "or better-known targets can");
   } else {
     p.unique = true;
     p.why = sentence(

@@ -15,6 +15,7 @@ struct Emulators {
   inference::Gp uct, btt;
   double run_noise[2] = {0, 0};  // variance of one run's ln load (the emulators' nugget)
   int runs = 0;
+  int coarse_runs = 0;  // fine emulators: the coarse runs beneath them (0 for coarse emulators)
   std::vector<BondPoint> points;  // the distinct points run, in first-run order
   std::vector<inference::Target> targets;
   inference::PosteriorGrid grid;
@@ -26,6 +27,17 @@ std::vector<inference::Target> inference_targets(const CalibrationCampaign& c);
 
 // Throws std::runtime_error with fewer than 3 distinct successful points (or a failed fit).
 Emulators fit_emulators(const std::vector<EvaluationRecord>& history, const CalibrationCampaign& c);
+
+// The fine specimen's emulators: the coarse ones plus a discrepancy fitted to the fine runs
+// (inference/emulator/two_level.hpp). `fine_c` is the campaign as the fine specimen sees it
+// (fine_campaign): its box is the coarse one scaled, so both share the unit coordinates. Throws
+// std::runtime_error with fewer than 2 distinct successful fine points.
+Emulators fit_fine_emulators(const std::vector<EvaluationRecord>& fine, const Emulators& coarse,
+                             const CalibrationCampaign& fine_c);
+
+// The campaign the fine runs answer: the job template with the fine patch merged in and the
+// strength bounds times the fine strength scale.
+CalibrationCampaign fine_campaign(const CalibrationCampaign& c);
 
 std::vector<double> emulator_shares(const Emulators& m);
 

@@ -23,9 +23,10 @@ constexpr int kSpaceFilling = 256;  // candidates spread over the box, besides t
 constexpr int kDensest = 64;        // candidates at the posterior's densest cells
 
 struct Run {
-  BondPoint point;
+  BondPoint point;  // the strengths run: the fine specimen's for a fine run
   std::uint64_t seed;
   std::string phase;
+  bool fine = false;
 };
 
 struct Flight {
@@ -36,8 +37,9 @@ struct Flight {
 class Search {
  public:
   Search(const CalibrationCampaign& c, Evaluator& e, const RunOptions& o)
-      : c_(c), evaluator_(e), options_(o) {
+      : c_(c), evaluator_(e), options_(o), has_fine_(!c.fine_patch.is_null()) {
     batch_ = c.inference.batch > 0 ? c.inference.batch : std::max(2, o.workers);
+    if (has_fine_) fine_c_ = fine_campaign(c);
   }
 
   void run(CalibrationReport& report) {
@@ -58,20 +60,29 @@ class Search {
       }
       take(f.runs, outcomes);
       refit();
-      if (model_ && !checked_) {
-        const std::vector<double> share = emulator_shares(*model_);
+      const Emulators* current =
+          fine_phase_ ? (fine_model_ ? &*fine_model_ : nullptr) : (model_ ? &*model_ : nullptr);
+      if (current && !checked_) {
+        const std::vector<double> share = emulator_shares(*current);
         converged_ = share[0] < kShareStop && share[1] < kShareStop;
       }
-      while (flights_.size() < 2 && !checked_ && launched_ < c_.max_evaluations) plan_next();
+      while (flights_.size() < 2 && can_plan()) plan_next();
     }
     report.history = history_;
     report.stop_reason = cancelled_   ? StopReason::cancelled
                          : converged_ ? StopReason::converged
                                       : StopReason::budget_exhausted;
-    if (model_) report.posterior = summarise(*model_, c_, rounds_);
+    if (fine_model_) {
+      report.posterior = summarise(*fine_model_, fine_c_, rounds_);
+    } else if (model_) {
+      report.posterior = summarise(*model_, c_, rounds_);
+      if (has_fine_) report.posterior->resolution = "coarse";
+    }
     if (!check_.empty()) report.best = check_record();
-    // A region too wide to call unique: which further test would cut it most.
-    if (report.posterior && !report.posterior->unique && c_.suggest && !cancelled_ &&
+    // A region too wide to call unique: which further test would cut it most (on the specimen
+    // searched; with a fine specimen the further tests would need fine runs of their own, which
+    // this does not design).
+    if (report.posterior && !report.posterior->unique && c_.suggest && !has_fine_ && !cancelled_ &&
         !options_.stop.stop_requested()) {
       try {
         report.suggestion = next_test(*model_, history_, c_, evaluator_, batch_);
@@ -93,20 +104,43 @@ class Search {
     return runs;
   }
 
-  Run run_at(const BondPoint& p, const char* phase) {
+  Run run_at(const BondPoint& p, const char* phase, bool fine = false) {
     // Every run a packing of its own (independent scatter); one specimen when seeds do not matter.
     const std::uint64_t seed =
         c_.seed_matters ? c_.sample_seed + std::uint64_t(next_run_) : c_.sample_seed;
     ++next_run_;
-    return {p, seed, phase};
+    return {p, seed, phase, fine};
   }
 
   void launch(std::vector<Run> runs) {
     if (runs.empty()) return;
+    Evaluator* e = &evaluator_;
+    if (runs.front().fine) {
+      fine_launched_ += int(runs.size());
+      // A fine run is the fine specimen's UCT and BTT: two probes of the evaluator.
+      std::vector<ProbeRequest> probes;
+      for (const Run& r : runs) {
+        probes.push_back({r.point, r.seed, 1, TestKind::uct, c_.fine_patch});
+        probes.push_back({r.point, r.seed, 1, TestKind::btt, c_.fine_patch});
+      }
+      auto work = [e, probes = std::move(probes)] {
+        const std::vector<orch::Ensemble> ens = e->probe_batch(probes);
+        std::vector<EvaluationOutcome> out;
+        for (std::size_t i = 0; i + 1 < probes.size(); i += 2) {
+          if (i + 1 < ens.size()) {
+            out.push_back(outcome_of(ens[i], ens[i + 1]));
+          } else {
+            out.push_back({std::nullopt, "the evaluator runs no fine specimen", {}, {}});
+          }
+        }
+        return out;
+      };
+      flights_.push_back({std::move(runs), std::async(std::launch::async, std::move(work))});
+      return;
+    }
     launched_ += int(runs.size());
     std::vector<EvaluationRequest> requests;
     for (const Run& r : runs) requests.push_back({r.point, r.seed, 1});
-    Evaluator* e = &evaluator_;
     auto work = [e, requests = std::move(requests)] { return e->evaluate_batch(requests); };
     flights_.push_back({std::move(runs), std::async(std::launch::async, std::move(work))});
   }
@@ -134,22 +168,45 @@ class Search {
         r.misfit = failure_floor(c_);
       }
       history_.push_back(r);
-      if (r.phase == "check") check_.push_back(r);
+      (runs[i].fine ? fine_history_ : coarse_history_).push_back(r);
+      if (r.phase == "check" || r.phase == "fine check") check_.push_back(r);
       if (options_.on_evaluation) options_.on_evaluation(r);
     }
   }
 
   void refit() {
+    if (int(coarse_history_.size()) != coarse_fitted_) {
+      coarse_fitted_ = int(coarse_history_.size());
+      try {
+        model_ = fit_emulators(coarse_history_, c_);
+      } catch (const std::exception&) {
+        model_.reset();  // too few or degenerate runs: the next batch fills the box instead
+      }
+    }
+    if (!fine_phase_ || !model_) return;
     try {
-      model_ = fit_emulators(history_, c_);
+      fine_model_ = fit_fine_emulators(fine_history_, *model_, fine_c_);
     } catch (const std::exception&) {
-      model_.reset();  // too few or degenerate runs: the next batch fills the box instead
+      fine_model_.reset();  // fewer than 2 fine points: the coarse posterior places the next
     }
   }
 
+  bool can_plan() const {
+    if (checked_) return false;
+    if (fine_phase_) return fine_launched_ < c_.fine_runs;
+    return launched_ < c_.max_evaluations || (has_fine_ && model_);
+  }
+
   void plan_next() {
+    if (fine_phase_) return plan_fine();
     const int left = c_.max_evaluations - launched_;
-    if (model_ && (converged_ || left <= batch_)) {
+    // With a fine specimen the whole coarse budget goes to the search; its check is fine.
+    if (model_ && (converged_ || left <= (has_fine_ ? 0 : batch_))) {
+      if (has_fine_) {
+        fine_phase_ = true;
+        converged_ = false;
+        return plan_fine();
+      }
       // The check batch: the estimate on `batch` packings (fewer when seeds do not matter).
       const BondPoint estimate = posterior_estimate(*model_, c_);
       std::vector<Run> runs;
@@ -160,19 +217,42 @@ class Search {
       return;
     }
     ++rounds_;
-    launch(model_ ? design(std::min(batch_, left)) : space_filling(std::min(batch_, left)));
+    launch(model_ ? design(*model_, c_, std::min(batch_, left), false)
+                  : space_filling(std::min(batch_, left), c_, false));
   }
 
-  std::vector<Run> space_filling(int n) {
+  // The fine runs: designed on the fine emulators once there are two fine points (on the coarse
+  // posterior before), then the check batch at the fine estimate.
+  void plan_fine() {
+    const int left = c_.fine_runs - fine_launched_;
+    if (left <= 0) return;
+    if (fine_model_ && (converged_ || left <= batch_)) {
+      const BondPoint estimate = posterior_estimate(*fine_model_, fine_c_);
+      std::vector<Run> runs;
+      const int n = c_.seed_matters ? std::min(batch_, left) : 1;
+      for (int k = 0; k < n; ++k) runs.push_back(run_at(estimate, "fine check", true));
+      checked_ = true;
+      launch(std::move(runs));
+      return;
+    }
+    ++rounds_;
+    const int n = std::min(batch_, left);
+    if (fine_model_) return launch(design(*fine_model_, fine_c_, n, true));
+    launch(model_ ? design(*model_, fine_c_, n, true) : space_filling(n, fine_c_, true));
+  }
+
+  std::vector<Run> space_filling(int n, const CalibrationCampaign& c, bool fine) {
     std::vector<Run> runs;
     for (const auto& u : latin_hypercube(n, c_.random_seed + 7919 * std::uint64_t(rounds_))) {
-      runs.push_back(run_at(from_unit({u[0], u[1]}, c_), "design"));
+      runs.push_back(run_at(from_unit({u[0], u[1]}, c), fine ? "fine" : "design", fine));
     }
     return runs;
   }
 
-  std::vector<Run> design(int n) {
-    const Emulators& m = *model_;
+  // A batch of n runs chosen on emulators m over campaign c's box (the fine campaign's for fine
+  // runs; with the coarse emulators there when no fine one is fitted yet, the unit box being
+  // shared). Only runs of the same resolution in flight count as pending.
+  std::vector<Run> design(const Emulators& m, const CalibrationCampaign& c, int n, bool fine) {
     // Candidates: spread over the box, at the posterior's densest cells, and (when another
     // packing is another specimen) the points already run: a further realisation there.
     std::vector<Eigen::Vector2d> cand;
@@ -191,9 +271,9 @@ class Search {
       cand.push_back(m.grid.points.row(order[k]).transpose());
       exact.push_back(std::nullopt);
     }
-    if (c_.seed_matters) {
+    if (c_.seed_matters && (m.coarse_runs > 0) == fine) {
       for (const BondPoint& p : m.points) {
-        cand.push_back(to_unit(p, c_));
+        cand.push_back(to_unit(p, c));
         exact.push_back(p);
       }
     }
@@ -206,19 +286,33 @@ class Search {
     for (std::size_t i = 0; i < cand.size(); ++i) in.candidates.row(Eigen::Index(i)) = cand[i];
     std::vector<Eigen::Vector2d> pend;
     for (const Flight& f : flights_) {
-      for (const Run& r : f.runs) pend.push_back(to_unit(r.point, c_));
+      for (const Run& r : f.runs) {
+        if (r.fine == fine) pend.push_back(to_unit(r.point, c));
+      }
     }
     in.pending.resize(Eigen::Index(pend.size()), 2);
     for (std::size_t i = 0; i < pend.size(); ++i) in.pending.row(Eigen::Index(i)) = pend[i];
     in.batch = n;
     std::vector<Run> runs;
     std::vector<BondPoint> chosen;
+    // The first fine runs need two distinct points before their emulator can be fitted: none
+    // repeats a fine point run or in flight.
+    const bool bootstrap = fine && !fine_model_;
+    if (bootstrap) {
+      for (const EvaluationRecord& r : fine_history_) chosen.push_back(r.point);
+      for (const Flight& f : flights_) {
+        for (const Run& r : f.runs) {
+          if (r.fine) chosen.push_back(r.point);
+        }
+      }
+    }
     for (const inference::DesignChoice& d : inference::choose_batch(in)) {
       const BondPoint p =
-          exact[d.candidate] ? *exact[d.candidate] : from_unit(cand[d.candidate], c_);
-      if (!c_.seed_matters && std::find(chosen.begin(), chosen.end(), p) != chosen.end()) continue;
+          exact[d.candidate] ? *exact[d.candidate] : from_unit(cand[d.candidate], c);
+      const bool distinct = !c_.seed_matters || bootstrap;
+      if (distinct && std::find(chosen.begin(), chosen.end(), p) != chosen.end()) continue;
       chosen.push_back(p);
-      runs.push_back(run_at(p, "design"));
+      runs.push_back(run_at(p, fine ? "fine" : "design", fine));
     }
     return runs;
   }
@@ -245,15 +339,21 @@ class Search {
   const CalibrationCampaign& c_;
   Evaluator& evaluator_;
   const RunOptions& options_;
+  const bool has_fine_;
+  CalibrationCampaign fine_c_;  // the fine specimen's view (fine_campaign), when there is one
+  bool fine_phase_ = false;
+  int fine_launched_ = 0;
+  int coarse_fitted_ = -1;  // coarse runs the coarse emulators were last fitted to
   int batch_ = 2;
   int launched_ = 0;
   int next_run_ = 0;
   int rounds_ = 0;
   bool cancelled_ = false, converged_ = false, checked_ = false;
   std::deque<Flight> flights_;
-  std::vector<EvaluationRecord> history_;
+  std::vector<EvaluationRecord> history_;  // every run, in the order taken (the report's)
+  std::vector<EvaluationRecord> coarse_history_, fine_history_;
   std::vector<EvaluationRecord> check_;
-  std::optional<Emulators> model_;
+  std::optional<Emulators> model_, fine_model_;
 };
 
 }  // namespace

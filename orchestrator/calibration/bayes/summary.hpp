@@ -34,18 +34,27 @@ struct PosteriorSummary {
   BondPoint estimate{};                      // the posterior's density peak
   Range fr0{0, 0}, fs0{0, 0};                // marginal `level` intervals
   Range fr0_extent{0, 0}, fs0_extent{0, 0};  // the region's extent
-  int grid_cells = 0;                        // per dimension; the grid spans the log bounds
-  std::vector<RegionSpan> region;            // the highest-density cells holding `level`
-  std::vector<std::string> bounds_reached;   // e.g. "the upper bound of F_s0 (1000)"
+  // The marginal intervals with the emulators exact: the narrowest more runs can make them at the
+  // targets' stated uncertainty (inference::with_exact_emulators).
+  Range fr0_exact{0, 0}, fs0_exact{0, 0};
+  int grid_cells = 0;                       // per dimension; the grid spans the log bounds
+  Range grid_fr0{0, 0}, grid_fs0{0, 0};     // those bounds (the fine specimen's when fine)
+  std::vector<RegionSpan> region;           // the highest-density cells holding `level`
+  std::vector<std::string> bounds_reached;  // e.g. "the upper bound of F_s0 (1000)"
   PredictedLoad uct, btt;
   bool lab_stated = false;
   double discrepancy = 0.0;
   double unique_width = 1.5;
   bool unique = false;
   std::string why;  // the reason for `unique`, a sentence
-  int runs = 0;     // successful runs the emulators were fitted to
-  int points = 0;   // distinct points among them
-  int rounds = 0;   // batches designed after the start
+  int runs = 0;     // successful runs the emulators were fitted to (fine runs when fine)
+  // "fine" when the posterior is the fine specimen's (two-level emulators over coarse_runs coarse
+  // runs and `runs` fine ones), "coarse" when a campaign with a fine specimen has no fine
+  // emulator (its fine runs failed), empty for one specimen.
+  std::string resolution;
+  int coarse_runs = 0;
+  int points = 0;  // distinct points among them
+  int rounds = 0;  // batches designed after the start
 };
 
 }  // namespace rockcal::calibration

@@ -36,7 +36,13 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   r.consistent.fs0 = p.fs0;
   const bool met = std::abs(p.uct.relative_error) <= c.tolerance &&
                    std::abs(p.btt.relative_error) <= c.tolerance;
-  const std::string runs = sentence(" (%.0f runs at %.0f points)", p.runs, p.points);
+  std::string runs = sentence(" (%.0f runs at %.0f points)", p.runs, p.points);
+  if (p.resolution == "fine") {
+    runs = sentence(" (the fine specimen: %.0f fine runs at %.0f points", p.runs, p.points) +
+           sentence(" on emulators of %.0f coarse runs)", p.coarse_runs);
+  } else if (p.resolution == "coarse") {
+    runs += "; the fine runs gave no emulator, so this is the coarse specimen's posterior";
+  }
   if (met) {
     r.verdict = Verdict::feasible;
     r.verdict_reason =

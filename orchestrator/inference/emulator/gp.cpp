@@ -105,7 +105,7 @@ Gp fit_gp(GpData data, const GpOptions& options) {
   check(data);
   const int dims = int(data.x.cols());
   Gp gp;
-  gp.trend_terms = trend_terms_for(data);
+  gp.trend_terms = options.linear_trend ? trend_terms_for(data) : 1;
   gp.data = std::move(data);
   gp.hyper.length = Eigen::VectorXd::Constant(dims, 0.5);
   // The scale of what the trend leaves: the signal variance is searched around it.
@@ -177,6 +177,12 @@ void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& 
   for (int i = 0; i < points.rows(); ++i) {
     var(i) = std::max(0.0, gp.hyper.signal_var - k.col(i).dot(kinv_k.col(i)) +
                                u.col(i).dot(gp.h_kinv_h_inv * u.col(i)));
+  }
+  if (gp.base) {
+    Eigen::VectorXd base_mean, base_var;
+    predict_many(*gp.base, points, base_mean, base_var);
+    mean += base_mean;
+    var += base_var;
   }
 }
 

@@ -17,6 +17,7 @@
 // Hyperparameters (lengths, s2, nugget) maximise the restricted likelihood (NLopt, bounded).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -43,6 +44,7 @@ struct GpOptions {
   double max_length = 3.0;  // longer is a straight line over the box: the trend's job
   double min_nugget = 1e-8;
   int restarts = 3;  // extra starts of the likelihood search beyond the default one
+  bool linear_trend = true;  // false: a constant trend whatever the number of points
 };
 
 struct Prediction {
@@ -61,6 +63,9 @@ struct Gp {
   Eigen::VectorXd alpha;             // K^-1 (y - H beta)
   Eigen::MatrixXd h_kinv_h_inv;      // (H' K^-1 H)^-1
   double log_likelihood = 0.0;       // the restricted log-likelihood at the hyperparameters
+  // Set on a discrepancy emulator (two_level.hpp): this GP models y minus `base`'s mean, and its
+  // predictions add `base`'s mean and variance.
+  std::shared_ptr<const Gp> base;
 };
 
 // Fits the hyperparameters and factorises. Needs at least 2 points; throws std::invalid_argument
@@ -70,7 +75,8 @@ Gp fit_gp(GpData data, const GpOptions& options = {});
 Gp condition_gp(GpData data, const GpHyper& hyper);
 
 Prediction predict(const Gp& gp, const Eigen::VectorXd& x);
-// The same at every row of `points` (m x d) at once: means and variances, m each.
+// The same at every row of `points` (m x d) at once: means and variances, m each. Both include
+// the base emulator's when the GP has one.
 void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& mean,
                   Eigen::VectorXd& var);
 // The prior covariance matrix between the rows of a (m x d) and of b (p x d).

@@ -26,6 +26,21 @@ double term(const Target& t, double mean, double var) {
   return -0.5 * (r * r / v + std::log(v));
 }
 
+// The log density and normalised weight of every cell from the grid's means and variances.
+void weigh(PosteriorGrid& g, const std::vector<Target>& targets) {
+  const auto cells = g.mean.rows();
+  g.log_density.resize(cells);
+  for (Eigen::Index c = 0; c < cells; ++c) {
+    double l = 0.0;
+    for (std::size_t j = 0; j < targets.size(); ++j)
+      l += term(targets[j], g.mean(c, Eigen::Index(j)), g.var(c, Eigen::Index(j)));
+    g.log_density(c) = l;
+  }
+  const double top = g.log_density.maxCoeff();
+  g.weight = (g.log_density.array() - top).exp();
+  g.weight /= g.weight.sum();
+}
+
 }  // namespace
 
 int default_cells_per_dim(int dims) {
@@ -71,15 +86,16 @@ PosteriorGrid posterior_on_grid(const std::vector<const Gp*>& emulators,
     g.mean.col(j) = m;
     g.var.col(j) = v;
   }
-  g.log_density.resize(cells);
-  for (int c = 0; c < cells; ++c) {
-    double l = 0.0;
-    for (int j = 0; j < n_targets; ++j) l += term(targets[j], g.mean(c, j), g.var(c, j));
-    g.log_density(c) = l;
-  }
-  const double top = g.log_density.maxCoeff();
-  g.weight = (g.log_density.array() - top).exp();
-  g.weight /= g.weight.sum();
+  weigh(g, targets);
+  return g;
+}
+
+PosteriorGrid with_exact_emulators(const PosteriorGrid& grid, const std::vector<Target>& targets) {
+  if (grid.mean.cols() != Eigen::Index(targets.size()))
+    throw std::invalid_argument("posterior: one emulator per target is needed");
+  PosteriorGrid g = grid;
+  g.var.setZero();
+  weigh(g, targets);
   return g;
 }
 

@@ -39,6 +39,11 @@ int default_cells_per_dim(int dims);
 PosteriorGrid posterior_on_grid(const std::vector<const Gp*>& emulators,
                                 const std::vector<Target>& targets, int per_dim = 0);
 
+// The same posterior with every emulator's variance set to zero: what the targets' own uncertainty
+// and the stated discrepancy allow if the emulators' means were exact. Its region is the narrowest
+// that more runs can reach; a region wider than wanted here needs another test, not more runs.
+PosteriorGrid with_exact_emulators(const PosteriorGrid& grid, const std::vector<Target>& targets);
+
 // The log posterior density at any x (the same expression as on the grid).
 double log_density(const std::vector<const Gp*>& emulators, const std::vector<Target>& targets,
                    const Eigen::VectorXd& x);
