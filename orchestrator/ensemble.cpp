@@ -98,6 +98,7 @@ json to_json(const Ensemble& e) {
                     {"peak_load_n", or_null(r.peak_load_n)},
                     {"strength_pa", or_null(r.strength_pa)},
                     {"youngs_modulus_pa", or_null(r.youngs_modulus_pa)},
+                    {"quasi_static", r.quasi_static ? json(*r.quasi_static) : json(nullptr)},
                     {"error", r.error.empty() ? json(nullptr) : json(r.error)}});
   }
   return {{"realisations", runs},

@@ -53,6 +53,9 @@ struct Realisation {
   std::optional<double> strength_pa;
   std::optional<double> youngs_modulus_pa;
   std::string error;
+  // The run's own quasi-static verdict at its peak (result.json's loading_rate.quasi_static);
+  // absent when the run reported none (no peak, or an engine without the measure).
+  std::optional<bool> quasi_static = std::nullopt;
 };
 
 struct Ensemble {

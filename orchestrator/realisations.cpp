@@ -20,6 +20,11 @@ Realisation from(std::uint64_t seed, std::int64_t job_id, const std::string& sta
     r.peak_load_n = result->peak_load;
     r.strength_pa = result->strength;
     r.youngs_modulus_pa = result->youngs_modulus;
+    const json doc = json::parse(result->result, nullptr, false);
+    if (doc.is_object() && doc.contains("loading_rate") && doc["loading_rate"].is_object()) {
+      const json& q = doc["loading_rate"].value("quasi_static", json());
+      if (q.is_boolean()) r.quasi_static = q.get<bool>();
+    }
   } else if (state == db::kFailed || state == db::kCancelled) {
     r.error = error.value_or("job " + std::to_string(job_id) + " " + state);
   }

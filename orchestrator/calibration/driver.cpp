@@ -11,6 +11,7 @@
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/local_search.hpp"
 #include "orchestrator/calibration/ratio_scale.hpp"
+#include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/calibration/start_design.hpp"
 #include "orchestrator/calibration/suggestion.hpp"
@@ -159,41 +160,6 @@ std::string bounds_hit_text(const BondPoint& p, const CalibrationCampaign& c) {
   return out;
 }
 
-// The search's runs that ended without a peak (failed jobs "no peak: ..."; their largest load is
-// no result), by the limit that ended them, with the fix. Empty when every run reached one.
-std::string no_peak_text(const std::vector<EvaluationRecord>& history) {
-  int runs = 0, no_peak = 0, at_strain = 0, at_steps = 0;
-  auto count = [&](const std::string& error) {
-    ++runs;
-    if (error.rfind("no peak", 0) != 0 && error.find(": no peak") == std::string::npos) return;
-    ++no_peak;
-    at_strain += error.find("loading.max_strain") != std::string::npos ? 1 : 0;
-    at_steps += error.find("loading.max_steps") != std::string::npos ? 1 : 0;
-  };
-  for (const EvaluationRecord& e : history) {
-    if (!e.uct || !e.btt) {  // an evaluator without realisations: a UCT and a BTT run, the
-      runs += 1;             // error naming the one that failed
-      count(e.error);
-      continue;
-    }
-    for (const orch::Ensemble* test : {&*e.uct, &*e.btt})
-      for (const orch::Realisation& x : test->realisations) count(x.error);
-  }
-  if (no_peak == 0) return "";
-  std::string out =
-      sentence("%.0f of %.0f runs ended without a peak and count as failed", no_peak, runs);
-  if (at_strain > 0)
-    out += sentence(
-        " (%.0f at loading.max_strain: raise it in the job template so that they "
-        "reach one",
-        at_strain);
-  if (at_steps > 0)
-    out +=
-        (at_strain > 0 ? "; " : " (") + sentence("%.0f at loading.max_steps: raise it", at_steps);
-  if (at_strain + at_steps > 0) out += ")";
-  return out;
-}
-
 void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   blur_by_scatter(r, c);
   if (!r.best) {
@@ -243,6 +209,8 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
         100 * c.tolerance);
   }
   if (!no_peak.empty()) r.verdict_reason += "; " + no_peak;
+  const std::string fast = not_quasi_static_text(r.history, platen_velocity_of(c));
+  if (!fast.empty()) r.verdict_reason += "; " + fast;
 }
 
 }  // namespace

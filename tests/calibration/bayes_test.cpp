@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -43,6 +44,8 @@ struct ScatteringEvaluator : Evaluator {
   using Clock = std::chrono::steady_clock;
   std::vector<std::pair<Clock::time_point, Clock::time_point>> spans;
   int runs = 0;
+  // Unset: runs report no quasi-static measure; else each run's verdict at its point.
+  std::function<bool(const BondPoint&)> quasi_static;
 
   explicit ScatteringEvaluator(testing::Model m) : model(std::move(m)) {}
 
@@ -74,6 +77,7 @@ struct ScatteringEvaluator : Evaluator {
                         {},
                         {},
                         ""};
+    if (quasi_static) u.quasi_static = b.quasi_static = quasi_static(r.point);
     return outcome_of(orch::make_ensemble({u}), orch::make_ensemble({b}));
   }
 
@@ -171,6 +175,44 @@ TEST(BayesCalibration, AVerdictNamesTheBoundTheTargetsPressOn) {
   EXPECT_FALSE(r.posterior->unique);
   EXPECT_NE(r.verdict_reason.find("the upper bound of F_s0 (1000)"), std::string::npos)
       << r.verdict_reason;
+}
+
+// The model's UCT/BTT ratio stays within [6.0, 23.8] (smooth_min); a lab ratio of 3 is out of
+// its reach, and the verdict says so with the range the runs reached, not "the budget".
+TEST(BayesCalibration, AVerdictNamesARatioOutOfTheModelsReach) {
+  const PeakLoads reachable = testing::smooth_min({100, 100});
+  const PeakLoads lab{reachable.uct_n, reachable.uct_n / 3.0};
+  const CalibrationCampaign c = testing::campaign(lab, bayes(40, 0.05));
+  ScatteringEvaluator e(testing::smooth_min);
+  e.sd_uct = e.sd_btt = 0.05;
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  EXPECT_EQ(r.verdict, Verdict::compromise);
+  ASSERT_TRUE(r.ratio);
+  EXPECT_FALSE(r.ratio->target_inside());
+  EXPECT_NE(r.verdict_reason.find("the target UCT/BTT load ratio 3 lies outside the range ["),
+            std::string::npos)
+      << r.verdict_reason;
+  EXPECT_EQ(r.verdict_reason.find("budget"), std::string::npos) << r.verdict_reason;
+}
+
+// Runs that say they were not quasi-static (weak bonds at a fixed platen speed break at a strain
+// the platen closes too fast) are named in the verdict with the fix, feasible or not.
+TEST(BayesCalibration, AVerdictNamesRunsThatWereNotQuasiStatic) {
+  const CalibrationCampaign c = testing::campaign(testing::power_law({60, 120}), bayes(40, 0.05));
+  ScatteringEvaluator e(testing::power_law);
+  e.quasi_static = [](const BondPoint& p) { return p.fr0_n > 30; };
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  EXPECT_NE(r.verdict_reason.find(" runs that reported it were not quasi-static"),
+            std::string::npos)
+      << r.verdict_reason;
+  EXPECT_NE(r.verdict_reason.find("set loading.platen_velocity to \"auto\""), std::string::npos)
+      << r.verdict_reason;
+  ScatteringEvaluator slow(testing::power_law);
+  slow.quasi_static = [](const BondPoint&) { return true; };
+  const CalibrationReport fine = run_calibration(c, slow);
+  EXPECT_EQ(fine.verdict_reason.find("quasi-static"), std::string::npos) << fine.verdict_reason;
 }
 
 // The error a campaign with `over` merged in is refused with, or "accepted".

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 
 namespace rockcal::calibration {
@@ -43,13 +44,19 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   } else if (p.resolution == "coarse") {
     runs += "; the fine runs gave no emulator, so this is the coarse specimen's posterior";
   }
+  // Faults of the runs themselves, whatever the verdict: no peak, not quasi-static.
+  std::string faults;
+  for (const std::string& f :
+       {no_peak_text(r.history), not_quasi_static_text(r.history, platen_velocity_of(c))}) {
+    if (!f.empty()) faults += "; " + f;
+  }
   if (met) {
     r.verdict = Verdict::feasible;
     r.verdict_reason =
         sentence("the predicted loads at the estimate are within %.3g%% of both targets (",
                  100 * c.tolerance) +
         loads_text(p) + ")" + runs + "; " + region_text(p) +
-        (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why;
+        (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why + faults;
     return;
   }
   if (r.stop_reason == StopReason::cancelled) {
@@ -61,15 +68,20 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   r.verdict = Verdict::compromise;
   const std::string miss =
       "the predicted loads at the estimate miss the targets (" + loads_text(p) + ")";
-  if (!p.bounds_reached.empty()) {
-    r.verdict_reason = miss + ": the posterior presses on " + p.bounds_reached.front() +
-                       "; the targets need strengths beyond it: widen \"bounds\"";
-  } else if (r.ratio && !r.ratio->target_inside()) {
+  if (r.ratio && !r.ratio->target_inside()) {
+    // The ratio first: no pair of strengths in the box gives it, so no scale of both can.
     r.verdict_reason =
         miss + sentence(
                    ": the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] "
                    "the runs reached",
                    r.ratio->target, r.ratio->min, r.ratio->max);
+    if (!p.bounds_reached.empty())
+      r.verdict_reason += "; the posterior presses on " + p.bounds_reached.front() +
+                          ": widen \"bounds\" to see whether the ratio moves toward the target "
+                          "beyond it; if it does not, the model cannot reach this ratio";
+  } else if (!p.bounds_reached.empty()) {
+    r.verdict_reason = miss + ": the posterior presses on " + p.bounds_reached.front() +
+                       "; the targets need strengths beyond it: widen \"bounds\"";
   } else if (r.stop_reason == StopReason::budget_exhausted) {
     r.verdict_reason =
         miss + sentence(
@@ -83,7 +95,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
                        ", though the emulators know the region well: the model cannot "
                        "meet both loads within the tolerance there";
   }
-  r.verdict_reason += runs + "; " + region_text(p);
+  r.verdict_reason += runs + "; " + region_text(p) + faults;
 }
 
 }  // namespace rockcal::calibration
