@@ -11,7 +11,6 @@
 #include "orchestrator/job_files.hpp"
 #include "orchestrator/job_identity.hpp"
 #include "orchestrator/request_error.hpp"
-#include "orchestrator/sweep.hpp"
 
 namespace rockcal::orch {
 namespace fs = std::filesystem;
@@ -33,7 +32,6 @@ JobService::JobService(ServiceConfig config, std::unique_ptr<Executor> executor)
     throw std::runtime_error("another rockcal server is using " + config_.data_dir.string());
   }
   store_ = std::make_unique<db::Store>(config_.db_path.string(), config_.busy_timeout_ms);
-  kinds_.add(sweep_kind());
   auto reattached = recover();
   PoolConfig pool;
   pool.workers = config_.workers;

@@ -52,7 +52,7 @@ class JobService {
   // Stops drivers and workers; running jobs are stopped and re-queued for the next start.
   void stop();
 
-  // Kinds known to create_campaign; "sweep" is built in. Register before start().
+  // Kinds known to create_campaign (orchestrator/all_kinds.hpp adds them all). Before start().
   KindRegistry& kinds() { return kinds_; }
 
   // Validates the whole request (throws RequestError naming the field) and stores the campaign

@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "api/status_text.hpp"
-#include "orchestrator/calibration/calibration_kind.hpp"
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 #include "orchestrator/request_error.hpp"
@@ -50,7 +50,7 @@ class ServiceCalibration : public ::testing::Test {
     exec.engine = FAKE_DEM;
     exec.ranks = 0;
     service_ = std::make_unique<orch::JobService>(cfg, std::make_unique<orch::LocalExecutor>(exec));
-    service_->kinds().add(calibration_kind());
+    orch::add_all_kinds(service_->kinds());
     service_->start();
   }
 
