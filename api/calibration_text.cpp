@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "api/calibration_text.hpp"
 #include "api/client_http.hpp"
 #include "api/status_text.hpp"
 #include "orchestrator/summary_reader.hpp"

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "api/calibration_text.hpp"
 #include "api/client.hpp"
 #include "api/client_http.hpp"
+#include "api/diagnosis_text.hpp"
 
 namespace rockcal::api {
 namespace {

@@ -12,6 +12,7 @@
 #include <map>
 #include <thread>
 
+#include "api/calibration_text.hpp"
 #include "api/status_text.hpp"
 #include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"

@@ -4,6 +4,7 @@
 // and the pacing of progress lines in a log.
 #include <gtest/gtest.h>
 
+#include "api/calibration_text.hpp"
 #include "api/status_text.hpp"
 
 namespace rockcal::api {
