@@ -12,8 +12,8 @@
 #include <map>
 #include <thread>
 
-#include "api/calibration_text.hpp"
-#include "api/status_text.hpp"
+#include "api/cli/calibration_text.hpp"
+#include "api/cli/status_text.hpp"
 #include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"

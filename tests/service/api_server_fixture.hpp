@@ -7,7 +7,7 @@
 #include <functional>
 #include <thread>
 
-#include "api/server.hpp"
+#include "api/server/server.hpp"
 #include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"

@@ -1,4 +1,4 @@
-#include "api/twin_cli.hpp"
+#include "api/cli/twin_cli.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -7,7 +7,7 @@
 #include <iostream>
 #include <thread>
 
-#include "api/serve.hpp"
+#include "api/server/serve.hpp"
 #include "engine/json_input.hpp"
 #include "orchestrator/all_kinds.hpp"
 #include "orchestrator/diagnosis/twin/twin_kind.hpp"

@@ -6,10 +6,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "api/client.hpp"
-#include "api/client_http.hpp"
-#include "api/diagnosis_text.hpp"
-#include "api/status_text.hpp"
+#include "api/cli/client.hpp"
+#include "api/cli/client_http.hpp"
+#include "api/cli/diagnosis_text.hpp"
+#include "api/cli/status_text.hpp"
 #include "engine/json_input.hpp"
 #include "orchestrator/summary_reader.hpp"
 

@@ -1,6 +1,6 @@
 // A diagnosis's summary as `rockcal diagnose` and `rockcal status` print it: the verdict, the gap
 // and the candidates as plain-text tables.
-#include "api/diagnosis_text.hpp"
+#include "api/cli/diagnosis_text.hpp"
 
 #include <cstdio>
 #include <sstream>

@@ -1,4 +1,4 @@
-#include "api/serve.hpp"
+#include "api/server/serve.hpp"
 
 #include <signal.h>
 #include <sys/resource.h>
@@ -9,7 +9,7 @@
 #include <iostream>
 #include <thread>
 
-#include "api/server.hpp"
+#include "api/server/server.hpp"
 #include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
