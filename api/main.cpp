@@ -3,10 +3,10 @@
 
 #include <iostream>
 
-#include "api/backup_cli.hpp"
-#include "api/client.hpp"
-#include "api/serve.hpp"
-#include "api/twin_cli.hpp"
+#include "api/cli/backup_cli.hpp"
+#include "api/cli/client.hpp"
+#include "api/cli/twin_cli.hpp"
+#include "api/server/serve.hpp"
 
 int main(int argc, char** argv) {
   using namespace rockcal::api;

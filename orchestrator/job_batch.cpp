@@ -13,7 +13,8 @@ std::optional<std::vector<JobOutcome>> run_batch(JobService& service, std::int64
   std::vector<std::int64_t> ids;
   for (const nlohmann::json& job : jobs) {
     auto [it, fresh] = job_of_spec.try_emplace(job.dump(), 0);
-    if (fresh) it->second = service.submit_job(campaign_id, job);
+    if (fresh) it->second = service.submit_job(campaign_id, job, stop);
+    if (stop.stop_requested()) return std::nullopt;  // perhaps before the job was stored
     ids.push_back(it->second);
   }
   std::map<std::int64_t, JobOutcome> outcome_of;

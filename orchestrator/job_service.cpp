@@ -11,7 +11,6 @@
 #include "orchestrator/job_files.hpp"
 #include "orchestrator/job_identity.hpp"
 #include "orchestrator/request_error.hpp"
-#include "orchestrator/sweep.hpp"
 
 namespace rockcal::orch {
 namespace fs = std::filesystem;
@@ -33,7 +32,6 @@ JobService::JobService(ServiceConfig config, std::unique_ptr<Executor> executor)
     throw std::runtime_error("another rockcal server is using " + config_.data_dir.string());
   }
   store_ = std::make_unique<db::Store>(config_.db_path.string(), config_.busy_timeout_ms);
-  kinds_.add(sweep_kind());
   auto reattached = recover();
   PoolConfig pool;
   pool.workers = config_.workers;
@@ -41,6 +39,7 @@ JobService::JobService(ServiceConfig config, std::unique_ptr<Executor> executor)
   pool.job_timeout = config_.job_timeout;
   pool.jobs_dir = config_.jobs_dir;
   pool.poll_interval = config_.poll_interval;
+  pool.storage_retry = config_.storage_retry;
   pool_ = std::make_unique<WorkerPool>(*store_, *executor_, pool,
                                        [this](std::int64_t id) { job_done(id); });
   for (const auto& [job, handle] : reattached) pool_->resume(job, handle);
@@ -152,16 +151,26 @@ void JobService::start_driver(std::int64_t campaign_id, const CampaignKind& kind
   std::lock_guard lock(drivers_mutex_);
   drivers_[campaign_id] = std::jthread([this, campaign_id, &kind, request](std::stop_token stop) {
     DriverContext ctx{*this, campaign_id, request, stop};
+    std::string status, summary;
     try {
-      json summary = kind.driver(ctx);
-      // Stopped for a shutdown: leave it running so the next start resumes it.
-      if (stop.stop_requested() && !store_->campaign(campaign_id)->cancel_requested) return;
-      if (!store_->campaign(campaign_id)->cancel_requested) {
-        store_->set_driver_status(campaign_id, "done", summary.dump());
-      }
+      summary = kind.driver(ctx).dump();
+      status = "done";
     } catch (const std::exception& e) {
-      if (stop.stop_requested()) return;
-      store_->set_driver_status(campaign_id, "failed", json{{"error", e.what()}}.dump());
+      summary = json{{"error", e.what()}}.dump();
+      status = "failed";
+    }
+    try {
+      // Stopped for a shutdown: left running, so the next start resumes it. Cancelled: the
+      // cancellation has recorded its end.
+      if (stop.stop_requested() || store_->campaign(campaign_id)->cancel_requested) return;
+      // The end waits out a storage fault; if the service stops first, the next start runs the
+      // driver again (its jobs answered from the store).
+      write_with_retry(
+          *store_, [&] { store_->set_driver_status(campaign_id, status, summary); },
+          config_.storage_retry, stop);
+    } catch (const std::exception& e) {
+      std::cerr << "rockcal: campaign " << campaign_id << ": its end was not stored: " << e.what()
+                << "\n";
     }
   });
 }
@@ -174,9 +183,15 @@ void JobService::job_done(std::int64_t) {
   done_cv_.notify_all();
 }
 
-std::int64_t JobService::submit_job(std::int64_t campaign_id, const json& job_spec) {
+std::int64_t JobService::submit_job(std::int64_t campaign_id, const json& job_spec,
+                                    std::stop_token stop) {
   db::NewJob job = make_job(job_spec);
-  std::int64_t id = store_->add_job(campaign_id, job);
+  std::int64_t id = 0;
+  if (!write_with_retry(
+          *store_, [&] { id = store_->add_job(campaign_id, job); }, config_.driver_storage_retry,
+          stop)) {
+    return 0;
+  }
   pool_->wake();
   return id;
 }
@@ -204,7 +219,16 @@ JobOutcome JobService::wait_job(std::int64_t job_id, std::stop_token stop) {
 
 JobOutcome JobService::submit_and_wait(std::int64_t campaign_id, const json& job_spec,
                                        std::stop_token stop) {
-  return wait_job(submit_job(campaign_id, job_spec), stop);
+  const std::int64_t id = submit_job(campaign_id, job_spec, stop);
+  if (id == 0) return {};
+  return wait_job(id, stop);
+}
+
+void JobService::set_progress(std::int64_t campaign_id, const json& progress,
+                              std::stop_token stop) {
+  write_with_retry(
+      *store_, [&] { store_->set_driver_status(campaign_id, "running", progress.dump()); },
+      config_.driver_storage_retry, stop);
 }
 
 }  // namespace rockcal::orch

@@ -15,6 +15,7 @@
 #include "db/store.hpp"
 #include "orchestrator/campaign_kinds.hpp"
 #include "orchestrator/executor.hpp"
+#include "orchestrator/storage_retry.hpp"
 #include "orchestrator/worker_pool.hpp"
 
 namespace rockcal::orch {
@@ -28,6 +29,12 @@ struct ServiceConfig {
   std::chrono::milliseconds job_timeout{std::chrono::hours(6)};
   std::chrono::milliseconds poll_interval{100};  // the longest wait between looks at a job
   int busy_timeout_ms = 10000;  // a store write waits this long for another writer's lock
+  // A store write that meets a storage fault (a full disk, a lock held past busy_timeout_ms) waits
+  // and tries again. A worker recording a job's outcome, and a driver recording its campaign's end,
+  // try until the write lands or the service stops; a driver's other writes (a job it submits, its
+  // progress) give up after driver_storage_retry.give_up_after, which fails the campaign.
+  StorageRetry storage_retry;
+  StorageRetry driver_storage_retry{.give_up_after = std::chrono::minutes(10)};
   Limits limits;
 };
 
@@ -52,7 +59,7 @@ class JobService {
   // Stops drivers and workers; running jobs are stopped and re-queued for the next start.
   void stop();
 
-  // Kinds known to create_campaign; "sweep" is built in. Register before start().
+  // Kinds known to create_campaign (orchestrator/all_kinds.hpp adds them all). Before start().
   KindRegistry& kinds() { return kinds_; }
 
   // Validates the whole request (throws RequestError naming the field) and stores the campaign
@@ -68,13 +75,18 @@ class JobService {
   // ---- for campaign drivers (e.g. calibration) ----
   // Adds a job for `job_spec` (a full job spec, "test" included) to the campaign and returns its
   // id. A spec whose result is already stored is answered at once (cached). Throws RequestError
-  // for an invalid spec.
-  std::int64_t submit_job(std::int64_t campaign_id, const nlohmann::json& job_spec);
+  // for an invalid spec. A storage fault is waited out (driver_storage_retry); returns 0 when
+  // `stop` is requested before the job could be stored.
+  std::int64_t submit_job(std::int64_t campaign_id, const nlohmann::json& job_spec,
+                          std::stop_token stop = {});
   // Blocks until the job ends, or `stop` is requested (then state is whatever it is now).
   JobOutcome wait_job(std::int64_t job_id, std::stop_token stop = {});
-  // submit_job + wait_job.
+  // submit_job + wait_job (an empty outcome, job_id 0, when stopped before the job was stored).
   JobOutcome submit_and_wait(std::int64_t campaign_id, const nlohmann::json& job_spec,
                              std::stop_token stop = {});
+  // Stores a running campaign's summary (its progress so far), waiting out a storage fault
+  // (driver_storage_retry); gives up quietly when `stop` is requested first.
+  void set_progress(std::int64_t campaign_id, const nlohmann::json& progress, std::stop_token stop);
 
   db::Store& store() { return *store_; }
   const ServiceConfig& config() const { return config_; }

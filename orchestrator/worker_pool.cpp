@@ -58,28 +58,8 @@ void WorkerPool::fail(const db::JobRow& job, const std::string& reason, const st
   store_write([&] { store_.finish_failure(job.id, error, retryable, config_.max_attempts); }, stop);
 }
 
-bool WorkerPool::pause(std::chrono::milliseconds wait, std::stop_token stop) {
-  const auto until = Clock::now() + wait;
-  while (!stop.stop_requested() && Clock::now() < until)
-    std::this_thread::sleep_for(std::min(wait, std::chrono::milliseconds(50)));
-  return !stop.stop_requested();
-}
-
 bool WorkerPool::store_write(const std::function<void()>& write, std::stop_token stop) {
-  for (auto wait = config_.storage_backoff;;
-       wait = std::min(wait * 2, config_.storage_backoff_max)) {
-    try {
-      write();
-      store_.note_success();
-      return true;
-    } catch (const db::SqliteError& e) {
-      const std::string kind = store_.note_failure(e);
-      if (kind.empty()) throw;
-      if (wait == config_.storage_backoff)  // once per write, as one line
-        std::cerr << "rockcal: storage " + kind + " (" + e.what() + "); retrying\n";
-    }
-    if (!pause(wait, stop)) return false;
-  }
+  return write_with_retry(store_, write, config_.storage_retry, stop);
 }
 
 void WorkerPool::work(std::stop_token stop) {
@@ -154,7 +134,7 @@ void WorkerPool::execute(const db::JobRow& job, std::stop_token stop) {
         dir = prepare_job_dir(config_.jobs_dir, job);
         break;
       } catch (const std::exception&) {
-        if (tries >= config_.start_tries || !pause(backoff, stop)) throw;
+        if (tries >= config_.start_tries || !pause_unless_stopped(backoff, stop)) throw;
       }
     }
     LaunchRequest request{

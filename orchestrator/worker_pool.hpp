@@ -14,6 +14,7 @@
 
 #include "db/store.hpp"
 #include "orchestrator/executor.hpp"
+#include "orchestrator/storage_retry.hpp"
 
 namespace rockcal::orch {
 
@@ -39,10 +40,9 @@ struct PoolConfig {
   std::chrono::milliseconds first_poll_interval{1};  // the first wait; x1.5 after each look
   std::chrono::milliseconds cancel_check_interval{300};
   std::chrono::milliseconds progress_interval{1000};
-  // Back-off for store writes that meet a storage fault: the first wait, doubled after each try
-  // up to the second.
-  std::chrono::milliseconds storage_backoff{50};
-  std::chrono::milliseconds storage_backoff_max{2000};
+  // Store writes that meet a storage fault are tried until they succeed (a job's outcome is
+  // never dropped), with this back-off.
+  StorageRetry storage_retry;
   // A job directory that cannot be prepared (a transient filesystem fault) is tried start_tries
   // times, waiting start_backoff, doubled after each try, before the attempt counts as failed.
   int start_tries = 5;
@@ -73,13 +73,10 @@ class WorkerPool {
   // Records a failed attempt (counted by `reason`), through store_write.
   void fail(const db::JobRow& job, const std::string& reason, const std::string& error,
             bool retryable, std::stop_token stop);
-  // Runs a store write; while it fails for a storage fault (db/storage_faults.hpp: a lock held, a
-  // full disk), retries it with back-off (storage_backoff, doubling up to storage_backoff_max)
-  // until it succeeds or the pool stops. Other errors propagate. False when stopped first: the job
-  // then stays running in the store, and the next start-up re-queues it.
+  // Runs a store write through write_with_retry (storage_retry.hpp) until it succeeds or the pool
+  // stops. False when stopped first: the job then stays running in the store, and the next
+  // start-up re-queues it.
   bool store_write(const std::function<void()>& write, std::stop_token stop);
-  // Waits `wait`, or less if the pool stops; false when it stops.
-  static bool pause(std::chrono::milliseconds wait, std::stop_token stop);
   // Watches a launched job until it ends, is cancelled or times out, and records the outcome.
   void monitor(const db::JobRow& job, const std::filesystem::path& dir, const std::string& handle,
                std::stop_token stop);

@@ -89,7 +89,7 @@ orch::CampaignKind calibration_kind() {
       live["pace"] = pace.to_json();
       live["progress"] =
           progress_model_json(history.size(), c, pace.seconds_per_evaluation(), false);
-      ctx.service.store().set_driver_status(ctx.campaign_id, "running", live.dump());
+      ctx.service.set_progress(ctx.campaign_id, live, ctx.stop);
     };
     publish();
     auto on_evaluation = [&](const EvaluationRecord& record) {

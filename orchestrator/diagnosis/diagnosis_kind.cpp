@@ -46,7 +46,7 @@ orch::CampaignKind diagnosis_kind() {
     options.on_progress = [&](nlohmann::json progress) {
       const db::StateCounts done = ctx.service.store().counts(ctx.campaign_id);
       progress["jobs_done_before"] = done.succeeded + done.failed + done.cancelled;
-      ctx.service.store().set_driver_status(ctx.campaign_id, "running", progress.dump());
+      ctx.service.set_progress(ctx.campaign_id, progress, ctx.stop);
     };
     return to_json(run_diagnosis(c, evaluator, options), c);
   };

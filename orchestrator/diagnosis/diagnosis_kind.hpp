@@ -1,8 +1,7 @@
-// The campaign kind "diagnosis" for the service: register it with
-//   service.kinds().add(rockcal::diagnosis::diagnosis_kind());
-// before service.start(). Its plan validates the whole request (400 naming the field) and creates
-// no jobs up front; its driver thread runs the diagnosis on the pool and returns the report JSON
-// (the campaign summary); its report_html renders that summary as a page.
+// The campaign kind "diagnosis" for the service (listed in orchestrator/all_kinds.cpp). Its plan
+// validates the whole request (400 naming the field) and creates no jobs up front; its driver
+// thread runs the diagnosis on the pool and returns the report JSON (the campaign summary); its
+// report_html renders that summary as a page.
 #pragma once
 
 #include "orchestrator/campaign_kinds.hpp"

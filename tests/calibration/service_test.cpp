@@ -3,21 +3,25 @@
 // bad campaigns are refused naming the field, a running one shows its budget and pace, and a
 // server stopped mid-calibration resumes without re-running finished evaluations.
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <thread>
 
-#include "api/status_text.hpp"
-#include "orchestrator/calibration/calibration_kind.hpp"
+#include "api/cli/calibration_text.hpp"
+#include "api/cli/status_text.hpp"
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 #include "orchestrator/request_error.hpp"
 #include "synthetic.hpp"
+#include "tests/service/fault_vfs.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -42,15 +46,17 @@ class ServiceCalibration : public ::testing::Test {
     std::filesystem::remove_all(dir_);
   }
 
-  void start() {
+  // `configure` may change the service's settings (e.g. how long a driver waits out a fault).
+  void start(const std::function<void(orch::ServiceConfig&)>& configure = {}) {
     orch::ServiceConfig cfg;
     cfg.db_path = dir_ / "svc.db";
     cfg.workers = 2;
+    if (configure) configure(cfg);
     orch::LocalExecutorConfig exec;
     exec.engine = FAKE_DEM;
     exec.ranks = 0;
     service_ = std::make_unique<orch::JobService>(cfg, std::make_unique<orch::LocalExecutor>(exec));
-    service_->kinds().add(calibration_kind());
+    orch::add_all_kinds(service_->kinds());
     service_->start();
   }
 
@@ -199,6 +205,70 @@ TEST_F(ServiceCalibration, StoppedServerResumesWithoutRerunningFinishedEvaluatio
   EXPECT_EQ(int(times.size()), 2 * report["evaluations"].get<int>());
   std::printf("resumed calibration: %d evaluations, %zu engine runs before the stop, %d re-run\n",
               report["evaluations"].get<int>(), before, repeated);
+}
+
+// A disk that fills mid-campaign and is freed again. The server is stopped halfway and started
+// again on the full disk, so the resumed driver's first store write (its progress) meets the
+// fault: its writes wait and retry, the campaign stays running, nothing stored is lost, and once
+// the disk takes writes again it ends with its report.
+TEST_F(ServiceCalibration, ADiskFullMidCampaignIsWaitedOutAndTheCampaignEnds) {
+  test::install_fault_vfs();  // before the store opens its connections
+  start();
+  const std::int64_t id = service_->create_campaign(request());
+  ASSERT_TRUE(wait_for([&] { return service_->store().counts(id).succeeded >= 4; }, 30s))
+      << job_table(id);
+  service_->stop();
+  std::map<std::int64_t, std::optional<double>> stored;  // job id -> peak load
+  for (const db::JobResultRow& row : service_->store().campaign_results(id)) {
+    if (row.job.state == db::kSucceeded) stored[row.job.id] = row.result->peak_load;
+  }
+  auto full_faults = [&] {
+    const auto counts = service_->store().health().counts();
+    return counts.contains("full") ? counts.at("full") : 0;
+  };
+  auto stored_now = [&] {
+    std::map<std::int64_t, std::optional<double>> now;
+    for (const db::JobResultRow& row : service_->store().campaign_results(id)) {
+      if (stored.contains(row.job.id) && row.result) now[row.job.id] = row.result->peak_load;
+    }
+    return now;
+  };
+  {
+    test::WriteFault full(SQLITE_FULL);
+    service_->start();
+    ASSERT_TRUE(wait_for([&] { return full_faults() >= 6; }, 20s));
+    EXPECT_EQ(driver_status(id), "running");
+    EXPECT_EQ(stored_now(), stored);
+  }
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 60s)) << job_table(id);
+  const json report = json::parse(*service_->store().campaign(id)->summary);
+  EXPECT_EQ(report["verdict"], "feasible") << report["verdict_reason"];
+  EXPECT_EQ(stored_now(), stored);
+  EXPECT_EQ(service_->store().counts(id).failed, 0) << job_table(id);
+  std::printf(
+      "disk full mid-campaign: %zu jobs stored before it, %lld writes refused, %d evaluations\n",
+      stored.size(), static_cast<long long>(full_faults()), report["evaluations"].get<int>());
+}
+
+// A driver waits out a storage fault for a bounded time only: past driver_storage_retry's
+// give_up_after its campaign fails, with the store's reason, once the end can be stored.
+TEST_F(ServiceCalibration, ADiskFullLongerThanTheDriverWaitsFailsTheCampaignWithTheReason) {
+  test::install_fault_vfs();
+  start([](orch::ServiceConfig& c) { c.driver_storage_retry.give_up_after = 200ms; });
+  service_->stop();  // the campaign is stored now, its driver starts with the service
+  const std::int64_t id = service_->create_campaign(request());
+  {
+    test::WriteFault full(SQLITE_FULL);
+    service_->start();
+    // The driver has given up on its progress; its end waits for the disk.
+    std::this_thread::sleep_for(1s);
+    EXPECT_EQ(driver_status(id), "running");
+  }
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "failed"; }, 10s)) << job_table(id);
+  EXPECT_EQ(json::parse(*service_->store().campaign(id)->summary),
+            json({{"error",
+                   "step 'UPDATE campaigns SET driver_status = ?, summary = COALESCE(?, summary) "
+                   "WHERE id = ?': database or disk is full"}}));
 }
 
 // The formula engine multiplies its loads by 1 + (s - 1) / 100 on seed s, so an ensemble of seeds

@@ -11,12 +11,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 
 namespace rockcal::diagnosis::test {
 
-// Two workers, store at `db`; register kinds, then start().
+// Two workers, store at `db`, every campaign kind; start() it.
 inline std::unique_ptr<orch::JobService> engine_service(const std::filesystem::path& db,
                                                         const std::string& engine) {
   orch::ServiceConfig cfg;
@@ -25,7 +26,10 @@ inline std::unique_ptr<orch::JobService> engine_service(const std::filesystem::p
   orch::LocalExecutorConfig exec;
   exec.engine = engine;
   exec.ranks = 0;
-  return std::make_unique<orch::JobService>(cfg, std::make_unique<orch::LocalExecutor>(exec));
+  auto service =
+      std::make_unique<orch::JobService>(cfg, std::make_unique<orch::LocalExecutor>(exec));
+  orch::add_all_kinds(service->kinds());
+  return service;
 }
 
 // The campaign's summary once its driver is done; a failure (or a driver still running after

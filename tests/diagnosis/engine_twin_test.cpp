@@ -11,7 +11,6 @@
 
 #include "engine_service.hpp"
 #include "orchestrator/diagnosis/dataset/dataset.hpp"
-#include "orchestrator/diagnosis/diagnosis_kind.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "orchestrator/diagnosis/twin/twin_design.hpp"
 #include "orchestrator/diagnosis/twin/twin_kind.hpp"
@@ -40,8 +39,6 @@ class EngineTwinDiagnosis : public ::testing::Test {
 
   void start() {
     service_ = test::engine_service(dir_ / "svc.db", ROCKCAL_DEM);
-    service_->kinds().add(diagnosis_kind());
-    service_->kinds().add(twin_kind());
     service_->start();
   }
 

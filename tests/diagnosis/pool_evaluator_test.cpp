@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/diagnosis/pipeline/pool_evaluator.hpp"
 #include "orchestrator/local_executor.hpp"
 
@@ -36,6 +37,7 @@ TEST(DiagnosisPool, ARunWithoutAPeakIsAFailedRunWithItsReason) {
   exec.ranks = 0;
   {
     orch::JobService service(cfg, std::make_unique<orch::LocalExecutor>(exec));
+    orch::add_all_kinds(service.kinds());
     service.start();
     const json job_template = {{"sample", {{"diameter", 6}, {"height", 12}, {"radius", 1}}},
                                {"material", {{"kr", 8000}, {"nu", 0.2}, {"density", 1}}},

@@ -8,7 +8,7 @@
 #include <limits>
 #include <set>
 
-#include "api/client.hpp"
+#include "api/cli/diagnosis_text.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"

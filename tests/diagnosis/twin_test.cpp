@@ -247,7 +247,6 @@ class DiagnosisTwinEngine : public ::testing::Test {
 
   void start() {
     service_ = test::engine_service(work_ / "svc.db", ROCKCAL_DEM);
-    service_->kinds().add(twin_kind());
     service_->start();
   }
 

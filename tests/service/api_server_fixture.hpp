@@ -7,7 +7,8 @@
 #include <functional>
 #include <thread>
 
-#include "api/server.hpp"
+#include "api/server/server.hpp"
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 #include "support.hpp"
@@ -35,6 +36,7 @@ struct ApiServerFixture : ::testing::Test {
     exec.engine = fake_engine();
     exec.ranks = 0;
     service = std::make_unique<orch::JobService>(cfg, std::make_unique<orch::LocalExecutor>(exec));
+    orch::add_all_kinds(service->kinds());
     api::ServerConfig sc;
     sc.port = 0;
     sc.token = token;

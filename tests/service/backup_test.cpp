@@ -11,7 +11,7 @@
 #include <set>
 #include <thread>
 
-#include "api/backup_cli.hpp"
+#include "api/cli/backup_cli.hpp"
 #include "db/backup.hpp"
 #include "db/store.hpp"
 #include "support.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <set>
 
-#include "api/client.hpp"
+#include "api/cli/client.hpp"
 #include "db/migrations.hpp"
 #include "db/store.hpp"
 #include "orchestrator/ensemble.hpp"

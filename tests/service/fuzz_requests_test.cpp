@@ -13,7 +13,7 @@
 #include <random>
 #include <sstream>
 
-#include "api/optional_kinds.hpp"
+#include "orchestrator/all_kinds.hpp"
 #include "engine/job_file.hpp"
 #include "engine/json_input.hpp"
 #include "engine/spec.hpp"
@@ -301,7 +301,7 @@ TEST(FuzzRequests, CampaignRequestsAreAcceptedOrRefusedCleanly) {
   orch::LocalExecutorConfig exec;
   exec.engine = fake_engine();
   orch::JobService service(cfg, std::make_unique<orch::LocalExecutor>(exec));
-  api::register_optional_kinds(service);
+  orch::add_all_kinds(service.kinds());
   std::vector<std::string> corpus = {
       sweep_request({"uct", "btt"}, {50, 80}, {60, 90}).dump(),
       example("calibrate_seed_lab.json").dump(),

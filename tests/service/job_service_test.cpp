@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 #include "orchestrator/process_groups.hpp"
@@ -30,6 +31,7 @@ struct JobServiceTest : ::testing::Test {
     exec.ranks = 0;
     exec.grace = 1s;
     service = std::make_unique<JobService>(cfg, std::make_unique<LocalExecutor>(exec));
+    add_all_kinds(service->kinds());
     service->start();
   }
   void TearDown() override {

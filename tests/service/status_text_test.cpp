@@ -4,7 +4,8 @@
 // and the pacing of progress lines in a log.
 #include <gtest/gtest.h>
 
-#include "api/status_text.hpp"
+#include "api/cli/calibration_text.hpp"
+#include "api/cli/status_text.hpp"
 
 namespace rockcal::api {
 namespace {

@@ -1,12 +1,14 @@
 // The summary `rockcal status` prints when a campaign has ended, by kind, and the pacing of its
 // progress lines in a log.
-#include "api/status_text.hpp"
+#include "api/cli/status_text.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "api/client.hpp"
-#include "api/client_http.hpp"
+#include "api/cli/calibration_text.hpp"
+#include "api/cli/client.hpp"
+#include "api/cli/client_http.hpp"
+#include "api/cli/diagnosis_text.hpp"
 
 namespace rockcal::api {
 namespace {

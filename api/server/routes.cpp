@@ -1,8 +1,8 @@
-#include "api/routes.hpp"
+#include "api/server/routes.hpp"
 
-#include "api/http_util.hpp"
-#include "api/metrics.hpp"
-#include "api/views.hpp"
+#include "api/server/http_util.hpp"
+#include "api/server/metrics.hpp"
+#include "api/server/views.hpp"
 #include "engine/json_input.hpp"
 #include "engine/spec.hpp"
 #include "orchestrator/job_files.hpp"

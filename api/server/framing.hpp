@@ -9,7 +9,7 @@
 
 #include <optional>
 
-#include "api/http_util.hpp"
+#include "api/server/http_util.hpp"
 
 namespace rockcal::api {
 

@@ -1,4 +1,4 @@
-#include "api/twin_cli.hpp"
+#include "api/cli/twin_cli.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -7,8 +7,9 @@
 #include <iostream>
 #include <thread>
 
-#include "api/serve.hpp"
+#include "api/server/serve.hpp"
 #include "engine/json_input.hpp"
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/diagnosis/twin/twin_kind.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
@@ -63,7 +64,7 @@ int run_twin(const TwinOptions& o, const std::string& argv0) {
   {
     fs::create_directories(runs);
     orch::JobService service(config, std::make_unique<orch::LocalExecutor>(local));
-    service.kinds().add(twin_kind());
+    orch::add_all_kinds(service.kinds());
     service.start();
     const std::int64_t id = service.create_campaign(request);
     std::optional<db::CampaignRow> c;

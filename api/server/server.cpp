@@ -1,4 +1,4 @@
-#include "api/server.hpp"
+#include "api/server/server.hpp"
 
 #include <ifaddrs.h>
 #include <netdb.h>
@@ -9,9 +9,9 @@
 #include <cctype>
 #include <fstream>
 
-#include "api/dashboard.hpp"
-#include "api/framing.hpp"
-#include "api/http_util.hpp"
+#include "api/server/dashboard.hpp"
+#include "api/server/framing.hpp"
+#include "api/server/http_util.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::api {

@@ -1,4 +1,4 @@
-#include "api/framing.hpp"
+#include "api/server/framing.hpp"
 
 #include <algorithm>
 #include <cctype>

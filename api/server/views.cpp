@@ -1,6 +1,6 @@
-#include "api/views.hpp"
+#include "api/server/views.hpp"
 
-#include "api/http_util.hpp"
+#include "api/server/http_util.hpp"
 
 namespace rockcal::api {
 

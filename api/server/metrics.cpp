@@ -1,8 +1,8 @@
-#include "api/metrics.hpp"
+#include "api/server/metrics.hpp"
 
 #include <map>
 
-#include "api/http_util.hpp"
+#include "api/server/http_util.hpp"
 
 namespace rockcal::api {
 

@@ -27,9 +27,6 @@ int client_list(const ClientOptions& o);
 // table and writes the HTML report to `html_out` (default diagnosis-<id>.html).
 int client_diagnose(const ClientOptions& o, const std::string& file, const std::string& html_out);
 
-// The verdict, the gap and the candidates of a diagnosis summary as plain-text tables.
-std::string diagnosis_text(const nlohmann::json& summary);
-
 // A campaign's results (GET .../results) as a table: one row per test and point with n, failed
 // realisations and mean ± standard error of peak load, strength and Young's modulus, then the
 // realisations without values and why.

@@ -17,16 +17,10 @@ namespace rockcal::api {
 // A diagnosis adds its phase: "  [2/4 budget]".
 std::string progress_line(const nlohmann::json& campaign);
 
-// A live calibration's line (above), or nullopt for anything else.
-std::optional<std::string> calibration_line(const nlohmann::json& campaign);
-
 // The end of a campaign for a reader: a calibration's verdict, strengths, loads against targets
-// and budget (calibration_text); a diagnosis's verdict tables (diagnosis_text); a sweep's job
-// counts. At most ~30 lines; the JSON stays available with `rockcal status ID --json`.
+// and budget (calibration_text.hpp); a diagnosis's verdict tables (diagnosis_text.hpp); a sweep's
+// job counts. At most ~30 lines; the JSON stays available with `rockcal status ID --json`.
 std::string summary_text(const nlohmann::json& campaign);
-
-// The table of a calibration's report (its summary JSON).
-std::string calibration_text(const nlohmann::json& summary);
 
 // "4m10s" for 250 seconds.
 std::string duration_text(double seconds);

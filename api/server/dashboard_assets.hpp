@@ -1,5 +1,5 @@
-// The dashboard's files (api/dashboard/), embedded into the binary at build time by
-// api/embed_assets.cmake.
+// The dashboard's files (api/server/dashboard/), embedded into the binary at build time by
+// api/server/embed_assets.cmake.
 #pragma once
 
 #include <span>
@@ -8,7 +8,7 @@
 namespace rockcal::api {
 
 struct EmbeddedFile {
-  std::string_view path;  // relative to api/dashboard/, e.g. "plot/axes.js"
+  std::string_view path;  // relative to api/server/dashboard/, e.g. "plot/axes.js"
   std::string_view body;
 };
 

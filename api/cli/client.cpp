@@ -1,4 +1,4 @@
-#include "api/client.hpp"
+#include "api/cli/client.hpp"
 
 #include <httplib.h>
 #include <sys/ioctl.h>
@@ -13,9 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "api/client_http.hpp"
-#include "api/server.hpp"
-#include "api/status_text.hpp"
+#include "api/cli/client_http.hpp"
+#include "api/cli/status_text.hpp"
+#include "api/server/server.hpp"
 
 namespace rockcal::api {
 

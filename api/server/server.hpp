@@ -1,5 +1,5 @@
 // The HTTP server: registers the route table, turns every error into the JSON error shape, refuses
-// requests of ambiguous framing (api/framing.hpp) and methods no route takes (405), checks
+// requests of ambiguous framing (api/server/framing.hpp) and methods no route takes (405), checks
 // Host (and Origin) against the allowed hosts, the bearer token and Content-Type on mutating
 // requests and the query parameters of each route, and caps body sizes and connections.
 #pragma once
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "api/connections.hpp"
-#include "api/routes.hpp"
+#include "api/server/connections.hpp"
+#include "api/server/routes.hpp"
 
 namespace rockcal::api {
 

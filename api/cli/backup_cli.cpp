@@ -1,4 +1,4 @@
-#include "api/backup_cli.hpp"
+#include "api/cli/backup_cli.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>

@@ -1,4 +1,4 @@
-#include "api/connections.hpp"
+#include "api/server/connections.hpp"
 
 #include <arpa/inet.h>
 #include <netinet/in.h>

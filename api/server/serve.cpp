@@ -1,4 +1,4 @@
-#include "api/serve.hpp"
+#include "api/server/serve.hpp"
 
 #include <signal.h>
 #include <sys/resource.h>
@@ -9,8 +9,8 @@
 #include <iostream>
 #include <thread>
 
-#include "api/optional_kinds.hpp"
-#include "api/server.hpp"
+#include "api/server/server.hpp"
+#include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
 #include "orchestrator/slurm/slurm_executor.hpp"
@@ -136,7 +136,7 @@ int run_serve(const ServeOptions& o, const std::string& argv0) {
     std::cerr << "rockcal: re-attached to " << service.reattached_jobs() << " jobs still in "
               << executor_name << "\n";
   }
-  register_optional_kinds(service);
+  orch::add_all_kinds(service.kinds());
   ApiServer server(service, workers, server_cfg);
   int bound = server.bind();
   service.start();

@@ -8,8 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "api/client_http.hpp"
-#include "api/status_text.hpp"
+#include "api/cli/calibration_text.hpp"
+#include "api/cli/client_http.hpp"
+#include "api/cli/status_text.hpp"
 #include "orchestrator/summary_reader.hpp"
 
 namespace rockcal::api {

@@ -1,4 +1,4 @@
-#include "api/dashboard.hpp"
+#include "api/server/dashboard.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "api/dashboard_assets.hpp"
-#include "api/http_util.hpp"
+#include "api/server/dashboard_assets.hpp"
+#include "api/server/http_util.hpp"
 
 namespace rockcal::api {
 

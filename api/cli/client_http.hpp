@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "api/client.hpp"
+#include "api/cli/client.hpp"
 
 namespace rockcal::api {
 

@@ -1,4 +1,4 @@
-#include "api/http_util.hpp"
+#include "api/server/http_util.hpp"
 
 #include <algorithm>
 #include <charconv>
