@@ -62,6 +62,8 @@ const DIAGNOSIS = {kind: 'diagnosis', name: 'browser test diagnosis', job: JOB, 
 let server;
 let base;
 let browser;  // a persistent context on a fresh profile directory
+let diagnosisFractions;  // the diagnosis's progress fraction, sampled while it runs
+let sampler;
 const ids = {};
 
 function log(...args) {
@@ -156,6 +158,15 @@ before(async () => {
   ids.sweep = (await api('POST', '/api/v1/campaigns', SWEEP)).id;
   ids.calibration = (await api('POST', '/api/v1/campaigns', calibration('browser test calibration', 10, 0.02))).id;
   ids.diagnosis = (await api('POST', '/api/v1/campaigns', DIAGNOSIS)).id;
+  // The diagnosis's progress as the API gives it, every second while it runs: it must never go
+  // backwards as its phases add jobs.
+  diagnosisFractions = [];
+  const sample = async () => {
+    const x = await api('GET', `/api/v1/campaigns/${ids.diagnosis}`).catch(() => null);
+    if (x) diagnosisFractions.push(x.progress.fraction);
+    if (!x || !finished(x)) sampler = setTimeout(sample, 1000);
+  };
+  await sample();
   ids.bound = (await api('POST', '/api/v1/campaigns', BOUND)).id;
   ids.bayes = (await api('POST', '/api/v1/campaigns', BAYES)).id;
   // Debian's chromium on a fresh profile (playwright passes the directory as --user-data-dir).
@@ -166,6 +177,7 @@ before(async () => {
 });
 
 after(async () => {
+  clearTimeout(sampler);
   if (browser) await browser.close();
   if (server && server.exitCode === null) {
     server.kill('SIGTERM');
@@ -459,6 +471,23 @@ test('a diagnosis: verdict and confidence, residuals before and after, candidate
   const row = page.locator('tr', {has: page.locator('td', {hasText: new RegExp(`^${o.id}$`)})}).first();
   assert.match(await row.innerText(), new RegExp((o.base.residual > 0 ? '\\+' : '') + num(o.base.residual, 3)));
   assert.equal(await page.locator('a', {hasText: 'HTML report'}).getAttribute('href'), `/api/v1/campaigns/${ids.diagnosis}/report.html`);
+  // One count of jobs: the page, `rockcal status` and the HTML report show the report's progress
+  // model, whose fraction never went backwards while the phases added jobs.
+  const m = s.progress;
+  assert.equal(m.unit, 'jobs');
+  assert.equal(m.done, c.progress.total);
+  assert.ok(m.done <= m.budget, JSON.stringify(m));
+  const parts = m.parts.map((p) => `${p.name} ${p.budget}`).join(', ');
+  assert.deepEqual(m.parts.map((p) => p.name), ['grid', 'budget', 'confirm']);
+  assert.ok((await page.locator('.campaign-head .progress-text').innerText()).includes(`${m.done} of ${m.budget} jobs (${parts})`));
+  const cli = spawnSync(rockcal, ['status', String(ids.diagnosis)], {encoding: 'utf8',
+    env: {...process.env, ROCKCAL_SERVER: base, ROCKCAL_TOKEN: TOKEN}});
+  assert.equal(cli.status, 0, cli.stderr);
+  assert.ok(cli.stdout.includes(`: ${m.done} of ${m.budget} jobs done (${parts})`), cli.stdout);
+  const report = await (await fetch(`${base}/api/v1/campaigns/${ids.diagnosis}/report.html`, {headers: {Authorization: `Bearer ${TOKEN}`}})).text();
+  assert.ok(report.includes(`Jobs: ${m.done} of ${m.budget} planned (${parts}).`), report.slice(0, 2000));
+  assert.ok(diagnosisFractions.length > 3, String(diagnosisFractions));
+  diagnosisFractions.forEach((f, i) => assert.ok(i === 0 || f >= diagnosisFractions[i - 1], `progress went back: ${diagnosisFractions}`));
   await shot(page, '06-diagnosis');
   const phone = await onPhone(`${base}/campaigns/${ids.diagnosis}`, '.confidence', '06b-diagnosis-phone');
   assert.deepEqual(page.problems.concat(phone.problems), []);

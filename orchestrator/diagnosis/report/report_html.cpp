@@ -288,6 +288,13 @@ std::string ratio_section(const json& s) {
          (at(r, "inside") == true ? "inside" : "outside") + " the attainable range.</p>\n";
 }
 
+// " Jobs: 120 of 134 planned (grid 54, budget 40, confirm 40)." from the progress model
+// (orchestrator/progress_model.hpp): the count the CLI and the dashboard show.
+std::string jobs_text(const json& model) {
+  if (!at(model, "budget").is_number()) return "";
+  return " Jobs: " + escape_html(summary::budget_count(model, " planned")) + ".";
+}
+
 }  // namespace
 
 std::string report_html(const json& s) {
@@ -308,7 +315,8 @@ std::string report_html(const json& s) {
       (at(at(s, "runs"), "first_error").is_string()
            ? " (first: " + show(at(at(s, "runs"), "first_error")) + ")"
            : std::string()) +
-      "; a run that ended without a peak is a failed run.</p>\n";
+      "; a run that ended without a peak is a failed run." + jobs_text(at(s, "progress")) +
+      "</p>\n";
   out += verdict_section(s);
   out += gap_section(s);
   out += residual_plot(s);
