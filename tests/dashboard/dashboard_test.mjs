@@ -78,6 +78,29 @@ async function api(method, url, body) {
   return url.endsWith('/curve') || url.endsWith('/breaks') ? text : JSON.parse(text);
 }
 
+// A job's figures as the job page draws them (pages/job_figures.js), wherever they are shown (a
+// calibration's best point, a diagnosis's HTML report): the fracture maps hold every break of the
+// job's breaks.csv at the end, by mode; a UCT's stress-strain curve every point of its curve.csv.
+async function assertJobFigures(figures) {
+  await figures.locator('figure.specimen-map').last().waitFor();
+  const jobId = Number(await figures.getAttribute('data-job'));
+  const job = await api('GET', `/api/v1/jobs/${jobId}`);
+  const breaks = (await api('GET', `/api/v1/jobs/${jobId}/breaks`)).trim().split('\n').slice(1).map((l) => l.split(','));
+  assert.ok(breaks.length > 0, `job ${jobId} broke bonds`);
+  const atEnd = figures.locator('figure.specimen-map').last();
+  assert.equal(await atEnd.locator('svg.chart').getAttribute('data-points'), String(breaks.length));
+  for (const mode of ['tension', 'shear', 'twist', 'bending']) {
+    assert.equal(await atEnd.locator(`g.series[data-series="${mode}"]`).getAttribute('data-points'),
+      String(breaks.filter((b) => b[4] === mode).length), mode);
+  }
+  if (job.test === 'uct' && job.result.peak_reached) {
+    const curveRows = (await api('GET', `/api/v1/jobs/${jobId}/curve`)).trim().split('\n').length - 1;
+    const stressStrain = figures.locator('figure.plot', {hasText: 'UCT stress against strain'});
+    assert.equal(await stressStrain.locator('svg.chart').getAttribute('data-points'), String(curveRows));
+  }
+  return job;
+}
+
 async function until(what, check, seconds) {
   const end = Date.now() + seconds * 1000;
   for (;;) {
@@ -344,6 +367,15 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
     env: {...process.env, ROCKCAL_SERVER: base, ROCKCAL_TOKEN: TOKEN}});
   assert.equal(cli.status, 0, cli.stderr);
   assert.ok(cli.stdout.includes(`evaluations: ${count} ${parts}`), cli.stdout);
+  // The best point's UCT and BTT runs, drawn as the job page draws them.
+  const bestFigures = page.locator('.job-figures');
+  await bestFigures.first().waitFor();
+  assert.equal(await bestFigures.count(), 2);
+  for (let k = 0; k < 2; ++k) {
+    const job = await assertJobFigures(bestFigures.nth(k));
+    assert.equal(job.test, ['uct', 'btt'][k]);
+    assert.deepEqual([job.fr0, job.fs0], [s.best.fr0, s.best.fs0]);
+  }
   const fig = (title) => page.locator('figure.plot').filter({has: page.locator('figcaption strong', {hasText: title})});
   const ok = s.history.filter((r) => r.ok);
   await fig('Packing-seed scatter').waitFor();
@@ -486,6 +518,17 @@ test('a diagnosis: verdict and confidence, residuals before and after, candidate
   assert.ok(cli.stdout.includes(`: ${m.done} of ${m.budget} jobs done (${parts})`), cli.stdout);
   const report = await (await fetch(`${base}/api/v1/campaigns/${ids.diagnosis}/report.html`, {headers: {Authorization: `Bearer ${TOKEN}`}})).text();
   assert.ok(report.includes(`Jobs: ${m.done} of ${m.budget} planned (${parts}).`), report.slice(0, 2000));
+  // The HTML report draws the fracture and stress-strain of the verdict's runs with the job page's
+  // code.
+  const reportPage = await newPage();
+  await reportPage.goto(`${base}/api/v1/campaigns/${ids.diagnosis}/report.html`);
+  const reportFigures = reportPage.locator('.figures .job-figures');
+  await reportFigures.first().waitFor();
+  const drawn = await assertJobFigures(reportFigures.first());
+  assert.deepEqual([drawn.fr0, drawn.fs0], [s.verdict.fr0, s.verdict.fs0]);
+  await reportFigures.first().locator('figure.specimen-map').first().scrollIntoViewIfNeeded();
+  await shot(reportPage, '06c-diagnosis-report-fracture');
+  assert.deepEqual(reportPage.problems, []);
   assert.ok(diagnosisFractions.length > 3, String(diagnosisFractions));
   diagnosisFractions.forEach((f, i) => assert.ok(i === 0 || f >= diagnosisFractions[i - 1], `progress went back: ${diagnosisFractions}`));
   await shot(page, '06-diagnosis');

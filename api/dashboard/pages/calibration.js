@@ -5,7 +5,7 @@
 // shows the history so far.
 import {h, note, section, table} from '../dom.js';
 import {newtons, num, pct, pm, signed} from '../format.js';
-import {bestCurves} from './calibration_curves.js';
+import {bestCurves, bestFigures} from './calibration_curves.js';
 import {consistentSection} from './calibration_consistent.js';
 import {posteriorSection} from './calibration_posterior.js';
 import {convergencePlot, loadsPlot, planePlot, scatterPlot} from './calibration_plots.js';
@@ -51,6 +51,8 @@ export async function renderCalibration(c, ctx) {
   if (best && best.fr0) {
     out.append(section(s.best ? 'The best point’s load curves' : 'The best point so far: load curves',
       await bestCurves(best, rows, s, lab, width, ctx)));
+    out.append(section(s.best ? 'The best point’s fracture and stress-strain' : 'The best point so far: fracture and stress-strain',
+      await bestFigures(best, rows, s, lab, width, ctx)));
   }
   if (s.scatter && Array.isArray(s.scatter.runs) && s.scatter.runs.length) {
     out.append(scatterSection(s, lab, width));
