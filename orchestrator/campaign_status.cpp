@@ -46,8 +46,8 @@ std::optional<nlohmann::json> driver_model(const db::CampaignRow& campaign,
   if (!model.is_object() || !model.value("fraction", nlohmann::json()).is_number())
     return std::nullopt;
   if (model.value("unit", "") != "jobs") return model;
-  return progress_model_json("jobs", int(counts.succeeded + counts.failed + counts.cancelled),
-                             budget_parts(model), 0, seconds_per_job, false);
+  return progress_model_json("jobs", int(counts.ended()), budget_parts(model), 0, seconds_per_job,
+                             false);
 }
 
 }  // namespace
@@ -61,7 +61,7 @@ CampaignStatus campaign_status(db::Store& store, const db::CampaignRow& campaign
     for (const auto& j : store.running_jobs(campaign.id)) running_done += j.progress.value_or(0);
   }
   auto total = s.counts.total();
-  double done = static_cast<double>(s.counts.succeeded + s.counts.failed + s.counts.cancelled);
+  double done = static_cast<double>(s.counts.ended());
   s.fraction = total > 0 ? (done + running_done) / static_cast<double>(total) : 0.0;
   // Mean run time of this campaign's jobs, else of every job run so far (for a campaign still
   // at work).

@@ -26,15 +26,6 @@ std::size_t planned_jobs(const DiagnosisCampaign& c) {
   return jobs;
 }
 
-namespace {
-
-int jobs_done(orch::DriverContext& ctx) {
-  const db::StateCounts n = ctx.service.store().counts(ctx.campaign_id);
-  return int(n.succeeded + n.failed + n.cancelled);
-}
-
-}  // namespace
-
 orch::CampaignKind diagnosis_kind() {
   orch::CampaignKind kind;
   kind.name = "diagnosis";
@@ -62,13 +53,15 @@ orch::CampaignKind diagnosis_kind() {
     // finished.
     const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
     options.on_progress = [&](nlohmann::json progress) {
-      progress["progress"] =
-          orch::progress_model_json("jobs", jobs_done(ctx), parts, 0, std::nullopt, false);
+      progress["progress"] = orch::progress_model_json(
+          "jobs", int(ctx.service.store().counts(ctx.campaign_id).ended()), parts, 0, std::nullopt,
+          false);
       ctx.service.store().set_driver_status(ctx.campaign_id, "running", progress.dump());
     };
     nlohmann::json report = to_json(run_diagnosis(c, evaluator, options), c);
     report["progress"] =
-        orch::progress_model_json("jobs", jobs_done(ctx), parts, 0, std::nullopt, true);
+        orch::progress_model_json("jobs", int(ctx.service.store().counts(ctx.campaign_id).ended()),
+                                  parts, 0, std::nullopt, true);
     return report;
   };
   kind.report_html = [](const nlohmann::json& summary) { return report_html(summary); };
