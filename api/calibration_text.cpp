@@ -1,6 +1,6 @@
-// A calibration campaign as `rockcal status` shows it: the progress line from the live summary
-// (its progress model, orchestrator/calibration/progress.hpp, and its history) and the table of
-// the final report (report_json.cpp).
+// A calibration campaign as `rockcal status` shows it: the best misfit so far that its progress
+// line (status_text.cpp) adds from the live summary's history, and the table of the final report
+// (report_json.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

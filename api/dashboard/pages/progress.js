@@ -22,11 +22,12 @@ function progressOf(c) {
   const p = c.progress || {};
   const s = c.summary || {};
   const parts = [];
-  // The server's fraction: of the jobs for a sweep, of the driver's own progress for a calibration
-  // (its evaluations of the budget) or a diagnosis (its phases); it never goes backwards.
+  // The server's fraction: of the jobs for a sweep, of the driver's progress model for a
+  // calibration (its evaluations of the budget) or a diagnosis or twin (its jobs of the planned);
+  // it never goes backwards.
   const fraction = p.fraction;
-  // A driver's progress model: a calibration's evaluations, a diagnosis's jobs of the ones it
-  // plans, each of its budget, and the ETA of that budget.
+  // A driver's progress model: a calibration's evaluations, a diagnosis's or twin's jobs of the
+  // ones it plans, each of its budget, and the ETA of that budget.
   const model = s.progress && typeof s.progress.budget === 'number' ? s.progress : null;
   let eta = isLive(c) && typeof p.eta_seconds === 'number' && (p.queued || p.running)
     ? `${c.driver_status ? 'queued jobs done in' : 'ETA'} ${duration(p.eta_seconds)}` : null;
