@@ -85,6 +85,7 @@ struct StateCounts {
   std::int64_t queued = 0, running = 0, succeeded = 0, failed = 0, cancelled = 0;
   std::int64_t cached = 0;  // succeeded jobs answered from the store
   std::int64_t total() const { return queued + running + succeeded + failed + cancelled; }
+  std::int64_t ended() const { return succeeded + failed + cancelled; }
 };
 
 // Unfinished jobs of one executor ("" for jobs no executor has taken yet).

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "orchestrator/progress_model.hpp"
+
 namespace rockcal::orch {
 
 bool is_terminal_job_state(const std::string& s) {
@@ -28,29 +30,24 @@ std::string derive_state(const db::StateCounts& c, const db::CampaignRow& campai
 
 namespace {
 
-// A driver adds jobs as it goes, so the share of its jobs done can fall: its own progress, when
-// its summary states one, is the campaign's. A calibration states its fraction
-// (orchestrator/calibration/progress.hpp); a diagnosis its phase: step of steps, the jobs done
-// before the phase began and the runs it plans (the phase's share of its runs done so far). Both
-// only grow.
-std::optional<double> driver_fraction(const db::CampaignRow& campaign,
-                                      const db::StateCounts& counts) {
+// A driver adds jobs as it goes, so the share of its jobs done can fall: its progress model
+// (orchestrator/progress_model.hpp), when its summary carries one, is the campaign's. A
+// calibration states its model whole (evaluations of its budget, its pace's ETA); a diagnosis
+// states the jobs it plans by phase, and its jobs done are counted here, as the model is read,
+// with the ETA at `seconds_per_job`. Both count done against a budget fixed up front, so their
+// fraction only grows.
+std::optional<nlohmann::json> driver_model(const db::CampaignRow& campaign,
+                                           const db::StateCounts& counts,
+                                           std::optional<double> seconds_per_job) {
   if (!campaign.summary || campaign.driver_status.value_or("") != "running") return std::nullopt;
   const nlohmann::json s = nlohmann::json::parse(*campaign.summary, nullptr, false);
   if (!s.is_object()) return std::nullopt;
   const nlohmann::json model = s.value("progress", nlohmann::json());
-  if (model.is_object() && model.value("fraction", nlohmann::json()).is_number())
-    return model["fraction"].get<double>();
-  const nlohmann::json step = s.value("step", nlohmann::json());
-  const nlohmann::json steps = s.value("steps", nlohmann::json());
-  const nlohmann::json before = s.value("jobs_done_before", nlohmann::json());
-  if (!step.is_number() || !steps.is_number() || steps.get<double>() <= 0 || !before.is_number())
+  if (!model.is_object() || !model.value("fraction", nlohmann::json()).is_number())
     return std::nullopt;
-  const double runs = s.value("runs", 0.0);
-  const double done = double(counts.succeeded + counts.failed + counts.cancelled);
-  const double in_phase =
-      runs > 0 ? std::clamp((done - before.get<double>()) / runs, 0.0, 1.0) : 0.0;
-  return (step.get<double>() - 1.0 + in_phase) / steps.get<double>();
+  if (model.value("unit", "") != "jobs") return model;
+  return progress_model_json("jobs", int(counts.ended()), budget_parts(model), 0, seconds_per_job,
+                             false);
 }
 
 }  // namespace
@@ -64,22 +61,33 @@ CampaignStatus campaign_status(db::Store& store, const db::CampaignRow& campaign
     for (const auto& j : store.running_jobs(campaign.id)) running_done += j.progress.value_or(0);
   }
   auto total = s.counts.total();
-  double done = static_cast<double>(s.counts.succeeded + s.counts.failed + s.counts.cancelled);
+  double done = static_cast<double>(s.counts.ended());
   s.fraction = total > 0 ? (done + running_done) / static_cast<double>(total) : 0.0;
-  if (const auto f = driver_fraction(campaign, s.counts)) s.fraction = *f;
+  // Mean run time of this campaign's jobs, else of every job run so far (for a campaign still
+  // at work).
+  const bool working =
+      s.counts.queued + s.counts.running > 0 || campaign.driver_status.value_or("") == "running";
+  db::DurationStats d;
+  if (working) d = store.durations(campaign.id);
+  if (working && d.count == 0) d = store.durations();
+  const std::optional<double> mean =
+      d.count > 0 ? std::optional<double>(d.sum_seconds / static_cast<double>(d.count))
+                  : std::nullopt;
+  const std::optional<double> seconds_per_job =
+      mean ? std::optional<double>(*mean / std::max(1, workers)) : std::nullopt;
+  if (auto model = driver_model(campaign, s.counts, seconds_per_job)) {
+    s.fraction = (*model)["fraction"].get<double>();
+    s.model = std::move(*model);
+  }
   if (s.counts.queued + s.counts.running == 0) {
     s.eta_seconds = 0.0;
     return s;
   }
-  // Mean run time of this campaign's jobs, else of every job run so far.
-  auto d = store.durations(campaign.id);
-  if (d.count == 0) d = store.durations();
-  if (d.count == 0) return s;
-  double mean = d.sum_seconds / static_cast<double>(d.count);
+  if (!mean) return s;
   double remaining_jobs = static_cast<double>(s.counts.queued + s.counts.running) - running_done;
   double parallel = static_cast<double>(std::max<std::int64_t>(
       1, std::min<std::int64_t>(workers, s.counts.queued + s.counts.running)));
-  s.eta_seconds = remaining_jobs * mean / parallel;
+  s.eta_seconds = remaining_jobs * *mean / parallel;
   return s;
 }
 

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "db/store.hpp"
 
 namespace rockcal::orch {
@@ -12,11 +14,16 @@ namespace rockcal::orch {
 struct CampaignStatus {
   std::string state;  // queued | running | succeeded | failed | cancelled
   db::StateCounts counts;
-  // 0..1 of the work done: of the jobs' (a sweep), or of the driver's own progress when its live
-  // summary states one (a calibration's evaluations of its budget, a diagnosis's phases), which
-  // never goes backwards as the driver adds jobs.
+  // 0..1 of the work done: of the jobs' (a sweep), or of the driver's progress model while its live
+  // summary carries one (a calibration's evaluations of its budget, a diagnosis's jobs of the
+  // ones it plans), which never goes backwards as the driver adds jobs.
   double fraction = 0;
-  std::optional<double> eta_seconds;  // unknown until some job has run
+  std::optional<double> eta_seconds;  // of the jobs queued now; unknown until some job has run
+  // The running driver's progress model as of now (orchestrator/progress_model.hpp): a
+  // calibration's as its summary states it, a diagnosis's with its jobs done counted now and the
+  // ETA of its planned jobs left; null for a sweep and once the driver has ended (its report
+  // carries the finished model).
+  nlohmann::json model;
 };
 
 // `workers`: how many jobs run at once, for the ETA.

@@ -14,4 +14,8 @@ const nlohmann::json& at(const nlohmann::json& j, const char* key);
 // `x` in a printf format for one double ("%.4g", "%+.2f%%").
 std::string printed(double x, const char* format = "%.4g");
 
+// "3 of 64<suffix> (search 40, valley trace 24; +2 seed re-runs)": a progress model's count
+// (orchestrator/progress_model.hpp), each part of its budget named.
+std::string budget_count(const nlohmann::json& model, const std::string& suffix);
+
 }  // namespace rockcal::summary

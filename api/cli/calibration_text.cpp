@@ -1,6 +1,6 @@
-// A calibration campaign as `rockcal status` shows it: the progress line from the live summary
-// (its progress model, orchestrator/calibration/progress.hpp, and its history) and the table of
-// the final report (report_json.cpp).
+// A calibration campaign as `rockcal status` shows it: the best misfit so far that its progress
+// line (status_text.cpp) adds from the live summary's history, and the table of the final report
+// (report_json.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,69 +41,13 @@ const json& best_so_far(const json& summary) {
   return *best;
 }
 
-// "3 of 64 evaluations done (search 40, valley trace 24; +2 seed re-runs)": the progress model's
-// count (orchestrator/calibration/progress.hpp), each part of the budget named.
-// `noun` follows the count: " evaluations done" in the progress line, nothing after "evaluations:".
-std::string evaluations_text(const json& model, const char* noun) {
-  std::ostringstream out;
-  out << model["done"] << " of " << model["budget"] << noun;
-  std::vector<std::string> notes;
-  const json& parts = at(model, "parts");
-  if (parts.is_array() && parts.size() > 1) {
-    std::string list;
-    for (const json& p : parts) {
-      // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on ", " + std::string.
-      if (!list.empty()) list += ", ";
-      list += p["name"].get<std::string>();
-      list += ' ';
-      list += p["budget"].dump();
-    }
-    notes.push_back(list);
-  }
-  if (at(model, "seed_reruns").is_number() && model["seed_reruns"].get<int>() > 0) {
-    std::string reruns = "+";
-    reruns += model["seed_reruns"].dump();
-    reruns += " seed re-runs";
-    notes.push_back(reruns);
-  }
-  for (std::size_t k = 0; k < notes.size(); ++k) out << (k ? "; " : " (") << notes[k];
-  if (!notes.empty()) out << ")";
-  return out.str();
-}
-
-bool is_live_calibration(const json& campaign) {
-  return at(campaign, "kind") == "calibration" &&
-         at(at(at(campaign, "summary"), "progress"), "budget").is_number();
-}
-
 }  // namespace
 
-std::optional<std::string> calibration_line(const json& c) {
-  if (!is_live_calibration(c)) return std::nullopt;
-  const json& s = c["summary"];
-  const json& model = s["progress"];
-  const std::string state = c["state"].get<std::string>();
-  std::ostringstream out;
-  out << "campaign " << c["id"] << " " << state << ": "
-      << evaluations_text(model, " evaluations done");
-  const json& best = best_so_far(s);
-  if (best.is_object()) {
-    out << ", best misfit " << num(best["misfit"], "%.3g") << " at F_r0 = " << num(best["fr0"])
-        << ", F_s0 = " << num(best["fs0"]);
-  }
-  const json& running = at(c["progress"], "running");
-  out << ", " << running << (running == 1 ? " job" : " jobs") << " running";
-  if (state == "running" || state == "queued") {
-    const json& eta = at(model, "eta_seconds");
-    if (eta.is_number()) {
-      out << ", ETA " << duration_text(eta.get<double>()) << " (full budget)";
-    } else if (at(model, "left") == 0) {
-      out << ", finishing";
-    } else {
-      out << ", ETA unknown";
-    }
-  }
-  return out.str();
+std::string best_misfit_text(const json& summary) {
+  const json& best = best_so_far(summary);
+  if (!best.is_object()) return "";
+  return ", best misfit " + num(best["misfit"], "%.3g") + " at F_r0 = " + num(best["fr0"]) +
+         ", F_s0 = " + num(best["fs0"]);
 }
 
 namespace {
@@ -313,7 +257,7 @@ std::string calibration_text(const json& s) {
   // The same count the progress line showed: the progress model's.
   const json& model = at(s, "progress");
   if (model.is_object()) {
-    out << "evaluations: " << evaluations_text(model, "");
+    out << "evaluations: " << summary::budget_count(model, "");
   } else {
     out << "evaluations: " << value_text(at(s, "evaluations"));
   }

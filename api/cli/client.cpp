@@ -124,24 +124,22 @@ int client_submit(const ClientOptions& o, const std::string& file) {
   return 0;
 }
 
-std::optional<json> Http::watch(std::int64_t id, bool wait, int progress_fd, int& exit_code) {
+std::optional<json> watch_campaign(const CampaignFetch& fetch, bool wait, int progress_fd) {
   std::ostream& progress = progress_fd == STDERR_FILENO ? std::cerr : std::cout;
   const bool tty = isatty(progress_fd);
   LinePacer pacer(std::chrono::seconds(5));
   bool drawn = false;  // a \r-redrawn line is on the terminal
   while (true) {
-    auto r = client.Get(path_of(id), headers);
-    if (!r || r->status != 200) {
+    std::optional<json> c = fetch();
+    if (!c) {
       if (drawn) progress << "\n";
-      exit_code = report(r);
       return std::nullopt;
     }
-    json c = json::parse(r->body);
-    if (!wait || finished(c["state"].get<std::string>())) {
+    if (!wait || finished((*c)["state"].get<std::string>())) {
       if (drawn) progress << "\r\033[K" << std::flush;
       return c;
     }
-    const std::string line = progress_line(c);
+    const std::string line = progress_line(*c);
     if (tty) {
       progress << "\r\033[K" << fitted(line, progress_fd) << std::flush;
       drawn = true;
@@ -150,6 +148,19 @@ std::optional<json> Http::watch(std::int64_t id, bool wait, int progress_fd, int
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
+}
+
+std::optional<json> Http::watch(std::int64_t id, bool wait, int progress_fd, int& exit_code) {
+  return watch_campaign(
+      [&]() -> std::optional<json> {
+        auto r = client.Get(path_of(id), headers);
+        if (!r || r->status != 200) {
+          exit_code = report(r);
+          return std::nullopt;
+        }
+        return json::parse(r->body);
+      },
+      wait, progress_fd);
 }
 
 int client_status(const ClientOptions& o, std::int64_t id, bool wait, bool as_json) {

@@ -9,11 +9,13 @@
 #include "api/cli/client.hpp"
 #include "api/cli/client_http.hpp"
 #include "api/cli/diagnosis_text.hpp"
+#include "orchestrator/summary_reader.hpp"
 
 namespace rockcal::api {
 namespace {
 
 using nlohmann::json;
+using summary::at;
 
 // A campaign without a driver report (a sweep): what its jobs did, and where the numbers are.
 std::string jobs_text(const json& c) {
@@ -39,8 +41,32 @@ std::string phase_text(const json& c) {
 }  // namespace
 
 std::string progress_line(const json& c) {
-  if (auto line = calibration_line(c)) return *line;
-  return status_line(c) + phase_text(c);
+  const json& s = at(c, "summary");
+  const json& model = at(s, "progress");
+  if (!at(model, "budget").is_number() || !at(model, "unit").is_string()) {
+    return status_line(c) + phase_text(c);
+  }
+  const std::string state = c["state"].get<std::string>();
+  // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on " " + std::string.
+  std::string count = " ";
+  count += model["unit"].get<std::string>();
+  count += " done";
+  std::ostringstream out;
+  out << "campaign " << c["id"] << " " << state << ": " << summary::budget_count(model, count);
+  if (at(c, "kind") == "calibration") out << best_misfit_text(s);
+  const json& running = at(c["progress"], "running");
+  out << ", " << running << (running == 1 ? " job" : " jobs") << " running";
+  if (state == "running" || state == "queued") {
+    const json& eta = at(model, "eta_seconds");
+    if (eta.is_number()) {
+      out << ", ETA " << duration_text(eta.get<double>()) << " (full budget)";
+    } else if (at(model, "left") == 0) {
+      out << ", finishing";
+    } else {
+      out << ", ETA unknown";
+    }
+  }
+  return out.str() + phase_text(c);
 }
 
 std::string summary_text(const json& c) {

@@ -11,11 +11,16 @@
 
 namespace rockcal::api {
 
-// A calibration's line: "campaign 3 running: 12 of 40 evaluations done (+2 seed re-runs), best
-// misfit 0.0123 at F_r0 = 40.1, F_s0 = 89.7, 2 jobs running, ETA 5m20s (full budget)". Other
-// kinds, and a calibration whose summary does not say its budget, get status_line().
-// A diagnosis adds its phase: "  [2/4 budget]".
+// A campaign's line from its driver's progress model (orchestrator/progress_model.hpp), while it
+// runs and once its report carries the finished model: "campaign 3 running: 12 of 40 evaluations
+// done (+2 seed re-runs), best misfit 0.0123 at F_r0 = 40.1, F_s0 = 89.7, 2 jobs running, ETA
+// 5m20s (full budget)" (the best misfit a calibration's); a diagnosis adds its phase: "  [2/4
+// budget]". Campaigns without a model (a sweep) get status_line().
 std::string progress_line(const nlohmann::json& campaign);
+
+// ", best misfit 0.0123 at F_r0 = 40.1, F_s0 = 89.7": a calibration summary's best evaluation so
+// far, or "" before one has a misfit.
+std::string best_misfit_text(const nlohmann::json& summary);
 
 // The end of a campaign for a reader: a calibration's verdict, strengths, loads against targets
 // and budget (calibration_text.hpp); a diagnosis's verdict tables (diagnosis_text.hpp); a sweep's

@@ -5,11 +5,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <thread>
 
+#include <unistd.h>
+
+#include "api/cli/client_http.hpp"
 #include "api/server/serve.hpp"
+#include "api/server/views.hpp"
 #include "engine/json_input.hpp"
 #include "orchestrator/all_kinds.hpp"
+#include "orchestrator/campaign_status.hpp"
 #include "orchestrator/diagnosis/twin/twin_kind.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
@@ -67,12 +71,16 @@ int run_twin(const TwinOptions& o, const std::string& argv0) {
     orch::add_all_kinds(service.kinds());
     service.start();
     const std::int64_t id = service.create_campaign(request);
-    std::optional<db::CampaignRow> c;
-    for (;;) {
-      c = service.store().campaign(id);
-      if (c->driver_status == "done" || c->driver_status == "failed") break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
+    // The client commands' wait loop, on this service's own campaign (progress on stderr: stdout
+    // carries the dataset's table).
+    watch_campaign(
+        [&] {
+          const db::CampaignRow row = *service.store().campaign(id);
+          return std::optional<json>(
+              campaign_json(row, orch::campaign_status(service.store(), row, config.workers)));
+        },
+        true, STDERR_FILENO);
+    const std::optional<db::CampaignRow> c = service.store().campaign(id);
     engine_runs = service.store().durations(id).count;
     service.stop();
     summary = json::parse(c->summary.value_or("null"));

@@ -53,6 +53,9 @@ json campaign_json(const db::CampaignRow& c, const orch::CampaignStatus& s) {
     // A calibration's answer sits at the top level, where clients of the first calibration API look
     // for it.
     if (j["summary"].is_object() && j["summary"].contains("best")) j["best"] = j["summary"]["best"];
+    // The running driver's progress model as of now (a diagnosis's jobs done are counted as it is
+    // read): every reader finds it where the final report keeps it.
+    if (j["summary"].is_object() && !s.model.is_null()) j["summary"]["progress"] = s.model;
   }
   return j;
 }

@@ -14,14 +14,10 @@ namespace rockcal::calibration {
 // The packings the best point is re-run on once the search has ended (its own seed is not).
 int seed_reruns(const CalibrationCampaign& c);
 
-// {"unit": "evaluations", "done", "budget", "parts": [{"name": "search" | "valley trace",
-//  "budget"}], "seed_reruns", "left", "fraction", "eta_seconds"}: evaluations done of the whole
-// budget (the search's max_evaluations and the consistent-set trace's consistency_evaluations,
-// each part named), the best point's seed re-runs beside it, what is left (budget - done, at
-// least 0, plus the re-runs; 0 once finished), the fraction done (never backwards: evaluations
-// only grow against a fixed budget; 1 once finished) and the seconds left at the measured pace
-// (null until an evaluation has been timed and when nothing is left; at least 1 while something
-// is).
+// The campaign progress model (orchestrator/progress_model.hpp) in "evaluations": done of the
+// whole budget (the search's max_evaluations and the consistent-set trace's
+// consistency_evaluations, parts "search" and "valley trace"), with the best point's seed re-runs
+// beside it ("seed_reruns", counted in what is left) and the seconds left at the measured pace.
 nlohmann::json progress_model_json(std::size_t evaluations, const CalibrationCampaign& c,
                                    std::optional<double> seconds_per_evaluation, bool finished);
 

@@ -5,18 +5,25 @@
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
 #include "orchestrator/diagnosis/pipeline/pool_evaluator.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
+#include "orchestrator/job_service.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::diagnosis {
 
-std::size_t planned_jobs(const DiagnosisCampaign& c) {
-  const std::size_t grid = std::size_t(grid_points(c));
-  const std::size_t seeds = c.budget.seeds.size();
+std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
+  const int runs = int(plan_runs(c.targets).runs.size());
+  const int seeds = int(c.budget.seeds.size());
   // Measured at the base model's first fit and, if it moved, again at its confirmed fit.
-  const std::size_t budget = 2 * budget_offsets(c.budget.points).size() *
-                             budget_runs_per_point(c.budget, c.dataset.origin);
-  const std::size_t confirm = (1 + std::size_t(c.confirm)) * (1 + std::size_t(c.refine) + seeds);
-  return (grid + budget + confirm) * plan_runs(c.targets).runs.size();
+  const int budget = 2 * int(budget_offsets(c.budget.points).size()) *
+                     int(budget_runs_per_point(c.budget, c.dataset.origin));
+  const int confirm = (1 + c.confirm) * (1 + c.refine + seeds);
+  return {{"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
+}
+
+std::size_t planned_jobs(const DiagnosisCampaign& c) {
+  std::size_t jobs = 0;
+  for (const orch::BudgetPart& p : planned_job_parts(c)) jobs += std::size_t(p.budget);
+  return jobs;
 }
 
 orch::CampaignKind diagnosis_kind() {
@@ -40,15 +47,22 @@ orch::CampaignKind diagnosis_kind() {
     PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, c.targets, ctx.stop);
     DiagnosisOptions options;
     options.stop = ctx.stop;
-    // While it runs, the summary says which phase it is in; the report replaces it at the end.
-    // With the jobs done before the phase began, the campaign's progress counts the phase's own
-    // (orchestrator/campaign_status.hpp).
+    // While it runs, the summary says which phase it is in and carries the progress model: jobs
+    // done of the planned parts (the service counts the jobs done as it is read,
+    // orchestrator/campaign_status.hpp); the report replaces it at the end, with the model
+    // finished.
+    const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
     options.on_progress = [&](nlohmann::json progress) {
-      const db::StateCounts done = ctx.service.store().counts(ctx.campaign_id);
-      progress["jobs_done_before"] = done.succeeded + done.failed + done.cancelled;
+      progress["progress"] = orch::progress_model_json(
+          "jobs", int(ctx.service.store().counts(ctx.campaign_id).ended()), parts, 0, std::nullopt,
+          false);
       ctx.service.set_progress(ctx.campaign_id, progress, ctx.stop);
     };
-    return to_json(run_diagnosis(c, evaluator, options), c);
+    nlohmann::json report = to_json(run_diagnosis(c, evaluator, options), c);
+    report["progress"] =
+        orch::progress_model_json("jobs", int(ctx.service.store().counts(ctx.campaign_id).ended()),
+                                  parts, 0, std::nullopt, true);
+    return report;
   };
   kind.report_html = [](const nlohmann::json& summary) { return report_html(summary); };
   return kind;

@@ -6,13 +6,18 @@
 
 #include "orchestrator/campaign_kinds.hpp"
 #include "orchestrator/diagnosis/pipeline/campaign.hpp"
+#include "orchestrator/progress_model.hpp"
 
 namespace rockcal::diagnosis {
 
 orch::CampaignKind diagnosis_kind();
 
-// The most jobs a diagnosis can create: every model point it may run times the distinct runs
-// (test and conditions) of its dataset.
+// The most jobs a diagnosis can create, by phase ("grid", "budget", "confirm"): every model point
+// it may run times the distinct runs (test and conditions) of its dataset. The budget of its
+// progress model (orchestrator/progress_model.hpp, unit "jobs").
+std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c);
+
+// The sum of planned_job_parts.
 std::size_t planned_jobs(const DiagnosisCampaign& c);
 
 }  // namespace rockcal::diagnosis

@@ -62,6 +62,8 @@ const DIAGNOSIS = {kind: 'diagnosis', name: 'browser test diagnosis', job: JOB, 
 let server;
 let base;
 let browser;  // a persistent context on a fresh profile directory
+let diagnosisFractions;  // the diagnosis's progress fraction, sampled while it runs
+let sampler;
 const ids = {};
 
 function log(...args) {
@@ -74,6 +76,29 @@ async function api(method, url, body) {
   const text = await r.text();
   if (!r.ok) throw new Error(`${method} ${url}: ${r.status} ${text}`);
   return url.endsWith('/curve') || url.endsWith('/breaks') ? text : JSON.parse(text);
+}
+
+// A job's figures as the job page draws them (pages/job_figures.js), wherever they are shown (a
+// calibration's best point, a diagnosis's HTML report): the fracture maps hold every break of the
+// job's breaks.csv at the end, by mode; a UCT's stress-strain curve every point of its curve.csv.
+async function assertJobFigures(figures) {
+  await figures.locator('figure.specimen-map').last().waitFor();
+  const jobId = Number(await figures.getAttribute('data-job'));
+  const job = await api('GET', `/api/v1/jobs/${jobId}`);
+  const breaks = (await api('GET', `/api/v1/jobs/${jobId}/breaks`)).trim().split('\n').slice(1).map((l) => l.split(','));
+  assert.ok(breaks.length > 0, `job ${jobId} broke bonds`);
+  const atEnd = figures.locator('figure.specimen-map').last();
+  assert.equal(await atEnd.locator('svg.chart').getAttribute('data-points'), String(breaks.length));
+  for (const mode of ['tension', 'shear', 'twist', 'bending']) {
+    assert.equal(await atEnd.locator(`g.series[data-series="${mode}"]`).getAttribute('data-points'),
+      String(breaks.filter((b) => b[4] === mode).length), mode);
+  }
+  if (job.test === 'uct' && job.result.peak_reached) {
+    const curveRows = (await api('GET', `/api/v1/jobs/${jobId}/curve`)).trim().split('\n').length - 1;
+    const stressStrain = figures.locator('figure.plot', {hasText: 'UCT stress against strain'});
+    assert.equal(await stressStrain.locator('svg.chart').getAttribute('data-points'), String(curveRows));
+  }
+  return job;
 }
 
 async function until(what, check, seconds) {
@@ -156,6 +181,15 @@ before(async () => {
   ids.sweep = (await api('POST', '/api/v1/campaigns', SWEEP)).id;
   ids.calibration = (await api('POST', '/api/v1/campaigns', calibration('browser test calibration', 10, 0.02))).id;
   ids.diagnosis = (await api('POST', '/api/v1/campaigns', DIAGNOSIS)).id;
+  // The diagnosis's progress as the API gives it, every second while it runs: it must never go
+  // backwards as its phases add jobs.
+  diagnosisFractions = [];
+  const sample = async () => {
+    const x = await api('GET', `/api/v1/campaigns/${ids.diagnosis}`).catch(() => null);
+    if (x) diagnosisFractions.push(x.progress.fraction);
+    if (!x || !finished(x)) sampler = setTimeout(sample, 1000);
+  };
+  await sample();
   ids.bound = (await api('POST', '/api/v1/campaigns', BOUND)).id;
   ids.bayes = (await api('POST', '/api/v1/campaigns', BAYES)).id;
   // Debian's chromium on a fresh profile (playwright passes the directory as --user-data-dir).
@@ -166,6 +200,7 @@ before(async () => {
 });
 
 after(async () => {
+  clearTimeout(sampler);
   if (browser) await browser.close();
   if (server && server.exitCode === null) {
     server.kill('SIGTERM');
@@ -332,6 +367,15 @@ test('a finished calibration: verdict, search, best point\'s curves and the seed
     env: {...process.env, ROCKCAL_SERVER: base, ROCKCAL_TOKEN: TOKEN}});
   assert.equal(cli.status, 0, cli.stderr);
   assert.ok(cli.stdout.includes(`evaluations: ${count} ${parts}`), cli.stdout);
+  // The best point's UCT and BTT runs, drawn as the job page draws them.
+  const bestFigures = page.locator('.job-figures');
+  await bestFigures.first().waitFor();
+  assert.equal(await bestFigures.count(), 2);
+  for (let k = 0; k < 2; ++k) {
+    const job = await assertJobFigures(bestFigures.nth(k));
+    assert.equal(job.test, ['uct', 'btt'][k]);
+    assert.deepEqual([job.fr0, job.fs0], [s.best.fr0, s.best.fs0]);
+  }
   const fig = (title) => page.locator('figure.plot').filter({has: page.locator('figcaption strong', {hasText: title})});
   const ok = s.history.filter((r) => r.ok);
   await fig('Packing-seed scatter').waitFor();
@@ -459,6 +503,34 @@ test('a diagnosis: verdict and confidence, residuals before and after, candidate
   const row = page.locator('tr', {has: page.locator('td', {hasText: new RegExp(`^${o.id}$`)})}).first();
   assert.match(await row.innerText(), new RegExp((o.base.residual > 0 ? '\\+' : '') + num(o.base.residual, 3)));
   assert.equal(await page.locator('a', {hasText: 'HTML report'}).getAttribute('href'), `/api/v1/campaigns/${ids.diagnosis}/report.html`);
+  // One count of jobs: the page, `rockcal status` and the HTML report show the report's progress
+  // model, whose fraction never went backwards while the phases added jobs.
+  const m = s.progress;
+  assert.equal(m.unit, 'jobs');
+  assert.equal(m.done, c.progress.total);
+  assert.ok(m.done <= m.budget, JSON.stringify(m));
+  const parts = m.parts.map((p) => `${p.name} ${p.budget}`).join(', ');
+  assert.deepEqual(m.parts.map((p) => p.name), ['grid', 'budget', 'confirm']);
+  assert.ok((await page.locator('.campaign-head .progress-text').innerText()).includes(`${m.done} of ${m.budget} jobs (${parts})`));
+  const cli = spawnSync(rockcal, ['status', String(ids.diagnosis)], {encoding: 'utf8',
+    env: {...process.env, ROCKCAL_SERVER: base, ROCKCAL_TOKEN: TOKEN}});
+  assert.equal(cli.status, 0, cli.stderr);
+  assert.ok(cli.stdout.includes(`: ${m.done} of ${m.budget} jobs done (${parts})`), cli.stdout);
+  const report = await (await fetch(`${base}/api/v1/campaigns/${ids.diagnosis}/report.html`, {headers: {Authorization: `Bearer ${TOKEN}`}})).text();
+  assert.ok(report.includes(`Jobs: ${m.done} of ${m.budget} planned (${parts}).`), report.slice(0, 2000));
+  // The HTML report draws the fracture and stress-strain of the verdict's runs with the job page's
+  // code.
+  const reportPage = await newPage();
+  await reportPage.goto(`${base}/api/v1/campaigns/${ids.diagnosis}/report.html`);
+  const reportFigures = reportPage.locator('.figures .job-figures');
+  await reportFigures.first().waitFor();
+  const drawn = await assertJobFigures(reportFigures.first());
+  assert.deepEqual([drawn.fr0, drawn.fs0], [s.verdict.fr0, s.verdict.fs0]);
+  await reportFigures.first().locator('figure.specimen-map').first().scrollIntoViewIfNeeded();
+  await shot(reportPage, '06c-diagnosis-report-fracture');
+  assert.deepEqual(reportPage.problems, []);
+  assert.ok(diagnosisFractions.length > 3, String(diagnosisFractions));
+  diagnosisFractions.forEach((f, i) => assert.ok(i === 0 || f >= diagnosisFractions[i - 1], `progress went back: ${diagnosisFractions}`));
   await shot(page, '06-diagnosis');
   const phone = await onPhone(`${base}/campaigns/${ids.diagnosis}`, '.confidence', '06b-diagnosis-phone');
   assert.deepEqual(page.problems.concat(phone.problems), []);

@@ -72,6 +72,15 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points at most twice (the first and
   // the confirmed fit), 3 confirmed candidates x (3 refinement runs + 2 seeds).
   EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + 3 * 5) * 4u);
+  // The progress model's budget names them by phase.
+  const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
+  ASSERT_EQ(parts.size(), 3u);
+  EXPECT_EQ(parts[0].name, "grid");
+  EXPECT_EQ(parts[0].budget, (9 + 2 * 18) * 4);
+  EXPECT_EQ(parts[1].name, "budget");
+  EXPECT_EQ(parts[1].budget, 2 * 5 * 5 * 4);
+  EXPECT_EQ(parts[2].name, "confirm");
+  EXPECT_EQ(parts[2].budget, 3 * 5 * 4);
   EXPECT_EQ(c.budget.resolutions, std::vector<double>{1.25});
   // Two resolutions: one more run at each budget point.
   json two = request();

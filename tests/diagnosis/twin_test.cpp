@@ -270,6 +270,11 @@ TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
   ASSERT_TRUE(made.is_object());
   EXPECT_GT(made["design"]["p_low"].get<double>(), 0);
   EXPECT_EQ(runs(), 1 + 7);
+  // Its progress model planned those jobs before any ran (the design laid out without running).
+  EXPECT_EQ(made["progress"], json::parse(R"({"unit": "jobs", "done": 8, "budget": 8,
+    "parts": [{"name": "design", "budget": 1}, {"name": "observations", "budget": 7}],
+    "left": 0, "fraction": 1.0, "eta_seconds": 0.0})"));
+  EXPECT_EQ(made["truth"]["jobs"].size(), 7u);
   const Dataset parsed = parse_dataset_json(made["dataset"]);
   EXPECT_EQ(to_json(parse_dataset_csv(to_csv(parsed))), to_json(parsed));
   int calibration = 0, held_out = 0;

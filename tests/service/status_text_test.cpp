@@ -1,7 +1,7 @@
 // What `rockcal status` shows a reader: a calibration's progress line (evaluations of the budget,
 // best misfit and point, running jobs, an ETA from the measured pace, never "ETA 0s" while
-// running), the summary table that replaces the report's JSON at the end, the sweep's summary,
-// and the pacing of progress lines in a log.
+// running), a diagnosis's (jobs of its planned phases), the summary table that replaces the
+// report's JSON at the end, the sweep's summary, and the pacing of progress lines in a log.
 #include <gtest/gtest.h>
 
 #include "api/cli/calibration_text.hpp"
@@ -221,11 +221,20 @@ TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
             "tolerance_met\n");
 }
 
-// A diagnosis's line (rockcal status and rockcal diagnose share it) carries its phase.
-TEST(CalibrationProgress, ADiagnosisLineCarriesItsPhase) {
+// A diagnosis's line (rockcal status, rockcal diagnose and rockcal twin share it): its progress
+// model (jobs done of the ones it plans, each phase named, the ETA of what is left) and its phase.
+TEST(DiagnosisProgress, JobsOfThePlannedPhasesEtaAndThePhase) {
   json c = running_calibration(390.0);
   c["kind"] = "diagnosis";
-  c["summary"] = {{"phase", "budget"}, {"step", 2}, {"steps", 4}, {"runs", 12}};
+  c["summary"] = json::parse(R"({"phase": "budget", "step": 2, "steps": 4, "runs": 12,
+    "progress": {"unit": "jobs", "done": 30, "budget": 134, "left": 104, "fraction": 0.2239,
+                 "parts": [{"name": "grid", "budget": 54}, {"name": "budget", "budget": 40},
+                           {"name": "confirm", "budget": 40}], "eta_seconds": 208}})");
+  EXPECT_EQ(progress_line(c),
+            "campaign 7 running: 30 of 134 jobs done (grid 54, budget 40, confirm 40), 2 jobs "
+            "running, ETA 3m28s (full budget)  [2/4 budget]");
+  // Before the driver states a model (or a kind without one): the jobs' line, with the phase.
+  c["summary"].erase("progress");
   c["progress"]["eta_seconds"] = 30;
   EXPECT_EQ(progress_line(c),
             "campaign 7 running [#######################.......] 75% 6/8 done, 2 running, 0 "

@@ -8,6 +8,7 @@
 #include "db/store.hpp"
 #include "orchestrator/campaign_status.hpp"
 #include "orchestrator/job_identity.hpp"
+#include "orchestrator/progress_model.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/sweep.hpp"
 #include "support.hpp"
@@ -153,9 +154,9 @@ TEST(CampaignState, DerivedFromJobCounts) {
 }
 
 // A driver adds jobs as it goes, so the share of its jobs done can fall; the campaign's fraction
-// is the driver's own progress instead: a diagnosis's phase (with the jobs done before it and the
-// runs it plans) or a calibration's model, and never goes backwards.
-TEST(CampaignProgress, ADriversPhasesNotItsJobShareAndNeverBackwards) {
+// is its progress model's instead: a diagnosis's jobs done (counted as the status is read) of the
+// jobs it plans, or a calibration's model as it states it, and never goes backwards.
+TEST(CampaignProgress, ADriversModelNotItsJobShareAndNeverBackwards) {
   test::TempDir dir;
   db::Store store{(dir.path() / "s.db").string()};
   auto new_job = [](int k) {
@@ -177,31 +178,42 @@ TEST(CampaignProgress, ADriversPhasesNotItsJobShareAndNeverBackwards) {
     r.result = "{}";
     ASSERT_TRUE(store.finish_success(j->id, r));
   };
-  auto fraction = [&] { return campaign_status(store, *store.campaign(id), 1).fraction; };
-  auto phase = [&](int step, int runs, int done_before) {
-    store.set_driver_status(id, "running",
-                            json{{"phase", "p"},
-                                 {"step", step},
-                                 {"steps", 4},
-                                 {"runs", runs},
-                                 {"jobs_done_before", done_before}}
-                                .dump());
+  auto status = [&] { return campaign_status(store, *store.campaign(id), 1); };
+  // What the diagnosis states at a phase: the jobs it plans by phase, and those done so far.
+  auto phase = [&](int step, int done) {
+    const json model = progress_model_json(
+        "jobs", done, {{"grid", 2}, {"budget", 4}, {"confirm", 2}}, 0, std::nullopt, false);
+    store.set_driver_status(
+        id, "running",
+        json{{"phase", "p"}, {"step", step}, {"steps", 4}, {"progress", model}}.dump());
   };
-  phase(1, 2, 0);
-  EXPECT_EQ(fraction(), 0.0);
+  phase(1, 0);
+  EXPECT_EQ(status().fraction, 0.0);
   finish_one();
-  EXPECT_EQ(fraction(), 0.125);
+  EXPECT_EQ(status().fraction, 0.125) << "counted as it is read, not when the phase began";
   finish_one();
-  EXPECT_EQ(fraction(), 0.25);  // the jobs' share is 1 here
+  EXPECT_EQ(status().fraction, 0.25);  // the jobs' share is 1 here
   // The next phase adds 4 jobs: the jobs' share falls to 2 of 6, the campaign's does not.
   for (int k = 2; k < 6; ++k) store.add_job(id, new_job(k));
-  phase(2, 4, 2);
-  EXPECT_EQ(fraction(), 0.25);
+  phase(2, 2);
+  EXPECT_EQ(status().fraction, 0.25);
   finish_one();
-  EXPECT_EQ(fraction(), 0.3125);
-  // A calibration states its own fraction (its evaluations of the budget).
-  store.set_driver_status(id, "running", json{{"progress", {{"fraction", 0.4}}}}.dump());
-  EXPECT_EQ(fraction(), 0.4);
+  const CampaignStatus now = status();
+  EXPECT_EQ(now.fraction, 0.375);
+  EXPECT_EQ(now.model["done"], 3);
+  EXPECT_EQ(now.model["budget"], 8);
+  EXPECT_EQ(now.model["left"], 5);
+  EXPECT_EQ(now.model["parts"], json::parse(R"([{"name": "grid", "budget": 2},
+    {"name": "budget", "budget": 4}, {"name": "confirm", "budget": 2}])"));
+  // A calibration states its whole model (its evaluations of the budget), taken as it is.
+  const json calibration = {
+      {"unit", "evaluations"}, {"done", 4}, {"budget", 10}, {"fraction", 0.4}};
+  store.set_driver_status(id, "running", json{{"progress", calibration}}.dump());
+  EXPECT_EQ(status().fraction, 0.4);
+  EXPECT_EQ(status().model, calibration);
+  // Once the driver has ended, its report carries the finished model and the status none.
+  store.set_driver_status(id, "done", json{{"progress", calibration}}.dump());
+  EXPECT_TRUE(status().model.is_null());
 }
 
 }  // namespace

@@ -288,13 +288,40 @@ std::string ratio_section(const json& s) {
          (at(r, "inside") == true ? "inside" : "outside") + " the attainable range.</p>\n";
 }
 
+// " Jobs: 120 of 134 planned (grid 54, budget 40, confirm 40)." from the progress model
+// (orchestrator/progress_model.hpp): the count the CLI and the dashboard show.
+std::string jobs_text(const json& model) {
+  if (!at(model, "budget").is_number()) return "";
+  return " Jobs: " + escape_html(summary::budget_count(model, " planned")) + ".";
+}
+
+// Where the figures of the verdict's runs go: the dashboard's own code (its report.js, with the
+// job page's drawing) fills the element when the server serves this page; a copy opened without
+// the server keeps the note.
+std::string figures_section(const json& s) {
+  const json& v = at(s, "verdict");
+  if (!at(v, "fr0").is_number() || !at(v, "fs0").is_number()) return "";
+  return "<h2>Fracture and stress-strain at the verdict's fit</h2>\n<p>The runs of the verdict's "
+         "model (its effect, when it names one) at F_r0 = " +
+         show(at(v, "fr0")) + ", F_s0 = " + show(at(v, "fs0")) +
+         " N, drawn as the dashboard's job page draws a run: every broken bond of breaks.csv "
+         "projected on the x-z plane by mode at the peak and at the end, and stress against strain "
+         "from curve.csv.</p>\n<div class=\"figures\" data-figures-fr0=\"" +
+         show(at(v, "fr0"), "%.17g") + "\" data-figures-fs0=\"" + show(at(v, "fs0"), "%.17g") +
+         "\"><p class=\"note\">The server draws these when it serves this report "
+         "(/api/v1/campaigns/ID/report.html); this copy was opened without it.</p></div>\n";
+}
+
 }  // namespace
 
 std::string report_html(const json& s) {
   const std::string title = "Diagnosis: " + show(at(s, "name"));
   std::string out =
       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + title +
-      "</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
+      "</title>\n<link rel=\"icon\" href=\"data:,\">\n<link rel=\"stylesheet\" "
+      "href=\"/ui/style.css\">\n<script type=\"module\" "
+      "src=\"/ui/report.js\"></"
+      "script>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
       "table{border-collapse:collapse;margin:.5em 0;font-size:13px}td,th{border:1px solid #ccc;"
       "padding:3px 6px;text-align:left}tr.gap td{background:#fde0dc}.verdict{border:2px solid "
       "#1f77b4;padding:0 1em;margin:1em 0}.note{color:#666;font-size:12px}.legend "
@@ -308,13 +335,15 @@ std::string report_html(const json& s) {
       (at(at(s, "runs"), "first_error").is_string()
            ? " (first: " + show(at(at(s, "runs"), "first_error")) + ")"
            : std::string()) +
-      "; a run that ended without a peak is a failed run.</p>\n";
+      "; a run that ended without a peak is a failed run." + jobs_text(at(s, "progress")) +
+      "</p>\n";
   out += verdict_section(s);
   out += gap_section(s);
   out += residual_plot(s);
   out += closure_plot(s);
   out += candidates_table(s);
   out += refinement_table(s);
+  out += figures_section(s);
   out += history_plot(s);
   out += budget_table(s);
   out += ratio_section(s);

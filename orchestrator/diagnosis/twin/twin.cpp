@@ -112,22 +112,26 @@ void check_twin_request(const TwinRequest& request) {
   }
 }
 
+TwinJobs twin_jobs(const TwinDesign& design, const TwinRequest& request, const TruthBonds& truth) {
+  const json effects = twin_effects(request);
+  // Observations measured by the same run (the UCT's peak and its modulus) share one job.
+  TwinJobs out;
+  for (const Observation& o : design.observations) {
+    const json job = twin_job(design, o, truth, effects, request);
+    std::size_t k = 0;
+    while (k < out.jobs.size() && out.jobs[k] != job) ++k;
+    if (k == out.jobs.size()) out.jobs.push_back(job);
+    out.job_of.push_back(k);
+  }
+  return out;
+}
+
 Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJobs& run) {
   check_twin_request(request);
   const json effects = twin_effects(request);
   Stream stream(request.seed);
   const TruthBonds truth = draw_from(design.model, stream);
-
-  // Observations measured by the same run (the UCT's peak and its modulus) share one job.
-  std::vector<json> jobs;
-  std::vector<std::size_t> job_of;
-  for (const Observation& o : design.observations) {
-    const json job = twin_job(design, o, truth, effects, request);
-    std::size_t k = 0;
-    while (k < jobs.size() && jobs[k] != job) ++k;
-    if (k == jobs.size()) jobs.push_back(job);
-    job_of.push_back(k);
-  }
+  const auto [jobs, job_of] = twin_jobs(design, request, truth);
   const std::vector<json> results = run(jobs);
 
   Twin twin;

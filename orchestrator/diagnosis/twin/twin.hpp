@@ -48,6 +48,15 @@ void check_twin_request(const TwinRequest& request);
 // range ("value").
 nlohmann::json twin_effects(const TwinRequest& request);
 
+// The distinct engine jobs of the design's observations at the truth with the request's effect
+// (observations one run measures, the UCT's peak, modulus and peak strain, share its job), and
+// for each observation the index of its job.
+struct TwinJobs {
+  std::vector<nlohmann::json> jobs;
+  std::vector<std::size_t> job_of;
+};
+TwinJobs twin_jobs(const TwinDesign& design, const TwinRequest& request, const TruthBonds& truth);
+
 struct Twin {
   Dataset dataset;       // model units; names no effect
   nlohmann::json truth;  // what the dataset hides (FILE.truth.json)

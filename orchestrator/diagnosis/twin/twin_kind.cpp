@@ -5,6 +5,7 @@
 
 #include "orchestrator/job_batch.hpp"
 #include "orchestrator/json_fields.hpp"
+#include "orchestrator/progress_model.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/request_fields.hpp"
 
@@ -54,6 +55,17 @@ RunJobs pool_run_jobs(orch::JobService& service, std::int64_t campaign_id, std::
   };
 }
 
+std::vector<orch::BudgetPart> planned_twin_job_parts(const TwinCampaign& c) {
+  // Laid out without running: every run answers a placeholder base UCS, on which no count
+  // depends (the confining pressures are two fractions of it, distinct for any UCS).
+  const RunJobs lay_out = [](const std::vector<json>& jobs) {
+    return std::vector<json>(jobs.size(), json{{"strength", 1.0}});
+  };
+  const TwinDesign design = make_twin_design(c.job_template, lay_out);
+  const TruthBonds truth = draw_truth_bonds(design.model, c.twin.seed);
+  return {{"design", 1}, {"observations", int(twin_jobs(design, c.twin, truth).jobs.size())}};
+}
+
 orch::CampaignKind twin_kind() {
   orch::CampaignKind kind;
   kind.name = "twin";
@@ -62,10 +74,24 @@ orch::CampaignKind twin_kind() {
   };
   kind.driver = [](orch::DriverContext& ctx) {
     const TwinCampaign c = parse_twin_campaign(ctx.request);
-    const RunJobs run = pool_run_jobs(ctx.service, ctx.campaign_id, ctx.stop);
+    // Before each batch the summary carries the progress model: jobs done (counted by the service
+    // as it is read, orchestrator/campaign_status.hpp) of the ones the twin plans.
+    const std::vector<orch::BudgetPart> parts = planned_twin_job_parts(c);
+    auto model = [&](bool finished) {
+      return orch::progress_model_json("jobs",
+                                       int(ctx.service.store().counts(ctx.campaign_id).ended()),
+                                       parts, 0, std::nullopt, finished);
+    };
+    const RunJobs pool = pool_run_jobs(ctx.service, ctx.campaign_id, ctx.stop);
+    const RunJobs run = [&](const std::vector<json>& jobs) {
+      ctx.service.store().set_driver_status(ctx.campaign_id, "running",
+                                            json{{"progress", model(false)}}.dump());
+      return pool(jobs);
+    };
     const TwinDesign design = make_twin_design(c.job_template, run);
     const Twin twin = make_twin(design, c.twin, run);
     return json{{"kind", "twin"},
+                {"progress", model(true)},
                 {"name", c.name},
                 {"dataset", to_json(twin.dataset)},
                 {"truth", twin.truth},

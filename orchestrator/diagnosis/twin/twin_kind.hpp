@@ -5,7 +5,7 @@
 //
 // Request: {"kind": "twin", "name"?, "effect", "value" (unless "none"), "seed"?, "noise"?,
 //           "resolution"?, "job"? (the template; default demo_twin_template())}
-// Summary: {"kind": "twin", "dataset": {...}, "truth": {...}, "design": {...}}
+// Summary: {"kind": "twin", "progress": {...}, "dataset": {...}, "truth": {...}, "design": {...}}
 #pragma once
 
 #include <cstdint>
@@ -19,6 +19,7 @@
 #include "orchestrator/diagnosis/twin/twin.hpp"
 #include "orchestrator/diagnosis/twin/twin_design.hpp"
 #include "orchestrator/job_service.hpp"
+#include "orchestrator/progress_model.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -39,6 +40,11 @@ struct TwinCancelled : std::runtime_error {
 // std::runtime_error with the job's id and error for a failed run (a run without a peak fails),
 // TwinCancelled when `stop` is requested or the campaign is cancelled.
 RunJobs pool_run_jobs(orch::JobService& service, std::int64_t campaign_id, std::stop_token stop);
+
+// The jobs a twin plans, by part: "design" (its template's base UCT) and "observations" (the
+// distinct runs of its observations, twin_jobs): the budget of its progress model
+// (orchestrator/progress_model.hpp, unit "jobs").
+std::vector<orch::BudgetPart> planned_twin_job_parts(const TwinCampaign& c);
 
 orch::CampaignKind twin_kind();
 

@@ -5,11 +5,11 @@
 // shows the history so far.
 import {h, note, section, table} from '../dom.js';
 import {newtons, num, pct, pm, signed} from '../format.js';
-import {bestCurves} from './calibration_curves.js';
+import {bestCurves, bestFigures} from './calibration_curves.js';
 import {consistentSection} from './calibration_consistent.js';
 import {posteriorSection} from './calibration_posterior.js';
 import {convergencePlot, loadsPlot, planePlot, scatterPlot} from './calibration_plots.js';
-import {evaluationsText, isLive} from './progress.js';
+import {budgetText, isLive} from './progress.js';
 import {plotWidth} from './layout.js';
 import {fetchResults, resultsTable} from './results.js';
 
@@ -51,6 +51,8 @@ export async function renderCalibration(c, ctx) {
   if (best && best.fr0) {
     out.append(section(s.best ? 'The best point’s load curves' : 'The best point so far: load curves',
       await bestCurves(best, rows, s, lab, width, ctx)));
+    out.append(section(s.best ? 'The best point’s fracture and stress-strain' : 'The best point so far: fracture and stress-strain',
+      await bestFigures(best, rows, s, lab, width, ctx)));
   }
   if (s.scatter && Array.isArray(s.scatter.runs) && s.scatter.runs.length) {
     out.append(scatterSection(s, lab, width));
@@ -77,16 +79,16 @@ function verdictSection(c, s, best, lab) {
     parts.push(h('p', {class: `verdict verdict-${s.verdict}`}, h('strong', {}, `Verdict: ${s.verdict}`),
       s.verdict_reason ? ` — ${s.verdict_reason}` : ''));
     parts.push(h('p', {}, `Stopped: ${String(s.stop_reason || '').replaceAll('_', ' ')}; `,
-      `${s.progress ? evaluationsText(s.progress) : `${s.evaluations} evaluations`} (${s.failed_evaluations || 0} failed); `,
+      `${s.progress ? budgetText(s.progress) : `${s.evaluations} evaluations`} (${s.failed_evaluations || 0} failed); `,
       `tolerance ${pct(s.tolerance, 1)} on each load; strategy ${s.strategy ? s.strategy.used || s.strategy.requested : '–'}` +
       (s.strategy && s.strategy.algorithm ? ` (${s.strategy.algorithm})` : '') + '.'));
   } else if (isLive(c)) {
     parts.push(h('p', {class: 'verdict verdict-running'}, h('strong', {}, 'Running: '),
-      `${s.progress ? evaluationsText(s.progress) : `${s.evaluations ?? 0} evaluations`}; the report comes when the search ends.`));
+      `${s.progress ? budgetText(s.progress) : `${s.evaluations ?? 0} evaluations`}; the report comes when the search ends.`));
   } else {
     // Cancelled (or stopped) before its report: what it evaluated is all there is.
     parts.push(h('p', {class: 'verdict verdict-incomplete'}, h('strong', {}, `No report (${c.driver_status || c.state}): `),
-      `the search stopped after ${s.progress ? evaluationsText(s.progress) : `${s.evaluations ?? 0} evaluations`}; below is what it evaluated.`));
+      `the search stopped after ${s.progress ? budgetText(s.progress) : `${s.evaluations ?? 0} evaluations`}; below is what it evaluated.`));
   }
   if (best) {
     const labBest = s.best && s.best.lab;

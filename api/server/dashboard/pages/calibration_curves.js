@@ -1,16 +1,11 @@
-// The best point's UCT and BTT jobs (same strengths and the search's packing seed) and their load
-// curves against the targets.
-import {getJson} from '../api.js';
+// The best point's UCT and BTT jobs (same strengths and the search's packing seed): their load
+// curves against the targets, and their stress-strain curves and fractures as the job page draws
+// them.
 import {h, note} from '../dom.js';
 import {loadCurvePlot, fetchCurve} from './curves.js';
+import {jobDetail, jobFigures} from './job_figures.js';
 
 const same = (a, b) => Math.abs(a - b) <= 1e-9 * Math.max(Math.abs(a), Math.abs(b));
-
-async function jobDetail(id, ctx) {
-  const key = `job:${id}`;
-  if (!ctx.cache.has(key)) ctx.cache.set(key, await getJson(`/api/v1/jobs/${id}`, {signal: ctx.signal}));
-  return ctx.cache.get(key);
-}
 
 // The succeeded job of `test` at the best point; with several (other packing seeds), the one
 // whose spec has the search's seed.
@@ -24,9 +19,12 @@ async function bestJob(rows, best, test, seed, ctx) {
   return at[0];
 }
 
+function bestSeed(best, s) {
+  return best.seed ?? (s.history || []).find((r) => r.index === best.evaluation)?.seed;
+}
+
 export async function bestCurves(best, rows, s, lab, width, ctx) {
-  const history = s.history || [];
-  const seed = best.seed ?? history.find((r) => r.index === best.evaluation)?.seed;
+  const seed = bestSeed(best, s);
   const out = [];
   for (const test of ['uct', 'btt']) {
     const job = await bestJob(rows, best, test, seed, ctx);
@@ -44,4 +42,14 @@ export async function bestCurves(best, rows, s, lab, width, ctx) {
     })));
   }
   return h('div', {class: 'plots'}, out);
+}
+
+export async function bestFigures(best, rows, s, lab, width, ctx) {
+  const seed = bestSeed(best, s);
+  const out = [];
+  for (const test of ['uct', 'btt']) {
+    const job = await bestJob(rows, best, test, seed, ctx);
+    if (job) out.push(await jobFigures(job.job_id, `${test.toUpperCase()} at the best point`, width, lab, ctx));
+  }
+  return out.length ? out : note('No finished job at the best point yet.');
 }

@@ -4,7 +4,7 @@
 import {h, note, section, table} from '../dom.js';
 import {num, pct, signed} from '../format.js';
 import {groupedBars, horizontalBars} from '../plot/bar_chart.js';
-import {isLive} from './progress.js';
+import {budgetText, isLive} from './progress.js';
 import {plotWidth} from './layout.js';
 import {fetchResults, resultsTable} from './results.js';
 
@@ -18,7 +18,7 @@ export async function renderDiagnosis(c, ctx) {
   const out = h('div', {class: 'diagnosis'});
   if (s.error) out.append(h('p', {class: 'error', role: 'alert'}, `The diagnosis failed: ${s.error}`));
   if (!s.verdict) {
-    const where = s.phase ? `phase ${s.step} of ${s.steps} (${s.phase}), ${s.runs ?? 0} runs` : 'the start';
+    const where = s.phase ? `phase ${s.step} of ${s.steps} (${s.phase}), ${s.progress ? budgetText(s.progress) : `${s.runs ?? 0} runs`}` : 'the start';
     out.append(h('p', {class: `verdict ${isLive(c) ? 'verdict-running' : 'verdict-incomplete'}`},
       isLive(c) ? [h('strong', {}, 'Running: '), `${where} so far. The verdict, residuals and scores appear when it finishes.`]
         : [h('strong', {}, `No report (${c.driver_status || c.state}): `), `it stopped at ${where}.`]));

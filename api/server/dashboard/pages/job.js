@@ -7,8 +7,8 @@ import {badge, clear, facts, h, note, progressBar, rememberFocus, section, table
 import {dateTime, duration, newtons, num, pascals, strengthFormula} from '../format.js';
 import {watchJson} from '../poll.js';
 import {labFactors} from './calibration.js';
-import {brokenBondsPlot, fetchCurve, loadCurvePlot, stressStrainPlot} from './curves.js';
-import {fractureSection} from './fracture.js';
+import {brokenBondsPlot, fetchCurve, loadCurvePlot} from './curves.js';
+import {fractureFor, stressStrainFor} from './job_figures.js';
 import {plotWidth} from './layout.js';
 
 const live = (j) => j.state === 'queued' || j.state === 'running';
@@ -73,22 +73,15 @@ async function jobView(j, ctx) {
       const plots = [loadCurvePlot({title: `${name} load against displacement`, width, lab, curves: [{name, curve}],
         peak: r.peak_load, caption: `${curve.load.length} points`}),
       brokenBondsPlot({title: 'Broken bonds against displacement', width, curve, lab, bonds: r.bonds})];
-      if ((j.test === 'uct' || j.test === 'triaxial') && r.peak_load > 0 && j.spec && j.spec.sample) {
-        plots.push(stressStrainPlot({title: `${name} stress against strain`, r, curve, height: j.spec.sample.height, width, lab}));
-      }
+      const stress = stressStrainFor(j, curve, width, lab);
+      if (stress) plots.push(stress);
       out.push(section('Load, stress and broken bonds', h('div', {class: 'plots'}, ...plots)));
     } catch (e) {
       if (e.name === 'AbortError') throw e;
       out.push(note(`No load curve: ${e.message}`));
     }
-    if (j.test !== 'elastic') {
-      try {
-        out.push(await fractureSection(j, curve, width, ctx));
-      } catch (e) {
-        if (e.name === 'AbortError') throw e;
-        out.push(section('Fracture', note(`No broken bonds to draw: ${e.message}`)));
-      }
-    }
+    const fracture = await fractureFor(j, curve, width, ctx);
+    if (fracture) out.push(fracture);
   }
   out.push(await logSection(j, ctx));
   out.push(h('details', {}, h('summary', {}, 'Spec (canonical JSON)'), h('pre', {class: 'json'}, JSON.stringify(j.spec, null, 2))));
