@@ -13,6 +13,7 @@
 #include "orchestrator/ensemble.hpp"
 #include "orchestrator/job_files.hpp"
 #include "orchestrator/job_identity.hpp"
+#include "orchestrator/realisations.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/sweep.hpp"
 #include "support.hpp"
@@ -66,9 +67,27 @@ TEST(EnsembleStats, FailedRealisationsAreListedCountedAndLeftOut) {
   EXPECT_EQ(j["modulus"]["mean"], nullptr);
   EXPECT_EQ(j["realisations"][1], json::parse(R"({"seed": 2, "job_id": 102, "state": "failed",
       "peak_load_n": null, "strength_pa": null, "youngs_modulus_pa": null,
-      "error": "no peak: no bond broke"})"));
+      "quasi_static": null, "error": "no peak: no bond broke"})"));
   EXPECT_EQ(j["realisations"][0]["peak_load_n"], 67.0);
   EXPECT_EQ(j["realisations"][0]["error"], nullptr);
+}
+
+// A run's own quasi-static verdict travels with its realisation (what a calibration's verdict
+// counts), and a run that reported none has none.
+TEST(EnsembleStats, ARealisationCarriesItsRunsQuasiStaticVerdict) {
+  JobOutcome outcome;
+  outcome.job_id = 7;
+  outcome.state = "succeeded";
+  outcome.result = db::ResultRow{};
+  outcome.result->peak_load = 100.0;
+  outcome.result->result = R"({"loading_rate": {"quasi_static": false, "peak_transits": 12}})";
+  EXPECT_EQ(realisation(outcome, 3).quasi_static, std::optional<bool>(false));
+  outcome.result->result = R"({"loading_rate": {"quasi_static": true}})";
+  EXPECT_EQ(realisation(outcome, 3).quasi_static, std::optional<bool>(true));
+  outcome.result->result = R"({"peak_reached": true})";
+  EXPECT_FALSE(realisation(outcome, 3).quasi_static);
+  outcome.result->result = R"({"loading_rate": {"quasi_static": null}})";
+  EXPECT_FALSE(realisation(outcome, 3).quasi_static);
 }
 
 TEST(EnsembleStats, RealisationSeedsAndWhatCannotBeRun) {
