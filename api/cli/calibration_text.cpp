@@ -196,6 +196,15 @@ std::string posterior_text(const json& p, const json& best) {
                   (num(100 * t["relative_error"].get<double>(), "%+.2f") + "%").c_str());
     out << line;
   }
+  for (const json& t : at(p, "further").is_array() ? p["further"] : json::array()) {
+    const json& shown = in_lab && at(t, "lab").is_object() ? t["lab"] : t;
+    std::snprintf(line, sizeof line, "  %-4s%14s%14s  %-26s%s  (%s)\n", "more",
+                  num(shown["target"], "%.6g").c_str(), num(shown["mean"], "%.6g").c_str(),
+                  range_text(shown["interval"]).c_str(),
+                  (num(100 * t["relative_error"].get<double>(), "%+.2f") + "%").c_str(),
+                  value_text(at(t, "name")).c_str());
+    out << line;
+  }
   out << "  one packing's scatter: UCT sd " << num(100 * p["uct"]["run_sd"].get<double>(), "%.3g")
       << "%, BTT sd " << num(100 * p["btt"]["run_sd"].get<double>(), "%.3g") << "% (in ln)\n";
   if (best.is_object() && at(best, "uct").is_object()) {

@@ -226,6 +226,51 @@ void check_fidelity_fields(const json& campaign, const CalibrationCampaign& c) {
     throw orch::RequestError("fidelity.runs", "only with \"strategy\": \"bayes\"");
 }
 
+// "further_targets": [{"name", "test": "uct" | "btt" | "triaxial", "patch": {...},
+// "peak_load": N (the targets' units), "uncertainty": relative sd}], only with "strategy": "bayes"
+// and one specimen. Each patched template is validated for its test as the job itself is.
+void parse_further_targets(orch::JsonFields& root, CalibrationCampaign& c) {
+  const json* list = root.get("further_targets");
+  if (!list) return;
+  if (c.strategy != Strategy::bayes)
+    throw orch::RequestError("further_targets", "only with \"strategy\": \"bayes\"");
+  if (!c.fine_patch.is_null())
+    throw orch::RequestError("further_targets", "not with \"fidelity\" (one specimen)");
+  if (!list->is_array() || list->empty() || list->size() > 4)
+    throw orch::RequestError("further_targets", "must be an array of 1 to 4 tests");
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const std::string path = "further_targets[" + std::to_string(i) + "]";
+    if (!(*list)[i].is_object()) throw orch::RequestError(path, "must be an object");
+    orch::JsonFields f((*list)[i], path);
+    FurtherTarget t;
+    const std::string test = f.string("test").value_or("");
+    const std::optional<TestKind> kind = test_kind_from_string(test);
+    if (!kind || *kind == TestKind::elastic)
+      throw orch::RequestError(f.path_of("test"), "must be uct, btt or triaxial");
+    t.test = *kind;
+    const json& patch = f.require("patch");
+    if (!patch.is_object()) throw orch::RequestError(f.path_of("patch"), "must be an object");
+    t.patch = patch;
+    json tmpl = c.job_template;
+    tmpl.merge_patch(patch);
+    try {
+      const BondSpec probe{std::sqrt(c.fr0_n.lo * c.fr0_n.hi), std::sqrt(c.fs0_n.lo * c.fs0_n.hi)};
+      parse_job_template(tmpl, t.test, probe);
+    } catch (const SpecError& e) {
+      throw orch::under(f.path_of("patch"), e);
+    }
+    t.value = f.positive("peak_load").value_or(0.0);
+    if (!(t.value > 0)) throw orch::RequestError(f.path_of("peak_load"), "is required (N, > 0)");
+    t.model_n = c.targets.scaling ? c.targets.scaling->force_to_model(t.value) : t.value;
+    t.sd = f.positive("uncertainty").value_or(std::max(c.inference.lab_uct, c.inference.lab_btt));
+    if (t.sd >= 1)
+      throw orch::RequestError(f.path_of("uncertainty"), "must be below 1 (a relative sd)");
+    t.name = f.string("name").value_or(test + " " + patch.dump());
+    f.reject_unknown();
+    c.further.push_back(std::move(t));
+  }
+}
+
 CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   orch::JsonFields root(campaign, "");
   CalibrationCampaign c;
@@ -263,6 +308,7 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   c.strategy = parse_strategy(root);
   parse_inference(root, c);
   check_fidelity_fields(campaign, c);
+  parse_further_targets(root, c);
   c.initial_points = int(root.integer("initial_points", 0, 64).value_or(c.initial_points));
   c.random_seed = std::uint64_t(
       root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));

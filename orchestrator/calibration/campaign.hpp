@@ -31,6 +31,18 @@ struct InferenceSettings {
   int batch = 0;              // runs per round; 0: the pool's workers (at least 2)
 };
 
+// A further lab test the "bayes" strategy matches besides the UCT and the BTT: a test from the
+// engine's menu at a patch of the job template (what a report's next test names), e.g. a squat UCT
+// or a triaxial at a confinement. Every run then runs it too, and it has its own emulator.
+struct FurtherTarget {
+  std::string name;  // as the report shows it
+  TestKind test = TestKind::uct;
+  nlohmann::json patch;  // merged into the job template (model units)
+  double value = 0.0;    // the peak load as given (N, in the targets' units)
+  double model_n = 0.0;  // the same in model units
+  double sd = 0.05;      // relative sd of the lab value
+};
+
 struct Range {
   double lo;
   double hi;
@@ -74,6 +86,7 @@ struct CalibrationCampaign {
   // With "strategy": "bayes": the fine runs (UCT + BTT, one packing each) after the coarse search,
   // pooled with the coarse runs in one two-level emulator (inference/emulator/two_level.hpp).
   int fine_runs = 12;
+  std::vector<FurtherTarget> further;  // "further_targets", only with "strategy": "bayes"
   // F on the fine specimen = F of the search x this: (R_fine / R_coarse)^2 when the fine specimen
   // has smaller grains at the same stress scale (bond forces scale with the bond's area).
   double fine_strength_scale = 1.0;

@@ -27,6 +27,9 @@ struct EvaluationRecord {
   std::string error;
   std::optional<orch::Ensemble> uct;  // realisations and statistics, when the evaluator gave them
   std::optional<orch::Ensemble> btt;
+  // The bayes strategy's further targets' peak loads at this run (model units, in the campaign's
+  // `further` order); absent where a further test failed.
+  std::vector<std::optional<double>> further_n;
   double misfit = 0.0;  // the objective; a penalty for a failed evaluation
   bool within_tolerance = false;
 };

@@ -251,6 +251,18 @@ json predicted_json(const PredictedLoad& l, const CalibrationCampaign& c) {
   return j;
 }
 
+// The further targets' predictions, each with its name and test.
+json further_json(const std::vector<PredictedLoad>& loads, const CalibrationCampaign& c) {
+  json out = json::array();
+  for (std::size_t k = 0; k < loads.size() && k < c.further.size(); ++k) {
+    json j = predicted_json(loads[k], c);
+    j["name"] = c.further[k].name;
+    j["test"] = to_string(c.further[k].test);
+    out.push_back(j);
+  }
+  return out;
+}
+
 // The "bayes" strategy's answer: model units, with lab units beside when the targets had them.
 json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationCampaign& c) {
   if (!p) return nullptr;
@@ -276,6 +288,7 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
       {"bounded", p->bounds_reached.empty()},
       {"uct", predicted_json(p->uct, c)},
       {"btt", predicted_json(p->btt, c)},
+      {"further", further_json(p->further, c)},
       {"lab_uncertainty",
        {{"uct", p->uct.lab_sd},
         {"btt", p->btt.lab_sd},

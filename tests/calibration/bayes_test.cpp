@@ -16,6 +16,8 @@
 #include "orchestrator/calibration/bayes/emulators.hpp"
 #include "orchestrator/calibration/driver.hpp"
 #include "orchestrator/calibration/report.hpp"
+#include "orchestrator/calibration/specimen.hpp"
+#include "orchestrator/calibration/suggestion.hpp"
 #include "synthetic.hpp"
 
 namespace rockcal::calibration {
@@ -378,6 +380,76 @@ TEST(BayesCalibration, FidelityFieldsBelongToTheirStrategy) {
             "fidelity.runs: must be in [2, 1000]");
   EXPECT_EQ(error({{"strategy", "bayes"}, {"fidelity", {{"fine", fine}, {"runs", 8}}}}),
             "accepted");
+}
+
+// The next test, taken: with targets known to 10% the region is long and the report names the
+// triaxial; a lab triaxial value at the same truth, added as a further target, must shorten the
+// region about as much as the report expected, and keep the truth inside it.
+TEST(BayesCalibration, AddingTheNamedTestShrinksTheRegionAsExpected) {
+  const BondPoint truth{60, 120};
+  const CalibrationCampaign c = testing::campaign(testing::power_law(truth), bayes(40, 0.10));
+  ProbingEvaluator e(testing::power_law);
+  e.sd_uct = e.sd_btt = 0.05;
+  const CalibrationReport before = run_calibration(c, e);
+  ASSERT_TRUE(before.posterior && before.suggestion);
+  ASSERT_EQ(before.suggestion->observable.rfind("a triaxial peak load", 0), 0u);
+  double expected = 0;
+  for (const auto& [name, shrinkage] : before.suggestion->candidates)
+    if (name == before.suggestion->observable) expected = shrinkage;
+
+  const double confinement =
+      kTriaxialConfinement * uct_strength_pa(c.targets.model_loads_n.uct_n, c.model_specimen);
+  nlohmann::json over = bayes(40, 0.10);
+  over["further_targets"] = {
+      {{"name", "triaxial"},
+       {"test", "triaxial"},
+       {"patch", {{"loading", {{"confining_pressure", confinement}}}}},
+       {"peak_load", 3000 * std::pow(truth.fr0_n, 0.05) * std::pow(truth.fs0_n, 0.95)},
+       {"uncertainty", 0.10}}};
+  const CalibrationCampaign with = testing::campaign(testing::power_law(truth), over);
+  ASSERT_EQ(with.further.size(), 1u);
+  ProbingEvaluator e2(testing::power_law);
+  e2.sd_uct = e2.sd_btt = 0.05;
+  const CalibrationReport after = run_calibration(with, e2);
+  ASSERT_TRUE(after.posterior);
+  ASSERT_EQ(after.posterior->further.size(), 1u);
+  EXPECT_GT(e2.probes, 0);
+  EXPECT_TRUE(in_credible_region(*after.posterior, truth, with));
+  // The region's size: the product of the two intervals' log spans.
+  auto area = [](const PosteriorSummary& p) {
+    return std::log(p.fr0.hi / p.fr0.lo) * std::log(p.fs0.hi / p.fs0.lo);
+  };
+  const double axis_ratio = std::sqrt(area(*after.posterior) / area(*before.posterior));
+  std::printf(
+      "expected shrinkage %.2f; the region's size ratio %.2f (F_r0 %.3g-%.3g -> %.3g-%.3g)\n",
+      expected, axis_ratio, before.posterior->fr0.lo, before.posterior->fr0.hi,
+      after.posterior->fr0.lo, after.posterior->fr0.hi);
+  EXPECT_LT(axis_ratio, 1.0 - 0.5 * expected);
+  EXPECT_NE(after.verdict_reason.find(", triaxial "), std::string::npos) << after.verdict_reason;
+}
+
+TEST(BayesCalibration, FurtherTargetsAreRefusedNamingTheField) {
+  const nlohmann::json squat = {
+      {"test", "uct"}, {"patch", {{"sample", {{"height", 8}}}}}, {"peak_load", 900}};
+  nlohmann::json b = bayes(40, 0.05);
+  b["further_targets"] = {squat};
+  EXPECT_EQ(error(b), "accepted");
+  EXPECT_EQ(error({{"further_targets", {squat}}}),
+            "further_targets: only with \"strategy\": \"bayes\"");
+  nlohmann::json bad = squat;
+  bad["test"] = "elastic";
+  b["further_targets"] = {bad};
+  EXPECT_EQ(error(b), "further_targets[0].test: must be uct, btt or triaxial");
+  bad = squat;
+  bad.erase("peak_load");
+  b["further_targets"] = {bad};
+  EXPECT_EQ(error(b), "further_targets[0].peak_load: is required (N, > 0)");
+  bad = squat;
+  bad["uncertainty"] = 2;
+  b["further_targets"] = {bad};
+  EXPECT_EQ(error(b), "further_targets[0].uncertainty: must be below 1 (a relative sd)");
+  b["further_targets"] = nlohmann::json::array();
+  EXPECT_EQ(error(b), "further_targets: must be an array of 1 to 4 tests");
 }
 
 }  // namespace

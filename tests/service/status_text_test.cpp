@@ -223,6 +223,43 @@ TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
 
 // A diagnosis's line (rockcal status, rockcal diagnose and rockcal twin share it): its progress
 // model (jobs done of the ones it plans, each phase named, the ETA of what is left) and its phase.
+// A bayes calibration's summary: the posterior's intervals and each load against its target, a
+// further target's row named beside the UCT and BTT.
+TEST(CalibrationSummary, APosteriorShowsItsIntervalsAndFurtherTargets) {
+  auto load = [](double target, double mean, double err) {
+    return json{{"target", target},
+                {"mean", mean},
+                {"interval", {mean * 0.9, mean * 1.1}},
+                {"relative_error", err},
+                {"run_sd", 0.2}};
+  };
+  json further = load(5000, 5100, 0.02);
+  further["name"] = "triaxial at 10 Pa";
+  const json summary = {{"kind", "calibration"},
+                        {"verdict", "feasible"},
+                        {"verdict_reason", "met"},
+                        {"posterior",
+                         {{"runs", 40},
+                          {"points", 30},
+                          {"level", 0.9},
+                          {"lab_uncertainty", {{"uct", 0.1}, {"btt", 0.1}, {"source", "request"}}},
+                          {"estimate", {{"fr0", 60.0}, {"fs0", 120.0}}},
+                          {"fr0", {50.0, 70.0}},
+                          {"fs0", {100.0, 140.0}},
+                          {"uct", load(1000, 1001, 0.001)},
+                          {"btt", load(100, 99.5, -0.005)},
+                          {"further", {further}},
+                          {"unique", true},
+                          {"why", "narrow"}}}};
+  const std::string text = calibration_text(summary);
+  EXPECT_NE(text.find("  F_r0              60  [50, 70]"), std::string::npos) << text;
+  EXPECT_NE(text.find("  more          5000          5100  [4590, 5610]              +2.00%  "
+                      "(triaxial at 10 Pa)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("unique: yes - narrow"), std::string::npos) << text;
+}
+
 TEST(DiagnosisProgress, JobsOfThePlannedPhasesEtaAndThePhase) {
   json c = running_calibration(390.0);
   c["kind"] = "diagnosis";

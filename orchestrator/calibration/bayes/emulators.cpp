@@ -48,8 +48,11 @@ PredictedLoad predicted(const inference::Gp& gp, const Eigen::Vector2d& x, doubl
 std::vector<inference::Target> inference_targets(const CalibrationCampaign& c) {
   const PeakLoads& t = c.targets.model_loads_n;
   const InferenceSettings& s = c.inference;
-  return {{std::log(t.uct_n), s.lab_uct, s.discrepancy},
-          {std::log(t.btt_n), s.lab_btt, s.discrepancy}};
+  std::vector<inference::Target> out = {{std::log(t.uct_n), s.lab_uct, s.discrepancy},
+                                        {std::log(t.btt_n), s.lab_btt, s.discrepancy}};
+  for (const FurtherTarget& f : c.further)
+    out.push_back({std::log(f.model_n), f.sd, s.discrepancy});
+  return out;
 }
 
 namespace {
@@ -58,11 +61,13 @@ namespace {
 struct PointsRuns {
   std::vector<BondPoint> points;
   std::vector<inference::PointRuns> uct, btt;
+  std::vector<std::vector<inference::PointRuns>> further;  // [target][point]
   int runs = 0;
 };
 
 PointsRuns gather(const std::vector<EvaluationRecord>& history, const CalibrationCampaign& c) {
   PointsRuns g;
+  g.further.resize(c.further.size());
   std::map<std::pair<double, double>, int> index;
   for (const EvaluationRecord& r : history) {
     if (!r.loads) continue;
@@ -71,6 +76,11 @@ PointsRuns gather(const std::vector<EvaluationRecord>& history, const Calibratio
       g.points.push_back(r.point);
       g.uct.push_back({to_unit(r.point, c), {}});
       g.btt.push_back({to_unit(r.point, c), {}});
+      for (auto& f : g.further) f.push_back({to_unit(r.point, c), {}});
+    }
+    for (std::size_t k = 0; k < g.further.size() && k < r.further_n.size(); ++k) {
+      if (r.further_n[k] && *r.further_n[k] > 0)
+        g.further[k][it->second].values.push_back(std::log(*r.further_n[k]));
     }
     g.uct[it->second].values.push_back(std::log(r.loads->uct_n));
     g.btt[it->second].values.push_back(std::log(r.loads->btt_n));
@@ -80,8 +90,9 @@ PointsRuns gather(const std::vector<EvaluationRecord>& history, const Calibratio
 }
 
 void finish(Emulators& m, const CalibrationCampaign& c) {
-  m.run_noise[0] = inference::per_run_noise(m.uct);
-  m.run_noise[1] = inference::per_run_noise(m.btt);
+  m.run_noise.clear();
+  for (const inference::Gp* gp : m.emulators())
+    m.run_noise.push_back(inference::per_run_noise(*gp));
   m.targets = inference_targets(c);
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
 }
@@ -95,6 +106,11 @@ Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
   Emulators m;
   m.uct = inference::fit_gp(inference::gp_data(g.uct));
   m.btt = inference::fit_gp(inference::gp_data(g.btt));
+  for (const auto& f : g.further) {
+    const inference::GpData d = inference::gp_data(f);
+    if (d.x.rows() < 3) throw std::runtime_error("fewer than 3 points with a further test's load");
+    m.further.push_back(inference::fit_gp(d));
+  }
   m.points = std::move(g.points);
   m.runs = g.runs;
   finish(m, c);
@@ -191,6 +207,11 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   const PeakLoads& t = c.targets.model_loads_n;
   p.uct = predicted(m.uct, peak, t.uct_n, s.lab_uct, m.run_noise[0], share[0], z);
   p.btt = predicted(m.btt, peak, t.btt_n, s.lab_btt, m.run_noise[1], share[1], z);
+  for (std::size_t k = 0; k < m.further.size(); ++k) {
+    const FurtherTarget& f = c.further[k];
+    p.further.push_back(
+        predicted(m.further[k], peak, f.model_n, f.sd, m.run_noise[2 + k], share[2 + k], z));
+  }
   p.lab_stated = s.lab_stated;
   p.discrepancy = s.discrepancy;
   p.unique_width = s.unique_width;

@@ -13,13 +13,19 @@ namespace rockcal::calibration {
 
 struct Emulators {
   inference::Gp uct, btt;
-  double run_noise[2] = {0, 0};  // variance of one run's ln load (the emulators' nugget)
+  std::vector<inference::Gp> further;  // one per further target (campaign.further)
+  // Variance of one run's ln load (each emulator's nugget): UCT, BTT, then the further targets.
+  std::vector<double> run_noise;
   int runs = 0;
   int coarse_runs = 0;  // fine emulators: the coarse runs beneath them (0 for coarse emulators)
   std::vector<BondPoint> points;  // the distinct points run, in first-run order
   std::vector<inference::Target> targets;
   inference::PosteriorGrid grid;
-  std::vector<const inference::Gp*> emulators() const { return {&uct, &btt}; }
+  std::vector<const inference::Gp*> emulators() const {
+    std::vector<const inference::Gp*> all = {&uct, &btt};
+    for (const inference::Gp& gp : further) all.push_back(&gp);
+    return all;
+  }
 };
 
 // The targets in ln with the lab's relative sd and the stated discrepancy.

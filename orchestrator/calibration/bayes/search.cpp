@@ -29,9 +29,15 @@ struct Run {
   bool fine = false;
 };
 
+// What a batch of runs gave: each run's UCT and BTT, and its further tests' peak loads.
+struct Batch {
+  std::vector<EvaluationOutcome> outcomes;
+  std::vector<std::vector<std::optional<double>>> further;  // [run][further target]
+};
+
 struct Flight {
   std::vector<Run> runs;
-  std::future<std::vector<EvaluationOutcome>> outcomes;
+  std::future<Batch> outcomes;
 };
 
 class Search {
@@ -47,7 +53,7 @@ class Search {
     while (!flights_.empty()) {
       Flight f = std::move(flights_.front());
       flights_.pop_front();
-      std::vector<EvaluationOutcome> outcomes;
+      Batch outcomes;
       try {
         outcomes = f.outcomes.get();
       } catch (const EvaluationCancelled&) {
@@ -64,7 +70,8 @@ class Search {
           fine_phase_ ? (fine_model_ ? &*fine_model_ : nullptr) : (model_ ? &*model_ : nullptr);
       if (current && !checked_) {
         const std::vector<double> share = emulator_shares(*current);
-        converged_ = share[0] < kShareStop && share[1] < kShareStop;
+        converged_ =
+            std::all_of(share.begin(), share.end(), [](double s) { return s < kShareStop; });
       }
       while (flights_.size() < 2 && can_plan()) plan_next();
     }
@@ -125,12 +132,12 @@ class Search {
       }
       auto work = [e, probes = std::move(probes)] {
         const std::vector<orch::Ensemble> ens = e->probe_batch(probes);
-        std::vector<EvaluationOutcome> out;
+        Batch out;
         for (std::size_t i = 0; i + 1 < probes.size(); i += 2) {
           if (i + 1 < ens.size()) {
-            out.push_back(outcome_of(ens[i], ens[i + 1]));
+            out.outcomes.push_back(outcome_of(ens[i], ens[i + 1]));
           } else {
-            out.push_back({std::nullopt, "the evaluator runs no fine specimen", {}, {}});
+            out.outcomes.push_back({std::nullopt, "the evaluator runs no fine specimen", {}, {}});
           }
         }
         return out;
@@ -140,8 +147,30 @@ class Search {
     }
     launched_ += int(runs.size());
     std::vector<EvaluationRequest> requests;
-    for (const Run& r : runs) requests.push_back({r.point, r.seed, 1});
-    auto work = [e, requests = std::move(requests)] { return e->evaluate_batch(requests); };
+    std::vector<ProbeRequest> probes;  // each run's further tests, side by side with its UCT, BTT
+    for (const Run& r : runs) {
+      requests.push_back({r.point, r.seed, 1});
+      for (const FurtherTarget& t : c_.further)
+        probes.push_back({r.point, r.seed, 1, t.test, t.patch});
+    }
+    const std::size_t per_run = c_.further.size();
+    auto work = [e, per_run, requests = std::move(requests), probes = std::move(probes)] {
+      std::future<std::vector<orch::Ensemble>> further;
+      if (!probes.empty())
+        further = std::async(std::launch::async, [e, &probes] { return e->probe_batch(probes); });
+      Batch out;
+      out.outcomes = e->evaluate_batch(requests);
+      const std::vector<orch::Ensemble> ens =
+          further.valid() ? further.get() : std::vector<orch::Ensemble>();
+      for (std::size_t i = 0; i < requests.size(); ++i) {
+        out.further.emplace_back();
+        for (std::size_t k = 0; k < per_run; ++k) {
+          const std::size_t at = i * per_run + k;
+          out.further.back().push_back(at < ens.size() ? ens[at].peak_load.mean : std::nullopt);
+        }
+      }
+      return out;
+    };
     flights_.push_back({std::move(runs), std::async(std::launch::async, std::move(work))});
   }
 
@@ -155,7 +184,8 @@ class Search {
     flights_.clear();
   }
 
-  void take(const std::vector<Run>& runs, const std::vector<EvaluationOutcome>& outcomes) {
+  void take(const std::vector<Run>& runs, const Batch& batch) {
+    const std::vector<EvaluationOutcome>& outcomes = batch.outcomes;
     for (std::size_t i = 0; i < runs.size(); ++i) {
       EvaluationRecord r;
       r.index = int(history_.size());
@@ -167,6 +197,7 @@ class Search {
       if (!fill_record(r, i < outcomes.size() ? outcomes[i] : missing, c_)) {
         r.misfit = failure_floor(c_);
       }
+      if (i < batch.further.size()) r.further_n = batch.further[i];
       history_.push_back(r);
       (runs[i].fine ? fine_history_ : coarse_history_).push_back(r);
       if (r.phase == "check" || r.phase == "fine check") check_.push_back(r);
@@ -280,7 +311,7 @@ class Search {
     inference::DesignInput in;
     in.emulators = m.emulators();
     in.targets = m.targets;
-    in.run_noise = {m.run_noise[0], m.run_noise[1]};
+    in.run_noise = m.run_noise;
     in.posterior = &m.grid;
     in.candidates.resize(Eigen::Index(cand.size()), 2);
     for (std::size_t i = 0; i < cand.size(); ++i) in.candidates.row(Eigen::Index(i)) = cand[i];

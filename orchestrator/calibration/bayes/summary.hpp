@@ -42,6 +42,7 @@ struct PosteriorSummary {
   std::vector<RegionSpan> region;           // the highest-density cells holding `level`
   std::vector<std::string> bounds_reached;  // e.g. "the upper bound of F_s0 (1000)"
   PredictedLoad uct, btt;
+  std::vector<PredictedLoad> further;  // the further targets', in the campaign's order
   bool lab_stated = false;
   double discrepancy = 0.0;
   double unique_width = 1.5;

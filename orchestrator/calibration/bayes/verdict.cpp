@@ -8,9 +8,12 @@
 namespace rockcal::calibration {
 namespace {
 
-std::string loads_text(const PosteriorSummary& p) {
-  return sentence("UCT %+.3g%%, BTT %+.3g%%", 100 * p.uct.relative_error,
-                  100 * p.btt.relative_error);
+std::string loads_text(const PosteriorSummary& p, const CalibrationCampaign& c) {
+  std::string out =
+      sentence("UCT %+.3g%%, BTT %+.3g%%", 100 * p.uct.relative_error, 100 * p.btt.relative_error);
+  for (std::size_t k = 0; k < p.further.size() && k < c.further.size(); ++k)
+    out += ", " + c.further[k].name + sentence(" %+.3g%%", 100 * p.further[k].relative_error);
+  return out;
 }
 
 std::string region_text(const PosteriorSummary& p) {
@@ -55,19 +58,19 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
     r.verdict_reason =
         sentence("the predicted loads at the estimate are within %.3g%% of both targets (",
                  100 * c.tolerance) +
-        loads_text(p) + ")" + runs + "; " + region_text(p) +
+        loads_text(p, c) + ")" + runs + "; " + region_text(p) +
         (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why + faults;
     return;
   }
   if (r.stop_reason == StopReason::cancelled) {
     r.verdict = Verdict::incomplete;
     r.verdict_reason =
-        "cancelled before the predicted loads met both targets (" + loads_text(p) + ")";
+        "cancelled before the predicted loads met both targets (" + loads_text(p, c) + ")";
     return;
   }
   r.verdict = Verdict::compromise;
   const std::string miss =
-      "the predicted loads at the estimate miss the targets (" + loads_text(p) + ")";
+      "the predicted loads at the estimate miss the targets (" + loads_text(p, c) + ")";
   if (r.ratio && !r.ratio->target_inside()) {
     // The ratio first: no pair of strengths in the box gives it, so no scale of both can.
     r.verdict_reason =
