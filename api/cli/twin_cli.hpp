@@ -1,5 +1,5 @@
 // `rockcal twin`: writes a synthetic lab dataset made by the engine with a hidden effect, and the
-// truth beside it (docs/diagnosis.md, "Twin").
+// truth beside it (docs/diagnosis.md, "Twins").
 #pragma once
 
 #include <cstdint>

@@ -37,8 +37,8 @@ from engine_runs import parse_effect, run_job
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# The registry's "strong" end of each effect's fitted parameter (docs/diagnosis.md, the effects
-# table); packing's random packing needs its radius ratio in the sample instead.
+# The registry's "strong" end of each effect's fitted parameter (docs/diagnosis.md, "Candidate
+# effects"); packing's random packing needs its radius ratio in the sample instead.
 STRONG = ("heterogeneity:weibull_m=2,packing:radius_ratio=2,platen_friction:mu=0.5,"
           "flaws:fraction=0.15,rate:speed_factor=8,compression_coupling:coupling=0,"
           "post_break_friction:mu=0.05,interaction_range:factor=1.5,"

@@ -19,9 +19,8 @@ struct BudgetSpec {
   std::vector<std::uint64_t> seeds;  // replicate packing seeds (default: template seed + 1, + 2)
   double speed_factor = 0.5;         // platen speed multiplier
   // Particles-per-length multipliers. On a coarse FCC packing each refinement is one draw of which
-  // lattice rows the specimen keeps (docs/diagnosis.md: 1.125-1.5x move a demo observation by up
-  // to 1.6 in ln), so several give a truer spread than one; the default is the issue's
-  // single 1.25x.
+  // lattice rows the specimen keeps (docs/diagnosis.md, "The error budget"), so several give a
+  // truer spread than one; the default is a single 1.25x.
   std::vector<double> resolutions{1.25};
   // Model points the variants are run at: the base fit and its neighbours (budget_offsets). One
   // point gives one draw of a change that on a coarse packing jumps by x4 between neighbouring

@@ -1,6 +1,6 @@
 // The synthetic twin: a lab dataset made by the engine itself, with one effect switched on at a
 // known value and bond strengths drawn from a seed, so a diagnosis can be checked against a truth
-// it was not told (docs/diagnosis.md, "Twin").
+// it was not told (docs/diagnosis.md, "Twins").
 #pragma once
 
 #include <cstdint>

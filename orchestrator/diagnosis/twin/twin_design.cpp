@@ -106,7 +106,7 @@ TwinDesign make_twin_design(const json& job_template, const RunJobs& run) {
   // (compression coupling, rate, the interaction range, heterogeneity) moves its strength apart
   // from the slender UCT's (docs/effects.md, "Signatures"). It replaced a 1.5x cylinder, the
   // dearest run of a model point and the observation that varied most between null twins
-  // (docs/diagnosis.md).
+  // (docs/diagnosis-measurements.md).
   squat.height_m = D;
   large_disc.diameter_m = 1.5 * D;
   large_disc.thickness_m = 1.5 * t;

@@ -1,6 +1,6 @@
-// The twin design (docs/diagnosis.md, "Twin"): the observations a synthetic twin measures for a job
-// template, their conditions and roles, and the engine job of each. Deterministic for a template,
-// so every twin of one template shares its conditions and differs only in what it hides.
+// The twin design (docs/diagnosis.md, "Twins"): the observations a synthetic twin measures for a
+// job template, their conditions and roles, and the engine job of each. Deterministic for a
+// template, so every twin of one template shares its conditions and differs only in what it hides.
 #pragma once
 
 #include <functional>
