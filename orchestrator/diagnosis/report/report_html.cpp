@@ -348,8 +348,9 @@ std::string report_html(const json& s) {
   out += budget_table(s);
   out += ratio_section(s);
   out +=
-      "<p class=\"note\">Method: docs/diagnosis.md. Quadratic response surfaces in (ln F_r0, "
-      "ln F_s0[, s]) fitted to engine runs on a grid; every candidate calibrated on them; the "
+      "<p class=\"note\">Method: docs/diagnosis.md. Response surfaces in (ln F_r0, ln F_s0[, s]) "
+      "(a cubic radial-basis interpolant on a quadratic, smoothed by cross-validation) fitted to "
+      "engine runs on a grid; every candidate calibrated on them; the "
       "base and the best candidates confirmed by real runs; effects ranked by held-out gap "
       "closure only.</p>\n</body></html>\n";
   return out;
