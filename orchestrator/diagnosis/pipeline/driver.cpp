@@ -342,6 +342,12 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   evidence.calibration_miss = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
                                              c.targets, judged, Role::calibration);
   temper_verdict(c.decision, evidence, report.verdict, conf);
+  report.inconsistencies = find_inconsistencies(c.dataset);
+  if (!report.inconsistencies.empty()) {
+    report.verdict.reason +=
+        "; the data disagree with themselves: " + inconsistency_text(report.inconsistencies) +
+        ", which no model can meet at once: that part of any gap is the data's";
+  }
   // Without held-out residuals there is nothing to judge; say what stopped the runs.
   if (evidence.held_out_observations > 0 && !evidence.base_has_held_out &&
       !report.first_error.empty()) {

@@ -246,6 +246,20 @@ json ratio_json(const std::optional<LabRatio>& r, const std::vector<Target>& tar
 
 }  // namespace
 
+namespace {
+
+json inconsistencies_json(const std::vector<Inconsistency>& pairs) {
+  json out = json::array();
+  for (const Inconsistency& p : pairs)
+    out.push_back({{"first", p.first},
+                   {"second", p.second},
+                   {"ln_difference", p.ln_difference},
+                   {"sigmas", p.sigmas}});
+  return out;
+}
+
+}  // namespace
+
 json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
   const std::vector<double> lab = ln_lab(c.targets);
   json observations = json::array();
@@ -266,6 +280,7 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
       {"observations", observations},
       {"budget", budget_json(r, c.targets, c.dataset.origin)},
       {"ratio", ratio_json(r.ratio, c.targets)},
+      {"data_inconsistencies", inconsistencies_json(r.inconsistencies)},
       {"candidates", candidates},
       {"grid",
        {{"design", c.grid.design == Design::local ? "local" : "global"},
