@@ -119,7 +119,8 @@ def main():
                 s = cal.get("summary") or {}
                 post = s.get("posterior")
                 row = {"twin": twin, "truth": truth, "lab_sd": [lab["uct"][1], lab["btt"][1]],
-                       "verdict": s.get("verdict"), "wall_seconds": round(time.time() - t0, 1)}
+                       "verdict": s.get("verdict"), "wall_seconds": round(time.time() - t0, 1),
+                       "platen_velocity": base["job"].get("loading", {}).get("platen_velocity")}
                 if post:
                     row.update({"inside": in_region(post, *truth), "fr0": post["fr0"], "fs0": post["fs0"],
                                 "estimate": post["estimate"], "runs": post["runs"], "unique": post["unique"]})
