@@ -21,6 +21,7 @@ namespace {
 constexpr double kShareStop = 0.25;
 constexpr int kSpaceFilling = 256;  // candidates spread over the box, besides the posterior's own
 constexpr int kDensest = 64;        // candidates at the posterior's densest cells
+constexpr double kFirstFineSpacing = 0.1;  // of the unit box, between the first fine points
 
 struct Run {
   BondPoint point;  // the strengths run: the fine specimen's for a fine run
@@ -269,7 +270,38 @@ class Search {
     ++rounds_;
     const int n = std::min(batch_, left);
     if (fine_model_) return launch(design(*fine_model_, fine_c_, n, true));
-    launch(model_ ? design(*model_, fine_c_, n, true) : space_filling(n, fine_c_, true));
+    launch(model_ ? first_fine(*model_, n) : space_filling(n, fine_c_, true));
+  }
+
+  // Before a fine emulator exists the fine runs go where the coarse posterior is densest, at
+  // distinct points a tenth of the box apart (neither the run nor the in-flight fine points
+  // repeated): a coarse emulator's variance says nothing about where a fine run teaches most.
+  std::vector<Run> first_fine(const Emulators& coarse, int n) {
+    std::vector<Eigen::Vector2d> taken;
+    for (const EvaluationRecord& r : fine_history_) taken.push_back(to_unit(r.point, fine_c_));
+    for (const Flight& f : flights_) {
+      for (const Run& r : f.runs) {
+        if (r.fine) taken.push_back(to_unit(r.point, fine_c_));
+      }
+    }
+    std::vector<int> order(coarse.grid.weight.size());
+    for (int i = 0; i < int(order.size()); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return coarse.grid.weight(a) > coarse.grid.weight(b); });
+    std::vector<Run> runs;
+    const Eigen::Vector2d peak = to_unit(posterior_estimate(coarse, c_), c_);
+    std::vector<Eigen::Vector2d> candidates = {peak};
+    for (int cell : order) candidates.push_back(coarse.grid.points.row(cell).transpose());
+    for (const Eigen::Vector2d& u : candidates) {
+      if (int(runs.size()) >= n) break;
+      const bool near = std::any_of(taken.begin(), taken.end(), [&](const Eigen::Vector2d& t) {
+        return (t - u).norm() < kFirstFineSpacing;
+      });
+      if (near) continue;
+      taken.push_back(u);
+      runs.push_back(run_at(from_unit(u, fine_c_), "fine", true));
+    }
+    return runs;
   }
 
   std::vector<Run> space_filling(int n, const CalibrationCampaign& c, bool fine) {
@@ -288,8 +320,10 @@ class Search {
     // packing is another specimen) the points already run: a further realisation there.
     std::vector<Eigen::Vector2d> cand;
     std::vector<std::optional<BondPoint>> exact;  // the existing point a candidate repeats
+    // A fine run is dear (and slow far from the answer): only where the posterior is.
+    const int spread = fine ? 0 : kSpaceFilling;
     for (const auto& u :
-         latin_hypercube(kSpaceFilling, c_.random_seed + 104729 * std::uint64_t(rounds_))) {
+         latin_hypercube(spread, c_.random_seed + 104729 * std::uint64_t(rounds_))) {
       cand.push_back({u[0], u[1]});
       exact.push_back(std::nullopt);
     }
@@ -326,22 +360,10 @@ class Search {
     in.batch = n;
     std::vector<Run> runs;
     std::vector<BondPoint> chosen;
-    // The first fine runs need two distinct points before their emulator can be fitted: none
-    // repeats a fine point run or in flight.
-    const bool bootstrap = fine && !fine_model_;
-    if (bootstrap) {
-      for (const EvaluationRecord& r : fine_history_) chosen.push_back(r.point);
-      for (const Flight& f : flights_) {
-        for (const Run& r : f.runs) {
-          if (r.fine) chosen.push_back(r.point);
-        }
-      }
-    }
     for (const inference::DesignChoice& d : inference::choose_batch(in)) {
       const BondPoint p =
           exact[d.candidate] ? *exact[d.candidate] : from_unit(cand[d.candidate], c);
-      const bool distinct = !c_.seed_matters || bootstrap;
-      if (distinct && std::find(chosen.begin(), chosen.end(), p) != chosen.end()) continue;
+      if (!c_.seed_matters && std::find(chosen.begin(), chosen.end(), p) != chosen.end()) continue;
       chosen.push_back(p);
       runs.push_back(run_at(p, fine ? "fine" : "design", fine));
     }
