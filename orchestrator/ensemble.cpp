@@ -99,6 +99,7 @@ json to_json(const Ensemble& e) {
                     {"strength_pa", or_null(r.strength_pa)},
                     {"youngs_modulus_pa", or_null(r.youngs_modulus_pa)},
                     {"quasi_static", r.quasi_static ? json(*r.quasi_static) : json(nullptr)},
+                    {"poisson_ratio", or_null(r.poisson_ratio)},
                     {"error", r.error.empty() ? json(nullptr) : json(r.error)}});
   }
   return {{"realisations", runs},

@@ -56,6 +56,7 @@ struct Realisation {
   // The run's own quasi-static verdict at its peak (result.json's loading_rate.quasi_static);
   // absent when the run reported none (no peak, or an engine without the measure).
   std::optional<bool> quasi_static = std::nullopt;
+  std::optional<double> poisson_ratio = std::nullopt;  // a UCT's, where the run measured it
 };
 
 struct Ensemble {

@@ -20,6 +20,7 @@ Realisation from(std::uint64_t seed, std::int64_t job_id, const std::string& sta
     r.peak_load_n = result->peak_load;
     r.strength_pa = result->strength;
     r.youngs_modulus_pa = result->youngs_modulus;
+    r.poisson_ratio = result->poisson_ratio;
     const json doc = json::parse(result->result, nullptr, false);
     if (doc.is_object() && doc.contains("loading_rate") && doc["loading_rate"].is_object()) {
       const json& q = doc["loading_rate"].value("quasi_static", json());

@@ -157,6 +157,35 @@ std::string fidelity_text(const json& f) {
   return out.str();
 }
 
+// The rock at the estimate: "rock at the estimate (lab units): UCS 105 MPa [98.1, 112], BTS 17.5
+// MPa [16.8, 18.2]; E 11.2 GPa (lab 12.3) and nu 0.212 (lab 0.2) from 2 check runs".
+std::string rock_text(const json& r) {
+  if (!r.is_object()) return "";
+  const bool lab = at(r, "units") == "lab";
+  const double mpa = lab ? 1e-6 : 1.0;
+  const std::string su = lab ? " MPa" : " Pa";
+  auto strength = [&](const char* name, const json& v) {
+    return std::string(name) + " " + num(mpa * v["value"].get<double>(), "%.4g") + su + " [" +
+           num(mpa * v["interval"][0].get<double>(), "%.4g") + ", " +
+           num(mpa * v["interval"][1].get<double>(), "%.4g") + "]";
+  };
+  std::string out = std::string("rock at the estimate (") + (lab ? "lab" : "model") +
+                    " units): " + strength("UCS", r["ucs_pa"]) + ", " +
+                    strength("BTS", r["bts_pa"]);
+  const json& e = at(r, "youngs_modulus_pa");
+  const json& nu = at(r, "poisson_ratio");
+  auto measured = [&](const char* name, const json& v, double scale, const char* unit) {
+    if (!v.is_object() || !v["value"].is_number()) return std::string(name) + " not measured";
+    std::string t = std::string(name) + " " + num(scale * v["value"].get<double>(), "%.3g") + unit;
+    if (v["lab"].is_number()) t += " (lab " + num(scale * v["lab"].get<double>(), "%.3g") + ")";
+    return t;
+  };
+  out += "; " + measured("E", e, lab ? 1e-9 : 1.0, lab ? " GPa" : " Pa") + " and " +
+         measured("nu", nu, 1.0, "");
+  if (e.is_object() && e["runs"].is_number()) out += " from " + e["runs"].dump() + " check runs";
+  return out + "\n";
+}
+
 // The "bayes" strategy's answer: the estimate and the credible intervals of both strengths, the
 // predicted loads with their intervals, in the targets' units (lab beside model when given).
 std::string posterior_text(const json& p, const json& best) {
@@ -225,6 +254,7 @@ std::string calibration_text(const json& s) {
   const json& posterior = at(s, "posterior");
   if (posterior.is_object()) {
     out << posterior_text(posterior, best);
+    out << rock_text(at(s, "rock_properties"));
     out << "unique: " << (at(posterior, "unique") == true ? "yes" : "no") << " - "
         << value_text(at(posterior, "why")) << "\n";
     const json& next = at(s, "suggestion");

@@ -3,6 +3,7 @@
 
 #include "orchestrator/calibration/objective.hpp"
 #include "orchestrator/calibration/report.hpp"
+#include "orchestrator/calibration/rock_properties.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -337,6 +338,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"targets", targets_json(c)},
             {"strength_definitions", definitions_json(c)},
             {"best", r.best ? best_json(*r.best, c) : json(nullptr)},
+            {"rock_properties", rock_properties_json(r, c)},
             {"history", history_json(r.history)},
             {"scatter", scatter_json(r.scatter)},
             {"consistent", consistent_json(r)},

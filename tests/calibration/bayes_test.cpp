@@ -179,6 +179,23 @@ TEST(BayesCalibration, AVerdictNamesTheBoundTheTargetsPressOn) {
       << r.verdict_reason;
 }
 
+// The rock at the answer: UCS and BTS from the predicted loads on the model's own specimen (model
+// targets), E and nu from the check runs, null where those measured none.
+TEST(BayesCalibration, TheReportStatesTheRocksPropertiesAtTheEstimate) {
+  const CalibrationCampaign c = testing::campaign(testing::power_law({60, 120}), bayes(30, 0.05));
+  ScatteringEvaluator e(testing::power_law);
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  const nlohmann::json j = to_json(r, c)["rock_properties"];
+  EXPECT_EQ(j["units"], "model");
+  EXPECT_DOUBLE_EQ(j["ucs_pa"]["value"].get<double>(),
+                   uct_strength_pa(r.posterior->uct.mean_n, c.model_specimen));
+  EXPECT_DOUBLE_EQ(j["bts_pa"]["interval"][1].get<double>(),
+                   btt_strength_pa(r.posterior->btt.hi_n, c.model_specimen));
+  EXPECT_EQ(j["youngs_modulus_pa"]["value"], nullptr);  // the formula engine measures none
+  EXPECT_EQ(j["youngs_modulus_pa"]["runs"], 0);
+}
+
 // The model's UCT/BTT ratio stays within [6.0, 23.8] (smooth_min); a lab ratio of 3 is out of
 // its reach, and the verdict says so with the range the runs reached, not "the budget".
 TEST(BayesCalibration, AVerdictNamesARatioOutOfTheModelsReach) {

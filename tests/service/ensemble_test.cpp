@@ -67,7 +67,7 @@ TEST(EnsembleStats, FailedRealisationsAreListedCountedAndLeftOut) {
   EXPECT_EQ(j["modulus"]["mean"], nullptr);
   EXPECT_EQ(j["realisations"][1], json::parse(R"({"seed": 2, "job_id": 102, "state": "failed",
       "peak_load_n": null, "strength_pa": null, "youngs_modulus_pa": null,
-      "quasi_static": null, "error": "no peak: no bond broke"})"));
+      "quasi_static": null, "poisson_ratio": null, "error": "no peak: no bond broke"})"));
   EXPECT_EQ(j["realisations"][0]["peak_load_n"], 67.0);
   EXPECT_EQ(j["realisations"][0]["error"], nullptr);
 }

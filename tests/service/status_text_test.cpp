@@ -250,7 +250,13 @@ TEST(CalibrationSummary, APosteriorShowsItsIntervalsAndFurtherTargets) {
                           {"btt", load(100, 99.5, -0.005)},
                           {"further", {further}},
                           {"unique", true},
-                          {"why", "narrow"}}}};
+                          {"why", "narrow"}}},
+                        {"rock_properties",
+                         {{"units", "lab"},
+                          {"ucs_pa", {{"value", 105.2e6}, {"interval", {98.1e6, 112.0e6}}}},
+                          {"bts_pa", {{"value", 17.5e6}, {"interval", {16.8e6, 18.2e6}}}},
+                          {"youngs_modulus_pa", {{"value", 11.2e9}, {"runs", 2}, {"lab", 12.33e9}}},
+                          {"poisson_ratio", {{"value", nullptr}, {"runs", 0}, {"lab", 0.2}}}}}};
   const std::string text = calibration_text(summary);
   EXPECT_NE(text.find("  F_r0              60  [50, 70]"), std::string::npos) << text;
   EXPECT_NE(text.find("  more          5000          5100  [4590, 5610]              +2.00%  "
@@ -258,6 +264,10 @@ TEST(CalibrationSummary, APosteriorShowsItsIntervalsAndFurtherTargets) {
             std::string::npos)
       << text;
   EXPECT_NE(text.find("unique: yes - narrow"), std::string::npos) << text;
+  EXPECT_NE(text.find("rock at the estimate (lab units): UCS 105.2 MPa [98.1, 112], BTS 17.5 MPa "
+                      "[16.8, 18.2]; E 11.2 GPa (lab 12.3) and nu not measured from 2 check runs"),
+            std::string::npos)
+      << text;
 }
 
 TEST(DiagnosisProgress, JobsOfThePlannedPhasesEtaAndThePhase) {

@@ -1,0 +1,60 @@
+#include "orchestrator/calibration/rock_properties.hpp"
+
+#include <optional>
+#include <vector>
+
+#include "orchestrator/calibration/specimen.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+using nlohmann::json;
+
+// The mean of a check-run measurement over the estimate's UCT realisations that have it.
+json measured(const std::optional<EvaluationRecord>& best, bool modulus, double scale,
+              std::optional<double> lab) {
+  std::vector<double> values;
+  if (best && best->uct) {
+    for (const orch::Realisation& x : best->uct->realisations) {
+      const std::optional<double>& v = modulus ? x.youngs_modulus_pa : x.poisson_ratio;
+      if (v) values.push_back(*v * scale);
+    }
+  }
+  json j = {{"value", nullptr}, {"runs", values.size()}, {"lab", lab ? json(*lab) : json(nullptr)}};
+  if (!values.empty()) {
+    double sum = 0;
+    for (double v : values) sum += v;
+    j["value"] = sum / double(values.size());
+  }
+  return j;
+}
+
+}  // namespace
+
+json rock_properties_json(const CalibrationReport& r, const CalibrationCampaign& c) {
+  if (!r.posterior) return nullptr;
+  const PosteriorSummary& p = *r.posterior;
+  const bool lab = c.targets.scaling && c.targets.lab;
+  // Loads to the reported units, then each test's strength on its own specimen.
+  auto force = [&](double model_n) {
+    return lab ? c.targets.scaling->force_to_lab(model_n) : model_n;
+  };
+  const Specimen& sp = lab ? c.targets.lab->specimen : c.model_specimen;
+  auto strength = [&](const PredictedLoad& l, double (*to_pa)(double, const Specimen&)) {
+    return json{{"value", to_pa(force(l.mean_n), sp)},
+                {"interval", {to_pa(force(l.lo_n), sp), to_pa(force(l.hi_n), sp)}}};
+  };
+  // A model stress is the lab's times the stress scale; Poisson's ratio has no unit.
+  const double stress = lab ? 1.0 / c.targets.scaling->stress : 1.0;
+  const std::optional<double> lab_e =
+      lab ? std::optional<double>(c.targets.lab->material.youngs_modulus_pa) : std::nullopt;
+  const std::optional<double> lab_nu =
+      lab ? std::optional<double>(c.targets.lab->material.nu) : std::nullopt;
+  return {{"units", lab ? "lab" : "model"},
+          {"ucs_pa", strength(p.uct, uct_strength_pa)},
+          {"bts_pa", strength(p.btt, btt_strength_pa)},
+          {"youngs_modulus_pa", measured(r.best, true, stress, lab_e)},
+          {"poisson_ratio", measured(r.best, false, 1.0, lab_nu)}};
+}
+
+}  // namespace rockcal::calibration
