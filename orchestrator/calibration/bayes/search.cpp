@@ -12,6 +12,7 @@
 #include "orchestrator/calibration/bayes/verdict.hpp"
 #include "orchestrator/calibration/latin_hypercube.hpp"
 #include "orchestrator/inference/design/batch_design.hpp"
+#include "orchestrator/inference/posterior/region.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -284,14 +285,11 @@ class Search {
         if (r.fine) taken.push_back(to_unit(r.point, fine_c_));
       }
     }
-    std::vector<int> order(coarse.grid.weight.size());
-    for (int i = 0; i < int(order.size()); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return coarse.grid.weight(a) > coarse.grid.weight(b); });
     std::vector<Run> runs;
     const Eigen::Vector2d peak = to_unit(posterior_estimate(coarse, c_), c_);
     std::vector<Eigen::Vector2d> candidates = {peak};
-    for (int cell : order) candidates.push_back(coarse.grid.points.row(cell).transpose());
+    for (int cell : inference::densest_cells(coarse.grid, int(coarse.grid.weight.size())))
+      candidates.push_back(coarse.grid.points.row(cell).transpose());
     for (const Eigen::Vector2d& u : candidates) {
       if (int(runs.size()) >= n) break;
       const bool near = std::any_of(taken.begin(), taken.end(), [&](const Eigen::Vector2d& t) {
@@ -327,13 +325,8 @@ class Search {
       cand.push_back({u[0], u[1]});
       exact.push_back(std::nullopt);
     }
-    std::vector<int> order(m.grid.weight.size());
-    for (int i = 0; i < int(order.size()); ++i) order[i] = i;
-    const int top = std::min<int>(kDensest, int(order.size()));
-    std::partial_sort(order.begin(), order.begin() + top, order.end(),
-                      [&](int a, int b) { return m.grid.weight(a) > m.grid.weight(b); });
-    for (int k = 0; k < top; ++k) {
-      cand.push_back(m.grid.points.row(order[k]).transpose());
+    for (int cell : inference::densest_cells(m.grid, kDensest)) {
+      cand.push_back(m.grid.points.row(cell).transpose());
       exact.push_back(std::nullopt);
     }
     if (c_.seed_matters && (m.coarse_runs > 0) == fine) {

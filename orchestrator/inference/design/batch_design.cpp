@@ -1,5 +1,7 @@
 #include "orchestrator/inference/design/batch_design.hpp"
 
+#include "orchestrator/inference/posterior/region.hpp"
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -28,16 +30,6 @@ Conditioned condition(const Gp& gp, const Eigen::MatrixXd& pending, double tau2)
   return c;
 }
 
-std::vector<int> reference_cells(const PosteriorGrid& p, int count) {
-  std::vector<int> order(p.weight.size());
-  std::iota(order.begin(), order.end(), 0);
-  const int m = std::min<int>(count, int(order.size()));
-  std::partial_sort(order.begin(), order.begin() + m, order.end(),
-                    [&](int a, int b) { return p.weight(a) > p.weight(b); });
-  order.resize(m);
-  return order;
-}
-
 }  // namespace
 
 std::vector<DesignChoice> choose_batch(const DesignInput& in) {
@@ -45,7 +37,7 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
       in.run_noise.size() != in.targets.size() || in.candidates.rows() == 0)
     throw std::invalid_argument("design: emulators, targets, noise and candidates must agree");
   const PosteriorGrid& post = *in.posterior;
-  const std::vector<int> ref = reference_cells(post, in.reference_cells);
+  const std::vector<int> ref = densest_cells(post, in.reference_cells);
   Eigen::MatrixXd g(ref.size(), post.dims);
   Eigen::VectorXd w(ref.size());
   for (std::size_t r = 0; r < ref.size(); ++r) {

@@ -124,4 +124,14 @@ bool in_region(const PosteriorGrid& grid, const Region& region, const Eigen::Vec
   return std::find(region.cells.begin(), region.cells.end(), cell) != region.cells.end();
 }
 
+std::vector<int> densest_cells(const PosteriorGrid& grid, int count) {
+  std::vector<int> order(grid.weight.size());
+  std::iota(order.begin(), order.end(), 0);
+  const int m = std::clamp(count, 0, int(order.size()));
+  std::partial_sort(order.begin(), order.begin() + m, order.end(),
+                    [&](int a, int b) { return grid.weight(a) > grid.weight(b); });
+  order.resize(m);
+  return order;
+}
+
 }  // namespace rockcal::inference

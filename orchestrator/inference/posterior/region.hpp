@@ -26,6 +26,9 @@ struct Region {
 
 Region credible_region(const PosteriorGrid& grid, double level = 0.9);
 
+// The `count` cells of highest posterior weight, densest first (all cells when count exceeds them).
+std::vector<int> densest_cells(const PosteriorGrid& grid, int count);
+
 // The point of highest posterior density: the densest cell, refined by a bounded local search on
 // the continuous density within one cell of it.
 Eigen::VectorXd density_peak(const PosteriorGrid& grid, const std::vector<const Gp*>& emulators,
