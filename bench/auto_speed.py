@@ -35,6 +35,7 @@ def job(test, size, bond, speed, a, seed):
                "max_strain": a.max_strain}
     if speed[0] == "auto":
         loading["auto_transits"] = speed[1]
+        loading["past_window"] = a.past_window
     return {"test": test, "sample": sample,
             "material": {"density": 1.0, "kr": 8000, "nu": 0.2},
             "bond": {"fr0": bond[0], "fs0": bond[1]}, "contact": {"friction": 0.6},

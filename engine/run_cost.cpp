@@ -49,12 +49,17 @@ double estimated_steps(const JobSpec& run) {
         travel / l.slow_factor + kRamps * ramp + kOtherTransits * aspect * transit;
     return std::min(seconds / dt, cap);
   };
-  // "auto": the bond-controlled window at the rock's own speed, then the rest of max_strain at the
-  // late speed (loadtests/loading_speed.hpp); a given speed throughout.
+  // "auto": the bond-controlled window at the rock's own speed, then (speed_up_past_window) the
+  // rest of max_strain at the late speed (loadtests/loading_speed.hpp); a given speed throughout.
+  const bool stops_at_window = !l.platen_velocity_m_s && !l.speed_up_past_window;
   const double speed = l.platen_velocity_m_s ? *l.platen_velocity_m_s : late_platen_speed(run);
-  double steps = steps_at(speed);
+  double steps =
+      stops_at_window
+          ? std::min((kRamps * kRampTransits + kOtherTransits * aspect) * transit / dt, cap)
+          : steps_at(speed);
   if (!l.platen_velocity_m_s) {
-    steps += std::min(kBondControlledWindow * l.auto_transits * transit / (l.slow_factor * dt), cap);
+    steps +=
+        std::min(kBondControlledWindow * l.auto_transits * transit / (l.slow_factor * dt), cap);
   }
   // A rate study's runs after the probe: at halving speeds from half the job's (or slower).
   if (l.rate_study) {

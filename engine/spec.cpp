@@ -309,6 +309,14 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
       throw SpecError("loading.auto_transits", "applies to platen_velocity \"auto\" only");
     l.auto_transits = r.in_range("auto_transits", l.auto_transits, 1.0, 1000.0, false);
   }
+  if (const json* w = r.find("past_window")) {
+    if (l.platen_velocity_m_s)
+      throw SpecError("loading.past_window", "applies to platen_velocity \"auto\" only");
+    const std::string mode = w->is_string() ? w->get<std::string>() : "";
+    if (mode != "stop" && mode != "speed_up")
+      throw SpecError("loading.past_window", "must be \"stop\" or \"speed_up\"");
+    l.speed_up_past_window = mode == "speed_up";
+  }
   if (const json* dt = r.find("dt")) {
     if (dt->is_string()) {
       if (dt->get<std::string>() != "auto")
@@ -571,6 +579,7 @@ nlohmann::json to_json(const JobSpec& s) {
   } else {
     l["platen_velocity"] = "auto";
     l["auto_transits"] = s.loading.auto_transits;
+    l["past_window"] = s.loading.speed_up_past_window ? "speed_up" : "stop";
   }
   if (s.loading.dt_s)
     l["dt"] = *s.loading.dt_s;

@@ -90,6 +90,10 @@ struct LoadingSpec {
   // transits (loadtests/loading_speed.hpp); use platen_speed() for the speed a run uses.
   std::optional<double> platen_velocity_m_s = 0.05;
   double auto_transits = 20.0;  // "auto" speed only
+  // "auto" speed only: past the bond-controlled window (loadtests/loading_speed.hpp) a load that
+  // still rises is a crushed specimen's, not a strength. false ("stop"): the run ends there without
+  // a peak; true ("speed_up"): the platens speed up and a later maximum is reported as a late peak.
+  bool speed_up_past_window = false;
   std::optional<double> dt_s;   // nullopt = "auto"
   double dt_safety = 0.5;       // fraction of the critical step used by "auto"
   double ramp_fraction = 0.01;  // speed ramps over this fraction of the run (>= 2 wave transits)

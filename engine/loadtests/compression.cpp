@@ -191,8 +191,12 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   count_specimen(sim, r);
   PeakTracker peak{ld.stop_load_fraction,
                    min_failure_breaks(r.bonds, spec.sample.diameter_m / spec.sample.radius_m)};
-  SpeedSchedule schedule{speed, ld.slow_factor, t_ramp, late_platen_speed(spec)};
-  // The auto speed holds while a bond-controlled peak is expected; past that closure it speeds up.
+  // The auto speed holds while a bond-controlled peak is expected. Past that closure a load that
+  // still rises is not a strength: the run ends there, or (speed_up_past_window) speeds up.
+  const bool auto_speed = !ld.platen_velocity_m_s;
+  const bool stop_past_window = auto_speed && !ld.speed_up_past_window;
+  SpeedSchedule schedule{speed, ld.slow_factor, t_ramp,
+                         stop_past_window ? 0.0 : late_platen_speed(spec)};
   const double late_closure = kBondControlledWindow * bond_failure_strain(spec) * length;
   std::int64_t late_step = -1;
   bool slow_peak = false;
@@ -214,8 +218,11 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   if (hooks.on_frame) snapshot();
 
   auto progress = [&](double elapsed) {
+    // The closure the run ends at unless it fails first.
+    const double end_closure =
+        stop_past_window ? std::min(max_closure, seat_closure + late_closure) : max_closure;
     double f =
-        std::max((seat_closure + closure) / max_closure, double(sim.step) / double(max_steps));
+        std::max((seat_closure + closure) / end_closure, double(sim.step) / double(max_steps));
     if (peak.peak_load > 0 && load < peak.peak_load)  // past the peak: how far to the stop load
       f = std::max(f, (peak.peak_load - load) / (peak.peak_load * (1.0 - ld.stop_load_fraction)));
     return Progress{sim.step, std::min(1.0, f), load, peak.peak_load, sim.broken_total, elapsed};
@@ -291,6 +298,8 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
 
     if (failed)
       r.stop_reason = "post_peak";
+    else if (stop_past_window && closure >= late_closure && peak.peak_step == sim.step)
+      r.stop_reason = "past_window";  // the load still rises: no bond-controlled peak
     else if (seat_closure + closure >= max_closure)
       r.stop_reason = "max_strain";
     else if (sim.step >= max_steps)

@@ -62,6 +62,10 @@ std::string PeakTracker::no_peak_reason(const std::string& stop_reason) const {
     why = "the load did not fall past a peak with bonds breaking before loading.max_strain";
   else if (stop_reason == "max_steps")
     why = "loading.max_steps ended the run before the load fell past a peak with bonds breaking";
+  else if (stop_reason == "past_window")
+    why =
+        "the load was still rising past the bond-controlled window (loading.past_window "
+        "\"stop\"): no peak set by the bond strengths";
   else if (stop_reason == "not_seated")
     why = "the platens never reached the seating load";
   else

@@ -52,7 +52,11 @@ TEST(AutoSpeed, SpecTakesAutoWithItsTransitsAndKeepsNumbersAsTheyWere) {
   const json c = to_json(s);
   EXPECT_EQ(c["loading"]["platen_velocity"], "auto");
   EXPECT_EQ(c["loading"]["auto_transits"], 40.0);
+  EXPECT_EQ(c["loading"]["past_window"], "stop");
   EXPECT_EQ(parse_job(c), s);
+  j["loading"]["past_window"] = "speed_up";
+  EXPECT_TRUE(parse_job(j).loading.speed_up_past_window);
+  EXPECT_EQ(parse_job(to_json(parse_job(j))), parse_job(j));
   // A numeric speed keeps the canonical form it had (no auto_transits key).
   j["loading"] = {{"platen_velocity", 0.05}};
   EXPECT_FALSE(to_json(parse_job(j))["loading"].contains("auto_transits"));
@@ -62,6 +66,10 @@ TEST(AutoSpeed, SpecTakesAutoWithItsTransitsAndKeepsNumbersAsTheyWere) {
             "loading.auto_transits: applies to platen_velocity \"auto\" only");
   EXPECT_EQ(refusal({{"platen_velocity", "auto"}, {"auto_transits", 0.5}}),
             "loading.auto_transits: must be in [1.0, 1000.0]");
+  EXPECT_EQ(refusal({{"platen_velocity", 0.05}, {"past_window", "stop"}}),
+            "loading.past_window: applies to platen_velocity \"auto\" only");
+  EXPECT_EQ(refusal({{"platen_velocity", "auto"}, {"past_window", "slow"}}),
+            "loading.past_window: must be \"stop\" or \"speed_up\"");
 }
 
 TEST(AutoSpeed, SpeedClosesTheBondFailureStrainInTheGivenTransits) {
@@ -123,7 +131,8 @@ TEST(AutoSpeed, PeakLoadIsHomogeneousOfDegreeOneOverAHundredfoldStrengthRange) {
 // rock's own auto speed, the 10% max_strain alone would take 20 x 0.1 / 4e-5 = 50,000 transits),
 // and the result flags the peak as late.
 TEST(AutoSpeed, PastTheBondControlledWindowThePlatensSpeedUpAndTheRunIsBounded) {
-  const JobSpec s = tiny(TestKind::uct, 0.64, 2.33);
+  JobSpec s = tiny(TestKind::uct, 0.64, 2.33);
+  s.loading.speed_up_past_window = true;
   const TestResult r = run_test(s);
   ASSERT_TRUE(r.loading_rate);
   const LoadingRate& q = *r.loading_rate;
@@ -137,4 +146,28 @@ TEST(AutoSpeed, PastTheBondControlledWindowThePlatensSpeedUpAndTheRunIsBounded) 
   ASSERT_TRUE(r.peak_reached) << r.no_peak_reason;
   EXPECT_TRUE(q.late_peak);
   RecordProperty("steps", std::to_string(r.steps));
+}
+
+// The same weak rock at the default: the load still rises when the closure passes the
+// bond-controlled window, so the run ends there without a peak and says why (a crushed
+// specimen's load is not a strength), in fewer steps than the speeded-up run.
+TEST(AutoSpeed, ByDefaultARunStillRisingPastTheWindowEndsThereWithoutAPeak) {
+  JobSpec s = tiny(TestKind::uct, 0.64, 2.33);
+  const TestResult stopped = run_test(s);
+  s.loading.speed_up_past_window = true;
+  const TestResult late = run_test(s);
+  EXPECT_FALSE(stopped.peak_reached);
+  EXPECT_EQ(stopped.stop_reason, "past_window");
+  EXPECT_NE(stopped.no_peak_reason.find("still rising past the bond-controlled window"),
+            std::string::npos)
+      << stopped.no_peak_reason;
+  ASSERT_TRUE(late.peak_reached);
+  EXPECT_LT(stopped.steps, late.steps);
+  // The window's closure: kBondControlledWindow failure strains of the loaded length (16).
+  const double window = kBondControlledWindow * bond_failure_strain(s) * 16.0;
+  ASSERT_FALSE(stopped.curve.empty());
+  EXPECT_GE(stopped.curve.back().displacement_m, window);
+  EXPECT_LT(stopped.curve.back().displacement_m, 1.1 * window);
+  RecordProperty("steps_stopped", std::to_string(stopped.steps));
+  RecordProperty("steps_speeded_up", std::to_string(late.steps));
 }
