@@ -24,13 +24,14 @@ void each_run(const std::vector<EvaluationRecord>& history, Visit visit) {
 // The search's runs that ended without a peak (failed jobs "no peak: ..."; their largest load is
 // no result), by the limit that ended them, with the fix. Empty when every run reached one.
 std::string no_peak_text(const std::vector<EvaluationRecord>& history) {
-  int runs = 0, no_peak = 0, at_strain = 0, at_steps = 0;
+  int runs = 0, no_peak = 0, at_strain = 0, at_steps = 0, past_window = 0;
   auto count = [&](const std::string& error) {
     ++runs;
     if (error.rfind("no peak", 0) != 0 && error.find(": no peak") == std::string::npos) return;
     ++no_peak;
     at_strain += error.find("loading.max_strain") != std::string::npos ? 1 : 0;
     at_steps += error.find("loading.max_steps") != std::string::npos ? 1 : 0;
+    past_window += error.find("loading.past_window") != std::string::npos ? 1 : 0;
   };
   each_run(history, [&](const std::string& error, std::optional<bool>) { count(error); });
   if (no_peak == 0) return "";
@@ -44,7 +45,13 @@ std::string no_peak_text(const std::vector<EvaluationRecord>& history) {
   if (at_steps > 0)
     out +=
         (at_strain > 0 ? "; " : " (") + sentence("%.0f at loading.max_steps: raise it", at_steps);
-  if (at_strain + at_steps > 0) out += ")";
+  if (past_window > 0)
+    out += (at_strain + at_steps > 0 ? "; " : " (") +
+           sentence(
+               "%.0f still loading up past the bond-controlled window: no peak set by the bond "
+               "strengths there",
+               past_window);
+  if (at_strain + at_steps + past_window > 0) out += ")";
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 #include "synthetic.hpp"
 
@@ -149,6 +150,27 @@ TEST(Driver, ABestPointOnTheBoundsNamesTheBoundsAndTheRunsWithoutAPeakWithTheirF
                          "one)",
                          2 * failed, 2 * double(r.history.size()), 2 * failed));
   EXPECT_EQ(r.verdict_reason.find("budget"), std::string::npos);
+}
+
+// Runs that ended still loading up past the bond-controlled window (the engine's auto speed) are
+// counted apart from those stopped by a limit the user can raise: there is nothing to raise.
+TEST(Driver, RunsStillRisingPastTheWindowAreNamedAsSuchAmongThoseWithoutAPeak) {
+  std::vector<EvaluationRecord> history(4);
+  history[0].error =
+      "no peak: the load was still rising past the bond-controlled window (loading.past_window "
+      "\"stop\"): no peak set by the bond strengths; largest load 7 N with 40 bonds broken";
+  history[1].error = history[0].error;
+  history[2].error =
+      "no peak: the load did not fall past a peak with bonds breaking before loading.max_strain";
+  history[3].loads = PeakLoads{1.0, 1.0};
+  EXPECT_EQ(no_peak_text(history),
+            "3 of 4 runs ended without a peak and count as failed (1 at loading.max_strain: raise "
+            "it in the job template so that they reach one; 2 still loading up past the "
+            "bond-controlled window: no peak set by the bond strengths there)");
+  history[2] = history[3];
+  EXPECT_EQ(no_peak_text(history),
+            "2 of 4 runs ended without a peak and count as failed (2 still loading up past the "
+            "bond-controlled window: no peak set by the bond strengths there)");
 }
 
 TEST(Driver, BudgetIsRespected) {
