@@ -21,13 +21,17 @@ void each_run(const std::vector<EvaluationRecord>& history, Visit visit) {
 
 }  // namespace
 
+bool is_no_peak(const std::string& error) {
+  return error.rfind("no peak", 0) == 0 || error.find(": no peak") != std::string::npos;
+}
+
 // The search's runs that ended without a peak (failed jobs "no peak: ..."; their largest load is
 // no result), by the limit that ended them, with the fix. Empty when every run reached one.
 std::string no_peak_text(const std::vector<EvaluationRecord>& history) {
   int runs = 0, no_peak = 0, at_strain = 0, at_steps = 0, past_window = 0;
   auto count = [&](const std::string& error) {
     ++runs;
-    if (error.rfind("no peak", 0) != 0 && error.find(": no peak") == std::string::npos) return;
+    if (!is_no_peak(error)) return;
     ++no_peak;
     at_strain += error.find("loading.max_strain") != std::string::npos ? 1 : 0;
     at_steps += error.find("loading.max_steps") != std::string::npos ? 1 : 0;

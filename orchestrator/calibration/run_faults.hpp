@@ -11,6 +11,9 @@
 
 namespace rockcal::calibration {
 
+// True for a run's (or an evaluation's) error that says it ended without a peak ("no peak: ...").
+bool is_no_peak(const std::string& error);
+
 std::string no_peak_text(const std::vector<EvaluationRecord>& history);
 
 // Runs whose result says quasi_static: false (the platen closed the bonds' failure strain in too

@@ -3,6 +3,7 @@
 // box's edge (not bounded) when a target lies beyond what the box can reach.
 #include <gtest/gtest.h>
 
+#include "orchestrator/inference/posterior/feasibility.hpp"
 #include "orchestrator/inference/posterior/region.hpp"
 #include "test_functions.hpp"
 
@@ -100,6 +101,53 @@ TEST(Posterior, MismatchedInputsAreRefused) {
   EXPECT_THROW(posterior_on_grid(e.both(), {{0.0, 0.05, 0.0}}), std::invalid_argument);
   EXPECT_THROW(posterior_on_grid(e.both(), {{0.0, 0.0, 0.0}, {0.0, 0.05, 0.0}}),
                std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rockcal::inference
+
+namespace rockcal::inference {
+namespace {
+
+// Runs that end without a result (no peak) at x > 0.6 and with one below: the chance of a result
+// is about the nearest runs' outcome (1 with no runs), halfway between two runs of each kind about
+// a half, and the posterior (whose targets lie in the failing half) loses its mass there.
+TEST(Feasibility, FailedRunsTakeThePosteriorsMassOutOfTheirZone) {
+  RunResults runs;
+  runs.x = latin_square(30, 5);
+  runs.has_value.resize(30);
+  for (int i = 0; i < 30; ++i) runs.has_value(i) = runs.x(i, 0) > 0.6 ? 0.0 : 1.0;
+  EXPECT_DOUBLE_EQ(feasibility(RunResults{}, Eigen::Vector2d(0.9, 0.9)), 1.0);
+  RunResults one_failure{Eigen::RowVector2d(0.9, 0.9), Eigen::VectorXd::Zero(1)};
+  EXPECT_NEAR(feasibility(one_failure, Eigen::Vector2d(0.9, 0.9)), 0.05 / 1.05, 1e-12);
+  // Far from the lone failure its outcome still stands: failures come in regions.
+  EXPECT_NEAR(feasibility(one_failure, Eigen::Vector2d(0.1, 0.1)), 0.05 / 1.05, 1e-12);
+  RunResults pair{Eigen::MatrixXd(2, 2), Eigen::Vector2d(0.0, 1.0)};
+  pair.x << 0.4, 0.5, 0.6, 0.5;
+  EXPECT_NEAR(feasibility(pair, Eigen::Vector2d(0.5, 0.5)), 1.05 / 2.05, 1e-9);
+  EXPECT_LT(feasibility(runs, Eigen::Vector2d(0.9, 0.5)), 0.1);
+  EXPECT_GT(feasibility(runs, Eigen::Vector2d(0.2, 0.5)), 0.9);
+
+  const Pair e = exact_emulators();
+  // Lab values known to 30%: the plain posterior spreads across the edge.
+  const std::vector<Target> t = targets_at(Eigen::Vector2d(0.6, 0.5), 0.3);
+  PosteriorGrid g = posterior_on_grid(e.both(), t);
+  auto mass_beyond = [](const PosteriorGrid& grid, double edge) {
+    double m = 0.0;
+    for (Eigen::Index c = 0; c < grid.points.rows(); ++c)
+      m += grid.points(c, 0) > edge ? grid.weight(c) : 0.0;
+    return m;
+  };
+  const double plain = mass_beyond(g, 0.65);
+  EXPECT_GT(plain, 0.2);
+  apply_feasibility(g, runs, t);
+  EXPECT_LT(mass_beyond(g, 0.65), plain / 5);
+  EXPECT_NEAR(g.weight.sum(), 1.0, 1e-9);
+  // The exact-emulator view keeps the feasibility.
+  EXPECT_LT(mass_beyond(with_exact_emulators(g, t), 0.65), plain / 5);
+  apply_feasibility(g, RunResults{}, t);  // no runs: the plain posterior again
+  EXPECT_DOUBLE_EQ(mass_beyond(g, 0.65), plain);
+  RecordProperty("mass_beyond_plain", std::to_string(plain));
 }
 
 }  // namespace

@@ -6,10 +6,12 @@
 #include <stdexcept>
 
 #include "orchestrator/calibration/bayes/box.hpp"
+#include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/inference/design/batch_design.hpp"
 #include "orchestrator/inference/emulator/runs.hpp"
 #include "orchestrator/inference/emulator/two_level.hpp"
+#include "orchestrator/inference/posterior/feasibility.hpp"
 #include "orchestrator/inference/posterior/region.hpp"
 
 namespace rockcal::calibration {
@@ -63,6 +65,9 @@ struct PointsRuns {
   std::vector<inference::PointRuns> uct, btt;
   std::vector<std::vector<inference::PointRuns>> further;  // [target][point]
   int runs = 0;
+  // Every run's point with 1 when it gave both loads, 0 when one of its tests had no peak.
+  std::vector<Eigen::Vector2d> outcome_at;
+  std::vector<double> outcome;
 };
 
 PointsRuns gather(const std::vector<EvaluationRecord>& history, const CalibrationCampaign& c) {
@@ -70,6 +75,10 @@ PointsRuns gather(const std::vector<EvaluationRecord>& history, const Calibratio
   g.further.resize(c.further.size());
   std::map<std::pair<double, double>, int> index;
   for (const EvaluationRecord& r : history) {
+    if (r.loads || is_no_peak(r.error)) {
+      g.outcome_at.push_back(to_unit(r.point, c));
+      g.outcome.push_back(r.loads ? 1.0 : 0.0);
+    }
     if (!r.loads) continue;
     auto [it, fresh] = index.try_emplace({r.point.fr0_n, r.point.fs0_n}, int(g.points.size()));
     if (fresh) {
@@ -89,12 +98,27 @@ PointsRuns gather(const std::vector<EvaluationRecord>& history, const Calibratio
   return g;
 }
 
-void finish(Emulators& m, const CalibrationCampaign& c) {
+// The runs' outcomes as the posterior's feasibility (inference/posterior/feasibility.hpp): where
+// runs end without a peak the lab's rock, which had one, is not.
+inference::RunResults run_results(const PointsRuns& g) {
+  inference::RunResults r;
+  r.x.resize(Eigen::Index(g.outcome.size()), 2);
+  r.has_value.resize(Eigen::Index(g.outcome.size()));
+  for (std::size_t i = 0; i < g.outcome.size(); ++i) {
+    r.x.row(Eigen::Index(i)) = g.outcome_at[i].transpose();
+    r.has_value(Eigen::Index(i)) = g.outcome[i];
+  }
+  return r;
+}
+
+void finish(Emulators& m, const PointsRuns& g, const CalibrationCampaign& c) {
   m.run_noise.clear();
   for (const inference::Gp* gp : m.emulators())
     m.run_noise.push_back(inference::per_run_noise(*gp));
   m.targets = inference_targets(c);
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
+  m.without_peak = int(std::count(g.outcome.begin(), g.outcome.end(), 0.0));
+  if (m.without_peak > 0) inference::apply_feasibility(m.grid, run_results(g), m.targets);
 }
 
 }  // namespace
@@ -111,9 +135,9 @@ Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
     if (d.x.rows() < 3) throw std::runtime_error("fewer than 3 points with a further test's load");
     m.further.push_back(inference::fit_gp(d));
   }
-  m.points = std::move(g.points);
+  m.points = g.points;
   m.runs = g.runs;
-  finish(m, c);
+  finish(m, g, c);
   return m;
 }
 
@@ -124,10 +148,10 @@ Emulators fit_fine_emulators(const std::vector<EvaluationRecord>& fine, const Em
   Emulators m;
   m.uct = inference::fit_two_level(coarse.uct, inference::gp_data(g.uct));
   m.btt = inference::fit_two_level(coarse.btt, inference::gp_data(g.btt));
-  m.points = std::move(g.points);
+  m.points = g.points;
   m.runs = g.runs;
   m.coarse_runs = coarse.runs;
-  finish(m, fine_c);
+  finish(m, g, fine_c);
   return m;
 }
 

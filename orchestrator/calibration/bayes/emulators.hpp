@@ -19,6 +19,7 @@ struct Emulators {
   int runs = 0;
   int coarse_runs = 0;  // fine emulators: the coarse runs beneath them (0 for coarse emulators)
   std::vector<BondPoint> points;  // the distinct points run, in first-run order
+  int without_peak = 0;  // runs with a test that had no peak: the grid's feasibility is from them
   std::vector<inference::Target> targets;
   inference::PosteriorGrid grid;
   std::vector<const inference::Gp*> emulators() const {

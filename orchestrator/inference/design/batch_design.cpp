@@ -3,6 +3,7 @@
 #include "orchestrator/inference/posterior/region.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
@@ -70,6 +71,14 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
       const Eigen::VectorXd weight = w.array() / (lab + var_g.array());
       for (int k = 0; k < c; ++k) {
         score(k) += weight.dot(cov.col(k).cwiseAbs2()) / (var_c(k) + in.run_noise[j]);
+      }
+    }
+    // A run where runs end without a result teaches the emulators nothing: its worth is its
+    // shrinkage times the chance that it gives one (the posterior's feasibility).
+    if (post.log_feasibility.size() == post.points.rows()) {
+      for (int k = 0; k < c; ++k) {
+        const int cell = cell_of(post, in.candidates.row(k).transpose());
+        score(k) *= std::exp(post.log_feasibility(cell));
       }
     }
     Eigen::Index best = 0;

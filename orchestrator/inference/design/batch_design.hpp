@@ -9,7 +9,8 @@
 // value: the emulator's variance does not depend on it), so that a batch spreads out and a running
 // batch is not designed again. A candidate that is an existing point is a further realisation
 // there: with the packings' scatter large against the emulator's variance, that is where the next
-// run is worth most, and the same rule chooses it.
+// run is worth most, and the same rule chooses it. Where runs end without a result (the
+// posterior's feasibility) a candidate's worth is scaled by its chance of giving one.
 #pragma once
 
 #include <vector>

@@ -1,5 +1,6 @@
 #include "orchestrator/inference/posterior/posterior.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -26,12 +27,15 @@ double term(const Target& t, double mean, double var) {
   return -0.5 * (r * r / v + std::log(v));
 }
 
+}  // namespace
+
 // The log density and normalised weight of every cell from the grid's means and variances.
-void weigh(PosteriorGrid& g, const std::vector<Target>& targets) {
+void reweigh(PosteriorGrid& g, const std::vector<Target>& targets) {
   const auto cells = g.mean.rows();
   g.log_density.resize(cells);
+  const bool feasibility = g.log_feasibility.size() == cells;
   for (Eigen::Index c = 0; c < cells; ++c) {
-    double l = 0.0;
+    double l = feasibility ? g.log_feasibility(c) : 0.0;
     for (std::size_t j = 0; j < targets.size(); ++j)
       l += term(targets[j], g.mean(c, Eigen::Index(j)), g.var(c, Eigen::Index(j)));
     g.log_density(c) = l;
@@ -40,8 +44,6 @@ void weigh(PosteriorGrid& g, const std::vector<Target>& targets) {
   g.weight = (g.log_density.array() - top).exp();
   g.weight /= g.weight.sum();
 }
-
-}  // namespace
 
 int default_cells_per_dim(int dims) {
   switch (dims) {
@@ -52,6 +54,16 @@ int default_cells_per_dim(int dims) {
     default:
       return 25;
   }
+}
+
+int cell_of(const PosteriorGrid& grid, const Eigen::VectorXd& x) {
+  int cell = 0, stride = 1;
+  for (int k = 0; k < grid.dims; ++k) {
+    const int i = std::clamp(int(std::floor(x(k) * grid.per_dim)), 0, grid.per_dim - 1);
+    cell += i * stride;
+    stride *= grid.per_dim;
+  }
+  return cell;
 }
 
 std::vector<int> cell_indices(const PosteriorGrid& grid, int cell) {
@@ -86,7 +98,7 @@ PosteriorGrid posterior_on_grid(const std::vector<const Gp*>& emulators,
     g.mean.col(j) = m;
     g.var.col(j) = v;
   }
-  weigh(g, targets);
+  reweigh(g, targets);
   return g;
 }
 
@@ -95,7 +107,7 @@ PosteriorGrid with_exact_emulators(const PosteriorGrid& grid, const std::vector<
     throw std::invalid_argument("posterior: one emulator per target is needed");
   PosteriorGrid g = grid;
   g.var.setZero();
-  weigh(g, targets);
+  reweigh(g, targets);
   return g;
 }
 

@@ -30,6 +30,9 @@ struct PosteriorGrid {
   Eigen::VectorXd weight;       // normalised to sum 1
   Eigen::MatrixXd mean;         // cells x targets: the emulators' means
   Eigen::MatrixXd var;          // cells x targets: the emulators' variances
+  // Cells: the log chance that a run there gives the targets' observables at all
+  // (feasibility.hpp), added to the log density; empty = every cell feasible.
+  Eigen::VectorXd log_feasibility;
 };
 
 // Cells per dimension that keep the grid near 10^4 cells: 100 in 1-D, 81 in 2-D, 25 in 3-D.
@@ -44,9 +47,15 @@ PosteriorGrid posterior_on_grid(const std::vector<const Gp*>& emulators,
 // that more runs can reach; a region wider than wanted here needs another test, not more runs.
 PosteriorGrid with_exact_emulators(const PosteriorGrid& grid, const std::vector<Target>& targets);
 
+// Recomputes the grid's log density and weights from its means, variances and feasibility.
+void reweigh(PosteriorGrid& grid, const std::vector<Target>& targets);
+
 // The log posterior density at any x (the same expression as on the grid).
 double log_density(const std::vector<const Gp*>& emulators, const std::vector<Target>& targets,
                    const Eigen::VectorXd& x);
+
+// The cell that holds x (the unit box; outside it, the nearest cell).
+int cell_of(const PosteriorGrid& grid, const Eigen::VectorXd& x);
 
 // The index of cell (i_1, ..., i_d) and back.
 std::vector<int> cell_indices(const PosteriorGrid& grid, int cell);

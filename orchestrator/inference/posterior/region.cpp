@@ -9,16 +9,6 @@
 namespace rockcal::inference {
 namespace {
 
-int cell_of(const PosteriorGrid& grid, const Eigen::VectorXd& x) {
-  int cell = 0, stride = 1;
-  for (int k = 0; k < grid.dims; ++k) {
-    const int i = std::clamp(int(std::floor(x(k) * grid.per_dim)), 0, grid.per_dim - 1);
-    cell += i * stride;
-    stride *= grid.per_dim;
-  }
-  return cell;
-}
-
 // The equal-tailed interval of one dimension's marginal.
 std::pair<double, double> marginal(const PosteriorGrid& grid, int dim, double level) {
   std::vector<double> mass(grid.per_dim, 0.0);

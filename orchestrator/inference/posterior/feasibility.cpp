@@ -1,0 +1,35 @@
+#include "orchestrator/inference/posterior/feasibility.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rockcal::inference {
+
+double feasibility(const RunResults& runs, const Eigen::VectorXd& x, const FeasibilitySettings& s) {
+  if (runs.x.rows() != runs.has_value.size())
+    throw std::invalid_argument("feasibility: one outcome per run is needed");
+  if (runs.x.rows() == 0) return 1.0;
+  const Eigen::VectorXd d2 = (runs.x.rowwise() - x.transpose()).rowwise().squaredNorm();
+  const double nearest = d2.minCoeff();
+  double sum_w = 0.0, sum_wy = 0.0;
+  for (Eigen::Index i = 0; i < runs.x.rows(); ++i) {
+    const double w = std::exp(-0.5 * (d2(i) - nearest) / (s.length * s.length));
+    sum_w += w;
+    sum_wy += w * runs.has_value(i);
+  }
+  return (sum_wy + s.prior_weight) / (sum_w + s.prior_weight);
+}
+
+void apply_feasibility(PosteriorGrid& grid, const RunResults& runs,
+                       const std::vector<Target>& targets, const FeasibilitySettings& s) {
+  if (runs.x.rows() == 0) {
+    grid.log_feasibility.resize(0);
+  } else {
+    grid.log_feasibility.resize(grid.points.rows());
+    for (Eigen::Index c = 0; c < grid.points.rows(); ++c)
+      grid.log_feasibility(c) = std::log(feasibility(runs, grid.points.row(c).transpose(), s));
+  }
+  reweigh(grid, targets);
+}
+
+}  // namespace rockcal::inference
