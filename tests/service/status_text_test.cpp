@@ -270,6 +270,68 @@ TEST(CalibrationSummary, APosteriorShowsItsIntervalsAndFurtherTargets) {
       << text;
 }
 
+// E and nu as targets: the stiffness stage's line in lab units (E and its target in GPa, nu and
+// its target, the stiffnesses and the stage's reason), and the rock's E and nu from the elastic
+// test with the UCT's slope beside it.
+TEST(CalibrationSummary, TheStiffnessStageShowsEAndNuInLabUnits) {
+  const json summary = {
+      {"kind", "calibration"},
+      {"verdict", "feasible"},
+      {"verdict_reason", "met"},
+      {"stiffness",
+       {{"kr", 17822.7},
+        {"ks_over_kr", 0.0966},
+        {"youngs_modulus_pa", {{"target", 4000.0}, {"measured", 3999.9}}},
+        {"poisson_ratio", {{"target", 0.3}, {"measured", 0.3001}}},
+        {"lab", {{"youngs_modulus_pa", {{"target", 69e9}, {"measured", 68.9e9}}}}},
+        {"why", "nu 0.300 meets the target 0.300 at K_s/K_r 0.0966."}}},
+      {"posterior",
+       {{"runs", 40},
+        {"points", 30},
+        {"level", 0.9},
+        {"lab_uncertainty", {{"uct", 0.1}, {"btt", 0.1}, {"source", "request"}}},
+        {"estimate", {{"fr0", 60.0}, {"fs0", 120.0}}},
+        {"fr0", {50.0, 70.0}},
+        {"fs0", {100.0, 140.0}},
+        {"uct",
+         {{"target", 1000},
+          {"mean", 1001},
+          {"interval", {900, 1100}},
+          {"relative_error", 0.001},
+          {"run_sd", 0.2}}},
+        {"btt",
+         {{"target", 100},
+          {"mean", 99.5},
+          {"interval", {90, 110}},
+          {"relative_error", -0.005},
+          {"run_sd", 0.3}}},
+        {"unique", true},
+        {"why", "narrow"}}},
+      {"rock_properties",
+       {{"units", "lab"},
+        {"ucs_pa", {{"value", 200e6}, {"interval", {190e6, 210e6}}}},
+        {"bts_pa", {{"value", 8.8e6}, {"interval", {8.5e6, 9.1e6}}}},
+        {"youngs_modulus_pa",
+         {{"value", 68.9e9}, {"runs", 1}, {"measure", "elastic"}, {"uct", 31.2e9}, {"lab", 69e9}}},
+        {"poisson_ratio",
+         {{"value", 0.3001},
+          {"runs", 1},
+          {"measure", "elastic"},
+          {"uct", nullptr},
+          {"lab", 0.3}}}}}};
+  const std::string text = calibration_text(summary);
+  EXPECT_NE(text.find("stiffness (lab units, elastic test): E 68.9 GPa (target 69 GPa) and nu 0.3 "
+                      "(target 0.3) at K_r 1.782e+04, K_s/K_r 0.0966 - nu 0.300 meets the target "
+                      "0.300 at K_s/K_r 0.0966.\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("rock at the estimate (lab units): UCS 200 MPa [190, 210], BTS 8.8 MPa "
+                      "[8.5, 9.1]; E 68.9 GPa (lab 69) and nu 0.3 (lab 0.3) from the elastic test "
+                      "(UCT slope 31.2 GPa)\n"),
+            std::string::npos)
+      << text;
+}
+
 TEST(DiagnosisProgress, JobsOfThePlannedPhasesEtaAndThePhase) {
   json c = running_calibration(390.0);
   c["kind"] = "diagnosis";
