@@ -63,7 +63,7 @@ void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& rep
 // whose stiffness misses is a compromise.
 void judge_stiffness(CalibrationReport& r) {
   if (!r.stiffness) return;
-  if (!r.verdict_reason.empty()) r.verdict_reason += ' ';
+  if (!r.verdict_reason.empty()) r.verdict_reason += r.verdict_reason.back() == '.' ? " " : ". ";
   r.verdict_reason.append("Stiffness: ").append(r.stiffness->why);
   if (r.verdict == Verdict::feasible && !stiffness_met(*r.stiffness))
     r.verdict = Verdict::compromise;

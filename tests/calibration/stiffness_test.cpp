@@ -55,7 +55,7 @@ TEST(StiffnessStage, ACalibrationMeetsEAndNuAndSearchesTheStrengthsAtThem) {
   EXPECT_DOUBLE_EQ(e.template_patch["material"]["kr"].get<double>(), s.kr_n_m);
   EXPECT_GE(r.history.size(), 8u);  // the strength search's start batch at least
   EXPECT_EQ(r.verdict, Verdict::feasible);
-  EXPECT_NE(r.verdict_reason.find("Stiffness: nu 0.2"), std::string::npos) << r.verdict_reason;
+  EXPECT_NE(r.verdict_reason.find(". Stiffness: nu 0.2"), std::string::npos) << r.verdict_reason;
 
   const json j = to_json(r, c)["stiffness"];
   EXPECT_EQ(j["measure"], "elastic");
