@@ -233,6 +233,7 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
   // The stiffnesses first: the strengths are searched at them.
   try {
     report.stiffness = calibrate_stiffness(campaign, evaluator);
+    if (report.stiffness && options.on_stiffness) options.on_stiffness(*report.stiffness);
   } catch (const EvaluationCancelled&) {
     report.stop_reason = StopReason::cancelled;
     report.verdict = Verdict::incomplete;
