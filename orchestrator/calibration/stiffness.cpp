@@ -174,7 +174,7 @@ std::optional<StiffnessResult> calibrate_stiffness(const CalibrationCampaign& c,
   // The nu search at the template's scale; its best run is where E is measured.
   const std::optional<StiffnessRun> base =
       t.poisson_ratio ? stage.search_nu(*t.poisson_ratio, 1.0)
-                      : std::optional<StiffnessRun>(stage.run({1.0, template_nu}, "nu"));
+                      : std::optional<StiffnessRun>(stage.run({1.0, template_nu}, "start"));
   r.setting = base && base->poisson_ratio ? base->setting : StiffnessSetting{1.0, template_nu};
   std::optional<StiffnessRun> last = base;
   if (r.target_youngs_modulus_pa && base && base->youngs_modulus_pa) {

@@ -41,7 +41,7 @@ struct StiffnessSetting {
 
 // One elastic run of the stage.
 struct StiffnessRun {
-  std::string phase;  // "nu" (the search), "confirm"
+  std::string phase;  // "nu" (the search), "start" (E alone: the template's), "confirm"
   StiffnessSetting setting;
   double kr_n_m = 0.0;  // the normal bond stiffness it ran (at the sample's mean radius)
   std::optional<double> youngs_modulus_pa;  // model units

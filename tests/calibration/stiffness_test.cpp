@@ -84,6 +84,25 @@ TEST(StiffnessStage, ANuOutOfThePackingsReachIsSaidWithTheReach) {
   EXPECT_EQ(r.verdict, Verdict::compromise);  // the loads are met, nu is not
 }
 
+// E alone: the template's K_s/K_r stays, one run measures E there, K_r is scaled once, one run
+// confirms.
+TEST(StiffnessStage, AnEAloneScalesKrOnceAtTheTemplatesRatio) {
+  const CalibrationCampaign c =
+      testing::campaign(testing::power_law({60, 120}), with_elastic({{"youngs_modulus", 5000}}));
+  testing::ModelEvaluator e(testing::power_law);
+  e.elastic_model = packing;
+  const std::optional<StiffnessResult> s = calibrate_stiffness(c, e);
+  ASSERT_TRUE(s && s->youngs_modulus_pa);
+  ASSERT_EQ(s->runs.size(), 2u);
+  EXPECT_EQ(s->runs[0].phase, "start");
+  EXPECT_EQ(s->runs[1].phase, "confirm");
+  EXPECT_DOUBLE_EQ(s->setting.nu, 0.2);  // the template's
+  // E = 0.3 K_r (1 + 0.8 / 3) at eq. 3's K_s/K_r 1/3 for nu 0.2.
+  EXPECT_NEAR(s->kr_n_m, 5000 / (0.3 * (1 + 0.8 / 3)), 1e-6);
+  EXPECT_NEAR(*s->youngs_modulus_pa, 5000, 1e-6);
+  EXPECT_EQ(to_json(*s, c)["poisson_ratio"], nullptr);
+}
+
 // The seed lab case with the lab's E and nu as targets: the E target is the lab's times eq. 4's
 // stress scale, and the report gives the measured E back in lab units.
 TEST(StiffnessStage, LabTargetsAreMatchedInTheModelsUnitsAndReportedInTheLabs) {
