@@ -96,12 +96,25 @@ class Stage {
   Evaluator& evaluator_;
 };
 
+// The confirming run's errors against the targets: E relative, nu absolute; none without both.
+std::optional<double> e_error(const StiffnessResult& r) {
+  if (!r.target_youngs_modulus_pa || !r.youngs_modulus_pa) return std::nullopt;
+  return *r.youngs_modulus_pa / *r.target_youngs_modulus_pa - 1;
+}
+std::optional<double> nu_error(const StiffnessResult& r) {
+  if (!r.target_poisson_ratio || !r.poisson_ratio) return std::nullopt;
+  return *r.poisson_ratio - *r.target_poisson_ratio;
+}
+bool within(const std::optional<double>& error, double tolerance) {
+  return error && std::abs(*error) <= tolerance;
+}
+
 std::string why(const StiffnessResult& r) {
   std::string out;
   if (r.target_poisson_ratio) {
     if (!r.poisson_ratio) {
       out = "no elastic run measured nu. ";
-    } else if (std::abs(*r.poisson_ratio - *r.target_poisson_ratio) <= kStiffnessNuTolerance) {
+    } else if (within(nu_error(r), kStiffnessNuTolerance)) {
       out = sentence("nu %.3f meets the target %.3f at K_s/K_r %.3g. ", *r.poisson_ratio,
                      *r.target_poisson_ratio, r.ks_over_kr);
     } else {
@@ -118,8 +131,8 @@ std::string why(const StiffnessResult& r) {
     if (!r.youngs_modulus_pa) {
       out += "no elastic run measured E.";
     } else {
-      const double err = *r.youngs_modulus_pa / *r.target_youngs_modulus_pa - 1;
-      out += sentence(std::abs(err) <= kStiffnessETolerance
+      const double err = *e_error(r);
+      out += sentence(within(err, kStiffnessETolerance)
                           ? "E %+.1f%% from the target at K_r %.4g (%.4g x the template's)."
                           : "E %+.1f%% from the target at K_r %.4g (%.4g x the template's): "
                             "misses it.",
@@ -136,14 +149,8 @@ json optional_number(const std::optional<double>& v) {
 }  // namespace
 
 bool stiffness_met(const StiffnessResult& r) {
-  const bool e =
-      !r.target_youngs_modulus_pa ||
-      (r.youngs_modulus_pa &&
-       std::abs(*r.youngs_modulus_pa / *r.target_youngs_modulus_pa - 1) <= kStiffnessETolerance);
-  const bool nu = !r.target_poisson_ratio ||
-                  (r.poisson_ratio &&
-                   std::abs(*r.poisson_ratio - *r.target_poisson_ratio) <= kStiffnessNuTolerance);
-  return e && nu;
+  return (!r.target_youngs_modulus_pa || within(e_error(r), kStiffnessETolerance)) &&
+         (!r.target_poisson_ratio || within(nu_error(r), kStiffnessNuTolerance));
 }
 
 double ks_over_kr(double nu) {
@@ -212,29 +219,17 @@ json to_json(const StiffnessResult& r, const CalibrationCampaign& c) {
   }
   json e = nullptr, nu = nullptr;
   if (r.target_youngs_modulus_pa) {
-    const double target = *r.target_youngs_modulus_pa;
-    e = {{"target", target},
+    e = {{"target", *r.target_youngs_modulus_pa},
          {"measured", optional_number(r.youngs_modulus_pa)},
-         {"relative_error", nullptr},
-         {"met", false}};
-    if (r.youngs_modulus_pa) {
-      const double err = *r.youngs_modulus_pa / target - 1;
-      e["relative_error"] = err;
-      e["met"] = std::abs(err) <= kStiffnessETolerance;
-    }
+         {"relative_error", optional_number(e_error(r))},
+         {"met", within(e_error(r), kStiffnessETolerance)}};
   }
   if (r.target_poisson_ratio) {
-    const double target = *r.target_poisson_ratio;
-    nu = {{"target", target},
+    nu = {{"target", *r.target_poisson_ratio},
           {"measured", optional_number(r.poisson_ratio)},
-          {"error", nullptr},
-          {"met", false},
+          {"error", optional_number(nu_error(r))},
+          {"met", within(nu_error(r), kStiffnessNuTolerance)},
           {"reached", {optional_number(r.nu_reached_lo), optional_number(r.nu_reached_hi)}}};
-    if (r.poisson_ratio) {
-      const double err = *r.poisson_ratio - target;
-      nu["error"] = err;
-      nu["met"] = std::abs(err) <= kStiffnessNuTolerance;
-    }
   }
   json j = {{"measure", "elastic"},
             {"template_field", stiffness_field(c.job_template)},
