@@ -28,15 +28,9 @@ json measured(const std::optional<EvaluationRecord>& best, bool modulus, double 
     for (double v : values) sum += v;
     uct = sum / double(values.size());
   }
-  if (elastic)
-    return {{"value", *elastic * scale},
-            {"runs", 1},
-            {"measure", "elastic"},
-            {"uct", uct},
-            {"lab", lab ? json(*lab) : json(nullptr)}};
-  return {{"value", uct},
-          {"runs", values.size()},
-          {"measure", "uct"},
+  return {{"value", elastic ? json(*elastic * scale) : uct},
+          {"runs", elastic ? std::size_t(1) : values.size()},
+          {"measure", elastic ? "elastic" : "uct"},
           {"uct", uct},
           {"lab", lab ? json(*lab) : json(nullptr)}};
 }

@@ -66,7 +66,13 @@ TEST(StiffnessStage, ACalibrationMeetsEAndNuAndSearchesTheStrengthsAtThem) {
   EXPECT_EQ(j["met"], true);
   EXPECT_EQ(j["runs"].size(), s.runs.size());
   EXPECT_EQ(j["why"], s.why);
-  EXPECT_EQ(to_json(r, c)["rock_properties"]["poisson_ratio"]["lab"], 0.25);
+  // The rock's E and nu are the stage's elastic test's, beside the targets.
+  const json rock = to_json(r, c)["rock_properties"];
+  EXPECT_EQ(rock["youngs_modulus_pa"]["measure"], "elastic");
+  EXPECT_DOUBLE_EQ(rock["youngs_modulus_pa"]["value"].get<double>(), *s.youngs_modulus_pa);
+  EXPECT_EQ(rock["youngs_modulus_pa"]["lab"], 5000);
+  EXPECT_DOUBLE_EQ(rock["poisson_ratio"]["value"].get<double>(), *s.poisson_ratio);
+  EXPECT_EQ(rock["poisson_ratio"]["lab"], 0.25);
 }
 
 TEST(StiffnessStage, ANuOutOfThePackingsReachIsSaidWithTheReach) {
