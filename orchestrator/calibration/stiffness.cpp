@@ -8,6 +8,7 @@
 #include "engine/units.hpp"
 #include "orchestrator/calibration/nlopt_bridge.hpp"
 #include "orchestrator/calibration/sentence.hpp"
+#include "orchestrator/ensemble.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -35,26 +36,36 @@ class Stage {
  public:
   Stage(const CalibrationCampaign& c, Evaluator& e) : c_(c), evaluator_(e) {}
 
-  // One elastic run at a setting, recorded.
+  // One elastic run at a setting (its packings side by side), recorded.
   const StiffnessRun& run(const StiffnessSetting& s, const std::string& phase) {
     const ProbeRequest probe{{c_.fr0_n.hi, c_.fs0_n.hi},
                              c_.sample_seed,
-                             1,
+                             c_.seed_matters ? kStiffnessPackings : 1,
                              TestKind::elastic,
                              stiffness_patch(c_.job_template, s)};
-    StiffnessRun r{phase, s, kr_at(c_, s), std::nullopt, std::nullopt, 0, ""};
+    StiffnessRun r;
+    r.phase = phase;
+    r.setting = s;
+    r.kr_n_m = kr_at(c_, s);
     const std::vector<orch::Ensemble> out = evaluator_.probe_batch({&probe, 1});
-    if (out.empty() || out[0].realisations.empty()) {
-      r.error = "the evaluator runs no elastic tests";
-    } else {
-      const orch::Realisation& x = out[0].realisations[0];
-      r.youngs_modulus_pa = x.youngs_modulus_pa;
-      r.poisson_ratio = x.poisson_ratio;
-      r.job_id = x.job_id;
-      r.error = x.error;
-      if (r.error.empty() && !(r.youngs_modulus_pa && r.poisson_ratio))
-        r.error = "the elastic test measured no E or nu";
+    std::vector<double> e, nu;
+    for (const orch::Realisation& x :
+         out.empty() ? std::vector<orch::Realisation>{} : out[0].realisations) {
+      r.job_ids.push_back(x.job_id);
+      if (x.youngs_modulus_pa && x.poisson_ratio) {
+        e.push_back(*x.youngs_modulus_pa);
+        nu.push_back(*x.poisson_ratio);
+      } else if (r.error.empty()) {
+        r.error = x.error.empty() ? "the elastic test measured no E or nu" : x.error;
+      }
     }
+    if (out.empty()) r.error = "the evaluator runs no elastic tests";
+    const orch::SampleStats es = orch::sample_stats(e), nus = orch::sample_stats(nu);
+    r.packings = nus.n;
+    r.youngs_modulus_pa = es.mean;
+    r.youngs_modulus_sd = es.sd;
+    r.poisson_ratio = nus.mean;
+    r.poisson_ratio_sd = nus.sd;
     runs_.push_back(r);
     return runs_.back();
   }
@@ -64,13 +75,13 @@ class Stage {
   std::optional<StiffnessRun> search_nu(double target, double scale) {
     const double lo = std::log(ks_over_kr(kStiffnessNuHi)),
                  hi = std::log(ks_over_kr(kStiffnessNuLo));
-    nlopt::opt opt(nlopt::LN_BOBYQA, 1);
+    nlopt::opt opt(nlopt::LN_NELDERMEAD, 1);
     opt.set_lower_bounds(std::vector<double>{lo});
     opt.set_upper_bounds(std::vector<double>{hi});
-    opt.set_initial_step(std::vector<double>{0.5});
+    opt.set_initial_step(std::vector<double>{0.7});
     opt.set_maxeval(kStiffnessNuRuns);
-    const double stop = kStiffnessNuTolerance / 3;
-    opt.set_stopval(stop * stop);
+    opt.set_stopval(
+        kStiffnessNuTolerance);  // within the packings' scatter: more runs would chase it
     opt.set_xtol_abs(1e-3);
     const double start = std::clamp(target, kStiffnessNuLo, kStiffnessNuHi);
     std::vector<double> x = {std::clamp(std::log(ks_over_kr(start)), lo, hi)};
@@ -78,7 +89,7 @@ class Stage {
       const double nu = nu_for_ks_over_kr(std::exp(std::clamp(v[0], lo, hi)));
       const StiffnessRun& r = run({scale, nu}, "nu");
       // A failed run counts as a miss by 1, beyond any nu a packing has.
-      return r.poisson_ratio ? std::pow(*r.poisson_ratio - target, 2) : 1.0;
+      return r.poisson_ratio ? std::abs(*r.poisson_ratio - target) : 1.0;
     });
     std::optional<StiffnessRun> best;
     for (const StiffnessRun& r : runs_) {
@@ -139,6 +150,9 @@ std::string why(const StiffnessResult& r) {
                       100 * err, r.kr_n_m, r.setting.scale);
     }
   }
+  if (r.packings > 1 && r.poisson_ratio_sd)
+    out += sentence(" E and nu are means of %.0f packings (nu sd %.3f between them).", r.packings,
+                    *r.poisson_ratio_sd);
   return out;
 }
 
@@ -193,9 +207,11 @@ std::optional<StiffnessResult> calibrate_stiffness(const CalibrationCampaign& c,
     r.nu_reached_lo = std::min(r.nu_reached_lo.value_or(*x.poisson_ratio), *x.poisson_ratio);
     r.nu_reached_hi = std::max(r.nu_reached_hi.value_or(*x.poisson_ratio), *x.poisson_ratio);
   }
-  if (last && last->error.empty()) {
+  if (last) {
     r.youngs_modulus_pa = last->youngs_modulus_pa;
     r.poisson_ratio = last->poisson_ratio;
+    r.poisson_ratio_sd = last->poisson_ratio_sd;
+    r.packings = last->packings;
   }
   r.kr_n_m = kr_at(c, r.setting);
   r.ks_over_kr = ks_over_kr(r.setting.nu);
@@ -214,7 +230,10 @@ json to_json(const StiffnessResult& r, const CalibrationCampaign& c) {
                     {"nu_input", x.setting.nu},
                     {"youngs_modulus_pa", optional_number(x.youngs_modulus_pa)},
                     {"poisson_ratio", optional_number(x.poisson_ratio)},
-                    {"job_id", x.job_id},
+                    {"youngs_modulus_sd", optional_number(x.youngs_modulus_sd)},
+                    {"poisson_ratio_sd", optional_number(x.poisson_ratio_sd)},
+                    {"packings", x.packings},
+                    {"job_ids", x.job_ids},
                     {"error", x.error}});
   }
   json e = nullptr, nu = nullptr;
@@ -240,6 +259,8 @@ json to_json(const StiffnessResult& r, const CalibrationCampaign& c) {
             {"youngs_modulus_pa", e},
             {"poisson_ratio", nu},
             {"met", stiffness_met(r)},
+            {"packings", r.packings},
+            {"poisson_ratio_sd", optional_number(r.poisson_ratio_sd)},
             {"runs", runs},
             {"why", r.why}};
   if (c.targets.scaling && c.targets.lab) {

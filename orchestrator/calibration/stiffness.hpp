@@ -31,6 +31,9 @@ inline constexpr double kStiffnessNuHi = 0.3;
 inline constexpr int kStiffnessNuRuns = 10;            // elastic runs the nu search may take
 inline constexpr double kStiffnessNuTolerance = 0.03;  // |nu - target| that meets the target
 inline constexpr double kStiffnessETolerance = 0.05;   // |E / target - 1| that meets the target
+// Packings each elastic run measures when the template's seed makes another specimen (a random
+// packing's nu scatters by about 0.1 between packings at D/R 16): the run's E and nu are means.
+inline constexpr int kStiffnessPackings = 4;
 
 // The job template's stiffness as the stage changes it: the material field it states ("kr" or
 // "youngs_modulus", eq. 3's input) times a factor, and eq. 3's nu.
@@ -44,10 +47,14 @@ struct StiffnessRun {
   std::string phase;  // "nu" (the search), "start" (E alone: the template's), "confirm"
   StiffnessSetting setting;
   double kr_n_m = 0.0;  // the normal bond stiffness it ran (at the sample's mean radius)
-  std::optional<double> youngs_modulus_pa;  // model units
+  // Means over the packings that measured both (model units), and their standard deviations.
+  std::optional<double> youngs_modulus_pa;
   std::optional<double> poisson_ratio;
-  std::int64_t job_id = 0;
-  std::string error;
+  std::optional<double> youngs_modulus_sd;
+  std::optional<double> poisson_ratio_sd;
+  int packings = 0;                   // that measured both
+  std::vector<std::int64_t> job_ids;  // one per packing (0 outside the service)
+  std::string error;                  // the first failed packing's
 };
 
 struct StiffnessResult {
@@ -56,8 +63,10 @@ struct StiffnessResult {
   double ks_over_kr = 0.0;
   std::optional<double> target_youngs_modulus_pa;  // model units
   std::optional<double> target_poisson_ratio;
-  std::optional<double> youngs_modulus_pa;  // the confirming run's
+  std::optional<double> youngs_modulus_pa;  // the confirming run's means
   std::optional<double> poisson_ratio;
+  std::optional<double> poisson_ratio_sd;  // between its packings
+  int packings = 0;
   // The nu the search's runs measured at their extremes of K_s/K_r: the packing's reach so far.
   std::optional<double> nu_reached_lo;
   std::optional<double> nu_reached_hi;
@@ -77,8 +86,8 @@ nlohmann::json stiffness_patch(const nlohmann::json& job_template, const Stiffne
 
 // Runs the stage on the campaign's targets.elastic (nothing when it has none) and leaves the
 // evaluator's template at the result. Elastic runs are probes at the strongest bonds of the box
-// (none breaks at the elastic strain), one packing (the template's seed). Throws what the
-// evaluator throws.
+// (none breaks at the elastic strain), on the template's seed and, when the seed matters, the
+// next kStiffnessPackings - 1. Throws what the evaluator throws.
 std::optional<StiffnessResult> calibrate_stiffness(const CalibrationCampaign& campaign,
                                                    Evaluator& evaluator);
 

@@ -114,27 +114,35 @@ std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
   return outcomes;
 }
 
-// One realisation per probe (the probe's seed), with what the run measured.
+// Each probe's realisations (seeds sample_seed, sample_seed + 1, ...), with what the runs measured.
 std::vector<orch::Ensemble> DemEvaluator::probe_batch(std::span<const ProbeRequest> probes) {
   std::vector<Job> jobs;
-  int first = jobs_run.fetch_add(int(probes.size()));
+  std::vector<std::uint64_t> seeds;
   for (const ProbeRequest& p : probes) {
-    const std::string name = "job" + std::to_string(first++);
-    jobs.push_back({job_for(job_template, p, p.sample_seed), work_dir / name, std::nullopt, ""});
+    for (std::uint64_t seed : orch::realisation_seeds(p.sample_seed, p.realisations)) {
+      const std::string name = "job" + std::to_string(jobs_run.fetch_add(1));
+      jobs.push_back({job_for(job_template, p, seed), work_dir / name, std::nullopt, ""});
+      seeds.push_back(seed);
+    }
   }
   run_all(engine, jobs, parallel);
   std::vector<orch::Ensemble> out;
-  for (std::size_t i = 0; i < probes.size(); ++i) {
-    const Job& j = jobs[i];
-    orch::Realisation x{probes[i].sample_seed,
-                        0,
-                        j.error.empty() ? "succeeded" : "failed",
-                        j.peak_load_n,
-                        std::nullopt,
-                        j.youngs_modulus_pa,
-                        j.error};
-    x.poisson_ratio = j.poisson_ratio;
-    out.push_back(orch::make_ensemble({x}));
+  std::size_t next = 0;
+  for (const ProbeRequest& p : probes) {
+    std::vector<orch::Realisation> runs;
+    for (int k = 0; k < p.realisations; ++k, ++next) {
+      const Job& j = jobs[next];
+      orch::Realisation x{seeds[next],
+                          0,
+                          j.error.empty() ? "succeeded" : "failed",
+                          j.peak_load_n,
+                          std::nullopt,
+                          j.youngs_modulus_pa,
+                          j.error};
+      x.poisson_ratio = j.poisson_ratio;
+      runs.push_back(x);
+    }
+    out.push_back(orch::make_ensemble(std::move(runs)));
   }
   return out;
 }

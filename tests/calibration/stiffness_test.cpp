@@ -20,7 +20,7 @@ using nlohmann::json;
 
 // A packing stiffer in shear than eq. 3's lattice and softer overall: E = 0.3 K_r (1 + 0.8 q) / R
 // and nu = 0.5 / (1 + 0.6 q), q = K_s/K_r. nu spans [0.125, 0.478] over the stage's K_s/K_r.
-testing::ElasticConstants packing(const ProbeRequest& p) {
+testing::ElasticConstants packing(const ProbeRequest& p, std::uint64_t /*seed*/) {
   const json& m = p.patch.at("material");
   const double q = ks_over_kr(m.at("nu").get<double>());
   return {0.3 * m.at("kr").get<double>() * (1 + 0.8 * q), 0.5 / (1 + 0.6 * q)};
@@ -88,6 +88,31 @@ TEST(StiffnessStage, ANuOutOfThePackingsReachIsSaidWithTheReach) {
   EXPECT_NEAR(r.stiffness->setting.nu, kStiffnessNuLo, 1e-6);
   EXPECT_NE(r.stiffness->why.find("the packing's reach"), std::string::npos) << r.stiffness->why;
   EXPECT_EQ(r.verdict, Verdict::compromise);  // the loads are met, nu is not
+}
+
+// A random packing is another specimen under every seed: each elastic run measures
+// kStiffnessPackings of them and the stage matches their mean (here the packings' nu alternates
+// 0.05 either side of the formula's).
+TEST(StiffnessStage, ARandomPackingsNuIsTheMeanOverPackings) {
+  json over = with_elastic({{"youngs_modulus", 5000}, {"poisson_ratio", 0.25}});
+  over["job"] = {{"sample", {{"packing", "random"}}}};
+  const CalibrationCampaign c = testing::campaign(testing::power_law({60, 120}), over);
+  ASSERT_TRUE(c.seed_matters);
+  testing::ModelEvaluator e(testing::power_law);
+  e.elastic_model = [](const ProbeRequest& p, std::uint64_t seed) {
+    testing::ElasticConstants k = packing(p, seed);
+    k.poisson_ratio += seed % 2 ? 0.05 : -0.05;
+    return k;
+  };
+  const std::optional<StiffnessResult> s = calibrate_stiffness(c, e);
+  ASSERT_TRUE(s && s->poisson_ratio && s->poisson_ratio_sd);
+  for (const StiffnessRun& run : s->runs) EXPECT_EQ(run.packings, kStiffnessPackings);
+  EXPECT_EQ(s->packings, kStiffnessPackings);
+  EXPECT_NEAR(*s->poisson_ratio, 0.25, kStiffnessNuTolerance);
+  EXPECT_NEAR(*s->poisson_ratio_sd, 0.05 * std::sqrt(4.0 / 3.0), 1e-9);
+  EXPECT_NE(s->why.find("E and nu are means of 4 packings (nu sd 0.058 between them)."),
+            std::string::npos)
+      << s->why;
 }
 
 // E alone: the template's K_s/K_r stays, one run measures E there, K_r is scaled once, one run

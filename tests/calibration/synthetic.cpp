@@ -79,7 +79,7 @@ std::vector<orch::Ensemble> ModelEvaluator::probe_batch(std::span<const ProbeReq
     std::vector<orch::Realisation> runs;
     for (std::uint64_t seed : orch::realisation_seeds(r.sample_seed, r.realisations)) {
       if (r.test == TestKind::elastic) {
-        const ElasticConstants e = elastic_model(r);
+        const ElasticConstants e = elastic_model(r, seed);
         orch::Realisation x{seed, 0, "succeeded", 0.0, 0.0, e.youngs_modulus_pa, ""};
         x.poisson_ratio = e.poisson_ratio;
         runs.push_back(x);

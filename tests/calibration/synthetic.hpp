@@ -38,12 +38,13 @@ PeakLoads saturating(const BondPoint& p);
 // mode); a BTT of another size follows power_law like the target's.
 double saturating_probe(const BondPoint& p, const ProbeRequest& probe);
 
-// An elastic test's E (Pa) and nu as a closed form of the probe (its patch holds the material).
+// An elastic test's E (Pa) and nu as a closed form of the probe (its patch holds the material)
+// and the packing's seed.
 struct ElasticConstants {
   double youngs_modulus_pa;
   double poisson_ratio;
 };
-using ElasticModel = std::function<ElasticConstants(const ProbeRequest&)>;
+using ElasticModel = std::function<ElasticConstants(const ProbeRequest&, std::uint64_t seed)>;
 
 // Runs each request's realisations (seeds sample_seed, sample_seed + 1, ...) through the model.
 struct ModelEvaluator : Evaluator {
