@@ -185,6 +185,8 @@ std::string rock_text(const json& r) {
          measured("nu", nu, 1.0, "");
   if (at(e, "measure") == "elastic") {
     out += " from the elastic test";
+    if (e["runs"].is_number() && e["runs"].get<int>() > 1)
+      out += " (mean of " + e["runs"].dump() + " packings)";
     if (e["uct"].is_number())
       out += " (UCT slope " + num((lab ? 1e-9 : 1.0) * e["uct"].get<double>(), "%.3g") +
              (lab ? " GPa" : " Pa") + ")";

@@ -14,7 +14,7 @@ using nlohmann::json;
 // gauges measure it), else the mean over the estimate's UCT check runs that have it; the UCT's
 // mean (for E its pre-peak slope, platen to platen) is stated beside either way.
 json measured(const std::optional<EvaluationRecord>& best, bool modulus, double scale,
-              std::optional<double> lab, std::optional<double> elastic) {
+              std::optional<double> lab, std::optional<double> elastic, int elastic_runs) {
   std::vector<double> values;
   if (best && best->uct) {
     for (const orch::Realisation& x : best->uct->realisations) {
@@ -29,7 +29,7 @@ json measured(const std::optional<EvaluationRecord>& best, bool modulus, double 
     uct = sum / double(values.size());
   }
   return {{"value", elastic ? json(*elastic * scale) : uct},
-          {"runs", elastic ? std::size_t(1) : values.size()},
+          {"runs", elastic ? std::size_t(elastic_runs) : values.size()},
           {"measure", elastic ? "elastic" : "uct"},
           {"uct", uct},
           {"lab", lab ? json(*lab) : json(nullptr)}};
@@ -61,8 +61,9 @@ json rock_properties_json(const CalibrationReport& r, const CalibrationCampaign&
   return {{"units", lab ? "lab" : "model"},
           {"ucs_pa", strength(p.uct, uct_strength_pa)},
           {"bts_pa", strength(p.btt, btt_strength_pa)},
-          {"youngs_modulus_pa", measured(r.best, true, stress, lab_e, st.youngs_modulus_pa)},
-          {"poisson_ratio", measured(r.best, false, 1.0, lab_nu, st.poisson_ratio)}};
+          {"youngs_modulus_pa",
+           measured(r.best, true, stress, lab_e, st.youngs_modulus_pa, st.packings)},
+          {"poisson_ratio", measured(r.best, false, 1.0, lab_nu, st.poisson_ratio, st.packings)}};
 }
 
 }  // namespace rockcal::calibration

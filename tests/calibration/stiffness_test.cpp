@@ -69,6 +69,7 @@ TEST(StiffnessStage, ACalibrationMeetsEAndNuAndSearchesTheStrengthsAtThem) {
   // The rock's E and nu are the stage's elastic test's, beside the targets.
   const json rock = to_json(r, c)["rock_properties"];
   EXPECT_EQ(rock["youngs_modulus_pa"]["measure"], "elastic");
+  EXPECT_EQ(rock["youngs_modulus_pa"]["runs"], c.seed_matters ? kStiffnessPackings : 1);
   EXPECT_DOUBLE_EQ(rock["youngs_modulus_pa"]["value"].get<double>(), *s.youngs_modulus_pa);
   EXPECT_EQ(rock["youngs_modulus_pa"]["lab"], 5000);
   EXPECT_DOUBLE_EQ(rock["poisson_ratio"]["value"].get<double>(), *s.poisson_ratio);
