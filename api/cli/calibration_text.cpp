@@ -158,7 +158,8 @@ std::string fidelity_text(const json& f) {
 }
 
 // The rock at the estimate: "rock at the estimate (lab units): UCS 105 MPa [98.1, 112], BTS 17.5
-// MPa [16.8, 18.2]; E 11.2 GPa (lab 12.3) and nu 0.212 (lab 0.2) from 2 check runs".
+// MPa [16.8, 18.2]; E 11.2 GPa (lab 12.3) and nu 0.212 (lab 0.2) from 2 check runs", or "from
+// the elastic test (UCT slope 6.1 GPa)" when the stiffness stage measured them.
 std::string rock_text(const json& r) {
   if (!r.is_object()) return "";
   const bool lab = at(r, "units") == "lab";
@@ -182,8 +183,45 @@ std::string rock_text(const json& r) {
   };
   out += "; " + measured("E", e, lab ? 1e-9 : 1.0, lab ? " GPa" : " Pa") + " and " +
          measured("nu", nu, 1.0, "");
-  if (e.is_object() && e["runs"].is_number()) out += " from " + e["runs"].dump() + " check runs";
+  if (at(e, "measure") == "elastic") {
+    out += " from the elastic test";
+    if (e["runs"].is_number() && e["runs"].get<int>() > 1)
+      out += " (mean of " + e["runs"].dump() + " packings)";
+    if (e["uct"].is_number())
+      out += " (UCT slope " + num((lab ? 1e-9 : 1.0) * e["uct"].get<double>(), "%.3g") +
+             (lab ? " GPa" : " Pa") + ")";
+  } else if (e.is_object() && e["runs"].is_number()) {
+    out += " from " + e["runs"].dump() + " check runs";
+  }
   return out + "\n";
+}
+
+// The stiffness stage: "stiffness (lab units, elastic test): E 69.1 GPa (target 69) and nu 0.262
+// (target 0.26) at K_r 4.2e+04, K_s/K_r 0.46 - <why>".
+std::string stiffness_text(const json& st) {
+  if (!st.is_object()) return "";
+  const json& lab = at(st, "lab");
+  const json& e = at(st, "youngs_modulus_pa");
+  const json& nu = at(st, "poisson_ratio");
+  auto value = [](const json& v, double scale, const char* unit) {
+    return v.is_number() ? num(scale * v.get<double>(), "%.3g") + unit
+                         : std::string("not measured");
+  };
+  std::string out =
+      std::string("stiffness (") + (lab.is_object() ? "lab" : "model") + " units, elastic test):";
+  if (e.is_object()) {
+    const json& shown = lab.is_object() ? lab["youngs_modulus_pa"] : e;
+    const double scale = lab.is_object() ? 1e-9 : 1.0;
+    const char* unit = lab.is_object() ? " GPa" : " Pa";
+    out += " E " + value(shown["measured"], scale, unit) + " (target " +
+           value(shown["target"], scale, unit) + ")";
+  }
+  if (nu.is_object()) {
+    out += std::string(e.is_object() ? " and" : "") + " nu " + value(nu["measured"], 1.0, "") +
+           " (target " + value(nu["target"], 1.0, "") + ")";
+  }
+  return out + " at K_r " + num(st["kr"].get<double>(), "%.4g") + ", K_s/K_r " +
+         num(st["ks_over_kr"].get<double>(), "%.3g") + " - " + value_text(at(st, "why")) + "\n";
 }
 
 // The "bayes" strategy's answer: the estimate and the credible intervals of both strengths, the
@@ -250,6 +288,7 @@ std::string calibration_text(const json& s) {
   std::ostringstream out;
   out << "verdict: " << value_text(at(s, "verdict")) << " - " << value_text(at(s, "verdict_reason"))
       << "\n";
+  out << stiffness_text(at(s, "stiffness"));
   const json& best = at(s, "best");
   const json& posterior = at(s, "posterior");
   if (posterior.is_object()) {

@@ -83,8 +83,10 @@ orch::CampaignKind calibration_kind() {
     // a client needs for its progress line (from the start, so the budget shows before the first
     // evaluation ends); the report replaces it at the end.
     std::vector<EvaluationRecord> history;
+    nlohmann::json stiffness = nullptr;
     auto publish = [&] {
       nlohmann::json live = progress_json(history, c);
+      live["stiffness"] = stiffness;
       live["scatter_runs"] = seed_reruns(c);
       live["pace"] = pace.to_json();
       live["progress"] =
@@ -97,8 +99,14 @@ orch::CampaignKind calibration_kind() {
       pace.add(record);
       publish();
     };
+    auto on_stiffness = [&](const StiffnessResult& result) {
+      stiffness = to_json(result, c);
+      publish();
+    };
     nlohmann::json report = to_json(
-        run_calibration(c, evaluator, {ctx.stop, on_evaluation, ctx.service.config().workers}), c);
+        run_calibration(c, evaluator,
+                        {ctx.stop, on_evaluation, ctx.service.config().workers, on_stiffness}),
+        c);
     report["pace"] = pace.to_json();
     report["progress"] =
         progress_model_json(report["evaluations"].get<std::size_t>(), c, std::nullopt, true);

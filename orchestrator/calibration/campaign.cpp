@@ -52,8 +52,15 @@ Targets parse_targets(orch::JsonFields& root, const JobSpec& model,
   } else if (t.get("lab") || t.get("model_scale")) {
     throw orch::RequestError("targets.units", "must be \"lab\" when lab and model_scale are given");
   }
+  ElasticTargets elastic;
+  elastic.youngs_modulus_pa = t.positive("youngs_modulus");
+  elastic.poisson_ratio = t.number("poisson_ratio");
+  if (elastic.poisson_ratio && !(*elastic.poisson_ratio > -1 && *elastic.poisson_ratio < 0.5))
+    throw orch::RequestError("targets.poisson_ratio", "must be in (-1, 0.5)");
   t.reject_unknown();
-  return resolve_targets(uct, btt, model_specimen, lab);
+  Targets out = resolve_targets(uct, btt, model_specimen, lab);
+  out.elastic = elastic;
+  return out;
 }
 
 Specimen model_specimen_of(const JobSpec& model) {
@@ -309,6 +316,10 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   parse_inference(root, c);
   check_fidelity_fields(campaign, c);
   parse_further_targets(root, c);
+  if (c.targets.elastic.any() && !c.fine_patch.is_null())
+    throw orch::RequestError(
+        c.targets.elastic.youngs_modulus_pa ? "targets.youngs_modulus" : "targets.poisson_ratio",
+        "not with \"fidelity\" (the stiffness stage calibrates one specimen)");
   c.initial_points = int(root.integer("initial_points", 0, 64).value_or(c.initial_points));
   c.random_seed = std::uint64_t(
       root.integer("random_seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));

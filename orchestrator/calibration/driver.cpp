@@ -14,6 +14,7 @@
 #include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/calibration/start_design.hpp"
+#include "orchestrator/calibration/stiffness.hpp"
 #include "orchestrator/calibration/suggestion.hpp"
 
 namespace rockcal::calibration {
@@ -56,6 +57,16 @@ void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& rep
   }
   const EvaluationRecord* best = ledger.best();
   local_search_with_restarts(ledger, c, best ? best->point : start[0].point);
+}
+
+// E and nu are targets too: the reason says how they came out, and a feasible strength answer
+// whose stiffness misses is a compromise.
+void judge_stiffness(CalibrationReport& r) {
+  if (!r.stiffness) return;
+  if (!r.verdict_reason.empty()) r.verdict_reason += r.verdict_reason.back() == '.' ? " " : ". ";
+  r.verdict_reason.append("Stiffness: ").append(r.stiffness->why);
+  if (r.verdict == Verdict::feasible && !stiffness_met(*r.stiffness))
+    r.verdict = Verdict::compromise;
 }
 
 SeedScatter scatter_best(const CalibrationCampaign& c, Evaluator& evaluator,
@@ -219,8 +230,18 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
                                   const RunOptions& options) {
   nlopt::srand(campaign.random_seed);  // per thread: seed it in the optimising one
   CalibrationReport report;
+  // The stiffnesses first: the strengths are searched at them.
+  try {
+    report.stiffness = calibrate_stiffness(campaign, evaluator);
+    if (report.stiffness && options.on_stiffness) options.on_stiffness(*report.stiffness);
+  } catch (const EvaluationCancelled&) {
+    report.stop_reason = StopReason::cancelled;
+    report.verdict = Verdict::incomplete;
+    return report;
+  }
   if (campaign.strategy == Strategy::bayes) {
     bayes_calibration(campaign, evaluator, options, report);
+    judge_stiffness(report);
     return report;
   }
   bool cancelled = false;
@@ -282,6 +303,7 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
   review_ensemble_size(report.ensemble, report.best ? &*report.best : nullptr,
                        scatter_as_estimate(report.scatter, c.tolerance), c.tolerance);
   judge(report, c);
+  judge_stiffness(report);
   return report;
 }
 

@@ -10,6 +10,7 @@
 // campaign replays its history from the job cache and continues where it stopped.
 #pragma once
 
+#include <functional>
 #include <future>
 #include <stop_token>
 #include <thread>
@@ -25,6 +26,8 @@ struct RunOptions {
   std::stop_token stop;          // checked before every batch
   RecordCallback on_evaluation;  // after each search evaluation (progress, persistence)
   int workers = 2;               // the pool's: a batch design keeps this many busy
+  // After the stiffness stage, before the strength search (E or nu a target only).
+  std::function<void(const StiffnessResult&)> on_stiffness = {};
 };
 
 // Runs the whole calibration in the calling thread and returns its report; a cancellation (stop

@@ -89,6 +89,10 @@ class Evaluator {
     (void)probes;
     return {};
   }
+  // Merges `patch` into the job template of every later run, evaluation or probe (the stiffness
+  // stage's bond stiffnesses, stiffness.hpp). An evaluator that runs formulas of the strengths
+  // alone has no template and nothing to change.
+  virtual void patch_template(const nlohmann::json& patch) { (void)patch; }
 };
 
 // The full job (test, bond strengths, seed filled in) that evaluates one test of a request on the

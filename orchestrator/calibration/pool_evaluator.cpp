@@ -44,6 +44,10 @@ std::vector<orch::Ensemble> PoolEvaluator::probe_batch(std::span<const ProbeRequ
   return run(groups);
 }
 
+void PoolEvaluator::patch_template(const nlohmann::json& patch) {
+  job_template_.merge_patch(patch);
+}
+
 // A job whose run ended without a peak is a failed job ("no peak: ..."): it is left out of the
 // ensemble's statistics like any other failure, never taken as a load.
 std::vector<orch::Ensemble> PoolEvaluator::run(const Groups& groups) {

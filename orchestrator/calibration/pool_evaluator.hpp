@@ -20,6 +20,7 @@ class PoolEvaluator : public Evaluator {
   std::vector<EvaluationOutcome> evaluate_batch(
       std::span<const EvaluationRequest> requests) override;
   std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> probes) override;
+  void patch_template(const nlohmann::json& patch) override;
 
  private:
   struct Job {

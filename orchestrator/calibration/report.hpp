@@ -14,6 +14,7 @@
 #include "orchestrator/calibration/fidelity.hpp"
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/ledger.hpp"
+#include "orchestrator/calibration/stiffness.hpp"
 #include "orchestrator/calibration/suggestion.hpp"
 #include "orchestrator/ratio_range.hpp"
 
@@ -63,6 +64,7 @@ struct CalibrationReport {
   SeedScatter scatter;
   EnsembleSize ensemble;  // packings per evaluation: how many, why, what the scatter calls for
   std::optional<PosteriorSummary> posterior;  // the "bayes" strategy's answer
+  std::optional<StiffnessResult> stiffness;   // the stiffness stage, when E or nu is a target
 };
 
 std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& history,

@@ -339,6 +339,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"strength_definitions", definitions_json(c)},
             {"best", r.best ? best_json(*r.best, c) : json(nullptr)},
             {"rock_properties", rock_properties_json(r, c)},
+            {"stiffness", r.stiffness ? to_json(*r.stiffness, c) : json(nullptr)},
             {"history", history_json(r.history)},
             {"scatter", scatter_json(r.scatter)},
             {"consistent", consistent_json(r)},

@@ -15,7 +15,7 @@ double btt_load(const TargetValue& t, const Specimen& s) {
 
 Targets resolve_targets(TargetValue uct, TargetValue btt, const Specimen& model_specimen,
                         std::optional<LabCase> lab) {
-  Targets t{uct, btt, lab, std::nullopt, {}};
+  Targets t{uct, btt, lab, std::nullopt, {}, {}};
   if (!lab) {
     t.model_loads_n = {uct_load(uct, model_specimen), btt_load(btt, model_specimen)};
     return t;
@@ -24,6 +24,12 @@ Targets resolve_targets(TargetValue uct, TargetValue btt, const Specimen& model_
   t.model_loads_n = {t.scaling->force_to_model(uct_load(uct, lab->specimen)),
                      t.scaling->force_to_model(btt_load(btt, lab->specimen))};
   return t;
+}
+
+std::optional<double> model_youngs_modulus_pa(const Targets& targets) {
+  const std::optional<double>& e = targets.elastic.youngs_modulus_pa;
+  if (!e || !targets.scaling) return e;
+  return targets.scaling->stress_to_model(*e);
 }
 
 PeakLoads loads_to_lab(const PeakLoads& model_n, const Scaling& scaling) {

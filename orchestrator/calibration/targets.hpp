@@ -26,13 +26,25 @@ struct LabCase {
   std::optional<double> length_ratio;
 };
 
+// The specimen's elastic constants the stiffness stage matches (stiffness.hpp), where the request
+// gives them: E in the targets' units (Pa, lab or model), nu without a unit.
+struct ElasticTargets {
+  std::optional<double> youngs_modulus_pa;
+  std::optional<double> poisson_ratio;
+  bool any() const { return youngs_modulus_pa || poisson_ratio; }
+};
+
 struct Targets {
   TargetValue uct;
   TargetValue btt;
   std::optional<LabCase> lab;      // set when the values are in lab units
   std::optional<Scaling> scaling;  // make_scaling(lab) when lab is set
   PeakLoads model_loads_n;         // what the search matches, model units
+  ElasticTargets elastic;          // E and nu, when the request asks for them
 };
+
+// The target Young's modulus in model units (a lab modulus times eq. 4's stress scale), if any.
+std::optional<double> model_youngs_modulus_pa(const Targets& targets);
 
 // Resolves the model-unit peak loads. Strengths become loads on their own specimen (the lab's
 // for lab units, the model sample for model units); lab loads map to the model by the force scale,

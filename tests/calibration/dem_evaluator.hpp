@@ -20,6 +20,8 @@ struct DemEvaluator : Evaluator {
 
   std::vector<EvaluationOutcome> evaluate_batch(
       std::span<const EvaluationRequest> requests) override;
+  std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> probes) override;
+  void patch_template(const nlohmann::json& patch) override;
 };
 
 }  // namespace rockcal::calibration::testing

@@ -143,6 +143,44 @@ TEST_F(ServiceCalibration, RunsToAFeasibleReport) {
       << text;
 }
 
+// E and nu as targets through the service's pool: the stiffness stage's elastic runs are jobs of
+// the campaign, the report states the stage, and every UCT and BTT job of the strength search ran
+// at the stiffnesses it reports (the fake packing: E = 0.4 K_r, nu = eq. 3's nu + 0.05).
+TEST_F(ServiceCalibration, EAndNuTargetsRunTheStrengthSearchAtTheStagesStiffnesses) {
+  start();
+  json r = request();
+  r["targets"]["youngs_modulus"] = 5000;
+  r["targets"]["poisson_ratio"] = 0.25;
+  const std::int64_t id = service_->create_campaign(r);
+  ASSERT_TRUE(wait_for([&] { return driver_status(id) == "done"; }, 60s)) << job_table(id);
+  const json report = json::parse(*service_->store().campaign(id)->summary);
+  const json& s = report["stiffness"];
+  ASSERT_TRUE(s.is_object()) << report.dump();
+  EXPECT_EQ(s["met"], true) << s.dump();
+  EXPECT_NEAR(s["kr"].get<double>(), 5000 / 0.4, 1e-6 * 12500);
+  EXPECT_NEAR(s["nu_input"].get<double>(), 0.2, 0.03);  // nu within 0.03 of its target
+  EXPECT_EQ(report["verdict"], "feasible") << report["verdict_reason"];
+  int elastic = 0, strength = 0;
+  service_->store().with_connection([&](db::Connection& conn) {
+    auto st = conn.prepare("SELECT spec FROM jobs WHERE campaign_id = ? ORDER BY id");
+    st.bind_all(id);
+    while (st.step()) {
+      const json job = json::parse(st.text(0));
+      if (job["test"] == "elastic") {
+        ++elastic;
+        continue;
+      }
+      ++strength;
+      EXPECT_EQ(job["material"]["kr"], s["kr"]);
+      EXPECT_EQ(job["material"]["nu"], s["nu_input"]);
+    }
+  });
+  std::size_t packings = 0;  // every packing of every elastic run is one job
+  for (const json& run : s["runs"]) packings += run["job_ids"].size();
+  EXPECT_EQ(elastic, int(packings));
+  EXPECT_EQ(strength, 2 * report["evaluations"].get<int>());
+}
+
 TEST_F(ServiceCalibration, BadCampaignIsRefusedNamingTheField) {
   start();
   json bad = request();

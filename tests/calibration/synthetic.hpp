@@ -38,6 +38,14 @@ PeakLoads saturating(const BondPoint& p);
 // mode); a BTT of another size follows power_law like the target's.
 double saturating_probe(const BondPoint& p, const ProbeRequest& probe);
 
+// An elastic test's E (Pa) and nu as a closed form of the probe (its patch holds the material)
+// and the packing's seed.
+struct ElasticConstants {
+  double youngs_modulus_pa;
+  double poisson_ratio;
+};
+using ElasticModel = std::function<ElasticConstants(const ProbeRequest&, std::uint64_t seed)>;
+
 // Runs each request's realisations (seeds sample_seed, sample_seed + 1, ...) through the model.
 struct ModelEvaluator : Evaluator {
   Model model;
@@ -47,8 +55,10 @@ struct ModelEvaluator : Evaluator {
   std::atomic<int> requests{0};
   std::vector<EvaluationRequest> log;  // every request, in order
 
-  ProbeModel probe_model;  // unset: probes are not supported (probe_batch returns none)
-  int probes = 0;          // probes run
+  ProbeModel probe_model;      // unset: probes are not supported (probe_batch returns none)
+  int probes = 0;              // probes run
+  ElasticModel elastic_model;  // the elastic probes' answer; unset: they measure nothing
+  nlohmann::json template_patch = nlohmann::json::object();  // what patch_template merged
 
   explicit ModelEvaluator(Model m, ProbeModel p = nullptr)
       : model(std::move(m)), probe_model(std::move(p)) {}
@@ -56,6 +66,7 @@ struct ModelEvaluator : Evaluator {
   std::vector<EvaluationOutcome> evaluate_batch(
       std::span<const EvaluationRequest> requests) override;
   std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> requests) override;
+  void patch_template(const nlohmann::json& patch) override { template_patch.merge_patch(patch); }
 };
 
 // A job cache in front of another evaluator: answers known requests without running them, counts

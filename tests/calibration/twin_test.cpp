@@ -11,6 +11,7 @@
 #include "dem_evaluator.hpp"
 #include "orchestrator/calibration/bayes/emulators.hpp"
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/stiffness.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -165,6 +166,43 @@ TEST_F(Twin, TheBayesRegionHoldsTheEngineOwnBondStrengths) {
   EXPECT_LE(r.history.size(), 40u);
   EXPECT_TRUE(in_credible_region(p, truth, c)) << r.verdict_reason;
   EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
+}
+
+// The stiffness stage on the real engine: a random packing, which eq. 3 does not describe (its
+// packings' mean nu at eq. 3's K_s/K_r for nu 0.3 is 0.50), must meet a nu its K_s/K_r reach
+// within 0.03 and the target E within 5% as means of kStiffnessPackings packings, and leave the
+// evaluator's template at the stiffnesses it reports.
+TEST_F(Twin, TheStiffnessStageMeetsAReachableNuAndTheTargetEOnARandomPacking) {
+  json random = job_template();
+  random["sample"] = {{"diameter", 16},      {"height", 32},        {"radius", 1},
+                      {"packing", "random"}, {"radius_ratio", 1.5}, {"seed", 1}};
+  evaluator_.job_template = random;
+  const json campaign_json = {{"kind", "calibration"},
+                              {"name", "stiffness twin"},
+                              {"job", random},
+                              {"targets",
+                               {{"uct", {{"peak_load", 2000}}},
+                                {"btt", {{"peak_load", 300}}},
+                                {"youngs_modulus", 4000},
+                                {"poisson_ratio", 0.3}}},
+                              {"bounds", {{"fr0", {10, 400}}, {"fs0", {10, 400}}}},
+                              {"strategy", "bayes"}};
+  const CalibrationCampaign c = parse_calibration_campaign(campaign_json);
+  const std::optional<StiffnessResult> s = calibrate_stiffness(c, evaluator_);
+  ASSERT_TRUE(s && s->youngs_modulus_pa && s->poisson_ratio);
+  for (const StiffnessRun& x : s->runs)
+    std::printf("  %s K_s/K_r %.3f nu %.3f (sd %.3f) E %.0f\n", x.phase.c_str(),
+                ks_over_kr(x.setting.nu), x.poisson_ratio.value_or(-9),
+                x.poisson_ratio_sd.value_or(-9), x.youngs_modulus_pa.value_or(0));
+  std::printf("stiffness twin: %zu elastic runs, K_r %g, K_s/K_r %g, E %g, nu %g\n%s\n",
+              s->runs.size(), s->kr_n_m, s->ks_over_kr, *s->youngs_modulus_pa, *s->poisson_ratio,
+              s->why.c_str());
+  EXPECT_NEAR(*s->poisson_ratio, 0.3, kStiffnessNuTolerance);
+  EXPECT_GE(s->runs.size(), 3u);  // eq. 3's start measures a mean nu 0.50: the search moved it
+  EXPECT_NEAR(*s->youngs_modulus_pa / 4000, 1.0, kStiffnessETolerance);
+  EXPECT_TRUE(stiffness_met(*s));
+  EXPECT_DOUBLE_EQ(evaluator_.job_template["material"]["kr"].get<double>(), s->kr_n_m);
+  EXPECT_DOUBLE_EQ(evaluator_.job_template["material"]["nu"].get<double>(), s->setting.nu);
 }
 
 }  // namespace

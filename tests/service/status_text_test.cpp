@@ -223,40 +223,46 @@ TEST(CalibrationSummary, TheBudgetIncludesTheValleyTrace) {
 
 // A diagnosis's line (rockcal status, rockcal diagnose and rockcal twin share it): its progress
 // model (jobs done of the ones it plans, each phase named, the ETA of what is left) and its phase.
+// A bayes calibration's summary with its posterior, for the summaries below.
+json posterior_load(double target, double mean, double err) {
+  return json{{"target", target},
+              {"mean", mean},
+              {"interval", {mean * 0.9, mean * 1.1}},
+              {"relative_error", err},
+              {"run_sd", 0.2}};
+}
+
+json bayes_summary() {
+  return {{"kind", "calibration"},
+          {"verdict", "feasible"},
+          {"verdict_reason", "met"},
+          {"posterior",
+           {{"runs", 40},
+            {"points", 30},
+            {"level", 0.9},
+            {"lab_uncertainty", {{"uct", 0.1}, {"btt", 0.1}, {"source", "request"}}},
+            {"estimate", {{"fr0", 60.0}, {"fs0", 120.0}}},
+            {"fr0", {50.0, 70.0}},
+            {"fs0", {100.0, 140.0}},
+            {"uct", posterior_load(1000, 1001, 0.001)},
+            {"btt", posterior_load(100, 99.5, -0.005)},
+            {"unique", true},
+            {"why", "narrow"}}}};
+}
+
 // A bayes calibration's summary: the posterior's intervals and each load against its target, a
 // further target's row named beside the UCT and BTT.
 TEST(CalibrationSummary, APosteriorShowsItsIntervalsAndFurtherTargets) {
-  auto load = [](double target, double mean, double err) {
-    return json{{"target", target},
-                {"mean", mean},
-                {"interval", {mean * 0.9, mean * 1.1}},
-                {"relative_error", err},
-                {"run_sd", 0.2}};
-  };
-  json further = load(5000, 5100, 0.02);
+  json further = posterior_load(5000, 5100, 0.02);
   further["name"] = "triaxial at 10 Pa";
-  const json summary = {{"kind", "calibration"},
-                        {"verdict", "feasible"},
-                        {"verdict_reason", "met"},
-                        {"posterior",
-                         {{"runs", 40},
-                          {"points", 30},
-                          {"level", 0.9},
-                          {"lab_uncertainty", {{"uct", 0.1}, {"btt", 0.1}, {"source", "request"}}},
-                          {"estimate", {{"fr0", 60.0}, {"fs0", 120.0}}},
-                          {"fr0", {50.0, 70.0}},
-                          {"fs0", {100.0, 140.0}},
-                          {"uct", load(1000, 1001, 0.001)},
-                          {"btt", load(100, 99.5, -0.005)},
-                          {"further", {further}},
-                          {"unique", true},
-                          {"why", "narrow"}}},
-                        {"rock_properties",
-                         {{"units", "lab"},
-                          {"ucs_pa", {{"value", 105.2e6}, {"interval", {98.1e6, 112.0e6}}}},
-                          {"bts_pa", {{"value", 17.5e6}, {"interval", {16.8e6, 18.2e6}}}},
-                          {"youngs_modulus_pa", {{"value", 11.2e9}, {"runs", 2}, {"lab", 12.33e9}}},
-                          {"poisson_ratio", {{"value", nullptr}, {"runs", 0}, {"lab", 0.2}}}}}};
+  json summary = bayes_summary();
+  summary["posterior"]["further"] = {further};
+  summary["rock_properties"] = {
+      {"units", "lab"},
+      {"ucs_pa", {{"value", 105.2e6}, {"interval", {98.1e6, 112.0e6}}}},
+      {"bts_pa", {{"value", 17.5e6}, {"interval", {16.8e6, 18.2e6}}}},
+      {"youngs_modulus_pa", {{"value", 11.2e9}, {"runs", 2}, {"lab", 12.33e9}}},
+      {"poisson_ratio", {{"value", nullptr}, {"runs", 0}, {"lab", 0.2}}}};
   const std::string text = calibration_text(summary);
   EXPECT_NE(text.find("  F_r0              60  [50, 70]"), std::string::npos) << text;
   EXPECT_NE(text.find("  more          5000          5100  [4590, 5610]              +2.00%  "
@@ -266,6 +272,39 @@ TEST(CalibrationSummary, APosteriorShowsItsIntervalsAndFurtherTargets) {
   EXPECT_NE(text.find("unique: yes - narrow"), std::string::npos) << text;
   EXPECT_NE(text.find("rock at the estimate (lab units): UCS 105.2 MPa [98.1, 112], BTS 17.5 MPa "
                       "[16.8, 18.2]; E 11.2 GPa (lab 12.3) and nu not measured from 2 check runs"),
+            std::string::npos)
+      << text;
+}
+
+// E and nu as targets: the stiffness stage's line in lab units (E and its target in GPa, nu and
+// its target, the stiffnesses and the stage's reason), and the rock's E and nu from the elastic
+// test with the UCT's slope beside it.
+TEST(CalibrationSummary, TheStiffnessStageShowsEAndNuInLabUnits) {
+  json summary = bayes_summary();
+  summary["stiffness"] = {
+      {"kr", 17822.7},
+      {"ks_over_kr", 0.0966},
+      {"youngs_modulus_pa", {{"target", 4000.0}, {"measured", 3999.9}}},
+      {"poisson_ratio", {{"target", 0.3}, {"measured", 0.3001}}},
+      {"lab", {{"youngs_modulus_pa", {{"target", 69e9}, {"measured", 68.9e9}}}}},
+      {"why", "nu 0.300 meets the target 0.300 at K_s/K_r 0.0966."}};
+  summary["rock_properties"] = {
+      {"units", "lab"},
+      {"ucs_pa", {{"value", 200e6}, {"interval", {190e6, 210e6}}}},
+      {"bts_pa", {{"value", 8.8e6}, {"interval", {8.5e6, 9.1e6}}}},
+      {"youngs_modulus_pa",
+       {{"value", 68.9e9}, {"runs", 4}, {"measure", "elastic"}, {"uct", 31.2e9}, {"lab", 69e9}}},
+      {"poisson_ratio",
+       {{"value", 0.3001}, {"runs", 1}, {"measure", "elastic"}, {"uct", nullptr}, {"lab", 0.3}}}};
+  const std::string text = calibration_text(summary);
+  EXPECT_NE(text.find("stiffness (lab units, elastic test): E 68.9 GPa (target 69 GPa) and nu 0.3 "
+                      "(target 0.3) at K_r 1.782e+04, K_s/K_r 0.0966 - nu 0.300 meets the target "
+                      "0.300 at K_s/K_r 0.0966.\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("rock at the estimate (lab units): UCS 200 MPa [190, 210], BTS 8.8 MPa "
+                      "[8.5, 9.1]; E 68.9 GPa (lab 69) and nu 0.3 (lab 0.3) from the elastic test "
+                      "(mean of 4 packings) (UCT slope 31.2 GPa)\n"),
             std::string::npos)
       << text;
 }
