@@ -16,12 +16,13 @@ namespace {
 struct Job {
   nlohmann::json spec;
   std::filesystem::path dir;
-  std::optional<double> peak_load_n;
-  std::string error;
+  orch::Realisation run;  // what the run reported, as the service's pool reads a job
 };
 
 // Runs one job as a child process (argv, no shell) and reads its result.json.
 void run(const std::string& engine, Job& job) {
+  job.run.seed = job.spec["sample"].value("seed", std::uint64_t{0});
+  job.run.state = "failed";
   std::filesystem::create_directories(job.dir);
   const std::string spec_path = (job.dir / "job.json").string();
   std::ofstream(spec_path) << job.spec.dump();
@@ -39,23 +40,30 @@ void run(const std::string& engine, Job& job) {
   const int spawned = posix_spawn(&pid, engine.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) {
-    job.error = "cannot start " + engine;
+    job.run.error = "cannot start " + engine;
     return;
   }
   int status = 0;
   waitpid(pid, &status, 0);
   std::ifstream result(job.dir / "result.json");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !result) {
-    job.error = "rockcal-dem failed (status " + std::to_string(status) + "), see " + log;
+    job.run.error = "rockcal-dem failed (status " + std::to_string(status) + "), see " + log;
     return;
   }
   const nlohmann::json r = nlohmann::json::parse(result);
   // A run that hit max_strain before the load dropped has no peak: its "peak" is a lower bound.
   if (!r.value("peak_reached", true)) {
-    job.error = "peak not reached before loading.max_strain";
+    job.run.error = "no peak: loading.max_strain reached";
     return;
   }
-  job.peak_load_n = r.at("peak_load").get<double>();
+  job.run.state = "succeeded";
+  job.run.peak_load_n = r.at("peak_load").get<double>();
+  if (r.contains("strength") && r["strength"].is_number()) job.run.strength_pa = r["strength"];
+  if (r.contains("youngs_modulus") && r["youngs_modulus"].is_number())
+    job.run.youngs_modulus_pa = r["youngs_modulus"];
+  const nlohmann::json q =
+      r.value("loading_rate", nlohmann::json::object()).value("quasi_static", nlohmann::json());
+  if (q.is_boolean()) job.run.quasi_static = q.get<bool>();
 }
 
 }  // namespace
@@ -67,8 +75,7 @@ std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
   for (const EvaluationRequest& r : requests) {
     for (TestKind test : {TestKind::uct, TestKind::btt}) {
       const std::string name = "job" + std::to_string(first++);
-      jobs.push_back(
-          {job_for(job_template, r, test, r.sample_seed), work_dir / name, std::nullopt, ""});
+      jobs.push_back({job_for(job_template, r, test, r.sample_seed), work_dir / name, {}});
     }
   }
   std::mutex mutex;
@@ -88,17 +95,11 @@ std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
     });
   }
   for (std::thread& t : workers) t.join();
+  // One realisation per test, each with its own quasi-static measure, as the pool reports them.
   std::vector<EvaluationOutcome> outcomes;
   for (std::size_t i = 0; i < requests.size(); ++i) {
-    const Job& uct = jobs[2 * i];
-    const Job& btt = jobs[2 * i + 1];
-    EvaluationOutcome outcome;  // one realisation per test: no ensembles reported
-    if (uct.peak_load_n && btt.peak_load_n) {
-      outcome.loads = PeakLoads{*uct.peak_load_n, *btt.peak_load_n};
-    } else {
-      outcome.error = uct.error.empty() ? btt.error : uct.error;
-    }
-    outcomes.push_back(outcome);
+    outcomes.push_back(outcome_of(orch::make_ensemble({jobs[2 * i].run}),
+                                  orch::make_ensemble({jobs[2 * i + 1].run})));
   }
   return outcomes;
 }
