@@ -19,44 +19,13 @@ import json
 import math
 import os
 import random
-import subprocess
 import sys
 import tempfile
 import time
-import urllib.request
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-
-
-def call(url, body=None):
-    data = None if body is None else json.dumps(body).encode()
-    req = urllib.request.Request(url, data=data, headers={"Content-Type": "application/json"})
-    with urllib.request.urlopen(req, timeout=120) as r:
-        return json.load(r)
-
-
-def start_server(build, work):
-    port_file = os.path.join(work, "port")
-    log = open(os.path.join(work, "serve.log"), "w")
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    proc = subprocess.Popen(
-        [os.path.join(build, "api", "rockcal"), "serve", "--db", os.path.join(work, "twins.db"),
-         "--listen", "127.0.0.1:0", "--port-file", port_file, "--workers", "2",
-         "--ranks-per-job", "0"], stdout=log, stderr=subprocess.STDOUT, env=env)
-    for _ in range(300):
-        if os.path.exists(port_file) and open(port_file).read().strip():
-            return proc, "http://127.0.0.1:" + open(port_file).read().strip()
-        time.sleep(0.1)
-    proc.kill()
-    sys.exit("bayes_twins: the server did not start (see serve.log)")
-
-
-def finish(url, cid):
-    while True:
-        c = call(f"{url}/api/v1/campaigns/{cid}")
-        if c["state"] in ("succeeded", "failed", "cancelled"):
-            return c
-        time.sleep(2)
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from rockcal_service import append_row, call, finish, load_rows, start_server  # noqa: E402
 
 
 def in_region(post, fr0, fs0):
@@ -76,12 +45,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "bayes_twins_d20.jsonl"))
     a = ap.parse_args()
     os.makedirs(os.path.dirname(a.out), exist_ok=True)
-    done = {}
-    if os.path.exists(a.out):
-        for line in open(a.out):
-            if line.strip():
-                row = json.loads(line)
-                done[row["twin"]] = row
+    done = load_rows(a.out, "twin")
     base = json.load(open(a.request))
     work = tempfile.mkdtemp(prefix="rockcal-bayes-twins.")
     proc, url = start_server(a.build, work)
@@ -125,9 +89,7 @@ def main():
                     row.update({"inside": in_region(post, *truth), "fr0": post["fr0"], "fs0": post["fs0"],
                                 "estimate": post["estimate"], "runs": post["runs"], "unique": post["unique"]})
             done[twin] = row
-            with open(a.out, "a") as f:
-                f.write(json.dumps(row) + "\n")
-            print(json.dumps(row), flush=True)
+            append_row(a.out, row)
     finally:
         proc.terminate()
         proc.wait()

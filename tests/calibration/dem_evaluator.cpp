@@ -16,14 +16,13 @@ namespace {
 struct Job {
   nlohmann::json spec;
   std::filesystem::path dir;
-  std::optional<double> peak_load_n;
-  std::string error;
-  std::optional<double> youngs_modulus_pa = std::nullopt;  // what the run measured, if anything
-  std::optional<double> poisson_ratio = std::nullopt;
+  orch::Realisation run;  // what the run reported, as the service's pool reads a job
 };
 
 // Runs one job as a child process (argv, no shell) and reads its result.json.
 void run(const std::string& engine, Job& job) {
+  job.run.seed = job.spec["sample"].value("seed", std::uint64_t{0});
+  job.run.state = "failed";
   std::filesystem::create_directories(job.dir);
   const std::string spec_path = (job.dir / "job.json").string();
   std::ofstream(spec_path) << job.spec.dump();
@@ -41,27 +40,35 @@ void run(const std::string& engine, Job& job) {
   const int spawned = posix_spawn(&pid, engine.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) {
-    job.error = "cannot start " + engine;
+    job.run.error = "cannot start " + engine;
     return;
   }
   int status = 0;
   waitpid(pid, &status, 0);
   std::ifstream result(job.dir / "result.json");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !result) {
-    job.error = "rockcal-dem failed (status " + std::to_string(status) + "), see " + log;
+    job.run.error = "rockcal-dem failed (status " + std::to_string(status) + "), see " + log;
     return;
   }
   const nlohmann::json r = nlohmann::json::parse(result);
+  // What the run measured, if anything (an elastic test measures E and nu and has no peak).
   if (r.contains("youngs_modulus") && r["youngs_modulus"].is_number())
-    job.youngs_modulus_pa = r["youngs_modulus"].get<double>();
+    job.run.youngs_modulus_pa = r["youngs_modulus"];
   if (r.contains("poisson_ratio") && r["poisson_ratio"].is_number())
-    job.poisson_ratio = r["poisson_ratio"].get<double>();
-  // A run that hit max_strain before the load dropped has no peak: its "peak" is a lower bound.
-  if (!r.value("peak_reached", true)) {
-    job.error = "peak not reached before loading.max_strain";
+    job.run.poisson_ratio = r["poisson_ratio"];
+  const bool elastic = job.spec.value("test", "") == "elastic";
+  // A compression run without a peak: its largest load is no result (the engine says why).
+  if (!elastic && !r.value("peak_reached", true)) {
+    job.run.error = "no peak: " + r.value("no_peak_reason", std::string("no peak reached"));
     return;
   }
-  job.peak_load_n = r.at("peak_load").get<double>();
+  job.run.state = "succeeded";
+  if (r.contains("peak_load") && r["peak_load"].is_number())
+    job.run.peak_load_n = r["peak_load"].get<double>();
+  if (r.contains("strength") && r["strength"].is_number()) job.run.strength_pa = r["strength"];
+  const nlohmann::json q =
+      r.value("loading_rate", nlohmann::json::object()).value("quasi_static", nlohmann::json());
+  if (q.is_boolean()) job.run.quasi_static = q.get<bool>();
 }
 
 // Runs the jobs `parallel` at a time.
@@ -94,22 +101,15 @@ std::vector<EvaluationOutcome> DemEvaluator::evaluate_batch(
   for (const EvaluationRequest& r : requests) {
     for (TestKind test : {TestKind::uct, TestKind::btt}) {
       const std::string name = "job" + std::to_string(first++);
-      jobs.push_back(
-          {job_for(job_template, r, test, r.sample_seed), work_dir / name, std::nullopt, ""});
+      jobs.push_back({job_for(job_template, r, test, r.sample_seed), work_dir / name, {}});
     }
   }
   run_all(engine, jobs, parallel);
+  // One realisation per test, each with its own quasi-static measure, as the pool reports them.
   std::vector<EvaluationOutcome> outcomes;
   for (std::size_t i = 0; i < requests.size(); ++i) {
-    const Job& uct = jobs[2 * i];
-    const Job& btt = jobs[2 * i + 1];
-    EvaluationOutcome outcome;  // one realisation per test: no ensembles reported
-    if (uct.peak_load_n && btt.peak_load_n) {
-      outcome.loads = PeakLoads{*uct.peak_load_n, *btt.peak_load_n};
-    } else {
-      outcome.error = uct.error.empty() ? btt.error : uct.error;
-    }
-    outcomes.push_back(outcome);
+    outcomes.push_back(outcome_of(orch::make_ensemble({jobs[2 * i].run}),
+                                  orch::make_ensemble({jobs[2 * i + 1].run})));
   }
   return outcomes;
 }
@@ -121,7 +121,7 @@ std::vector<orch::Ensemble> DemEvaluator::probe_batch(std::span<const ProbeReque
   for (const ProbeRequest& p : probes) {
     for (std::uint64_t seed : orch::realisation_seeds(p.sample_seed, p.realisations)) {
       const std::string name = "job" + std::to_string(jobs_run.fetch_add(1));
-      jobs.push_back({job_for(job_template, p, seed), work_dir / name, std::nullopt, ""});
+      jobs.push_back({job_for(job_template, p, seed), work_dir / name, {}});
       seeds.push_back(seed);
     }
   }
@@ -131,15 +131,8 @@ std::vector<orch::Ensemble> DemEvaluator::probe_batch(std::span<const ProbeReque
   for (const ProbeRequest& p : probes) {
     std::vector<orch::Realisation> runs;
     for (int k = 0; k < p.realisations; ++k, ++next) {
-      const Job& j = jobs[next];
-      orch::Realisation x{seeds[next],
-                          0,
-                          j.error.empty() ? "succeeded" : "failed",
-                          j.peak_load_n,
-                          std::nullopt,
-                          j.youngs_modulus_pa,
-                          j.error};
-      x.poisson_ratio = j.poisson_ratio;
+      orch::Realisation x = jobs[next].run;
+      x.seed = seeds[next];
       runs.push_back(x);
     }
     out.push_back(orch::make_ensemble(std::move(runs)));

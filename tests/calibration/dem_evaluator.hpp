@@ -1,5 +1,6 @@
 // An evaluator that runs the real engine: `rockcal-dem run job.json --out DIR` per test, the jobs
-// of a batch in parallel. A stand-in for the orchestrator's pool, for the twin tests only (no
+// of a batch in parallel, each run reported as one realisation (peak, strength, modulus and its
+// quasi-static measure). A stand-in for the orchestrator's pool, for the real-engine tests only (no
 // cache, no retries, no MPI launcher).
 #pragma once
 
