@@ -8,12 +8,20 @@
 
 namespace rockcal {
 
+double ks_over_kr(double nu) {
+  return (1.0 - 3.0 * nu) / (1.0 + nu);
+}
+
+double nu_for_ks_over_kr(double ratio) {
+  return (1.0 - ratio) / (3.0 + ratio);
+}
+
 BondStiffness stiffness_from_kr(double kr, double nu, double radius) {
   BondStiffness k;
   k.kr_n_m = kr;
-  k.ks_n_m = (1.0 - 3.0 * nu) / (1.0 + nu) * kr;
+  k.ks_n_m = ks_over_kr(nu) * kr;
   k.kb_nm_rad = (1.0 - 2.0 * nu) * radius * radius / (24.0 * (1.0 - nu)) * kr;
-  k.kt_nm_rad = (1.0 - 3.0 * nu) / (1.0 + nu) * k.kb_nm_rad;
+  k.kt_nm_rad = ks_over_kr(nu) * k.kb_nm_rad;
   return k;
 }
 

@@ -18,6 +18,9 @@ struct BondStiffness {
 // Eq. 3 ratios applied to a given normal stiffness: K_s, K_b, K_t from K_r, nu and the bond radius
 // R.
 BondStiffness stiffness_from_kr(double kr_n_m, double nu, double radius_m);
+// Eq. 3's K_s / K_r (and K_t / K_b) for a nu, and the nu that gives a ratio.
+double ks_over_kr(double nu);
+double nu_for_ks_over_kr(double ratio);
 // Eq. 3 in full: K_r = sqrt(2) E R / (2 (1 - 2 nu)).
 double kr_from_youngs_modulus(double youngs_modulus_pa, double nu, double radius_m);
 BondStiffness stiffness_from_youngs_modulus(double youngs_modulus_pa, double nu, double radius_m);

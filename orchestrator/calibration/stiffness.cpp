@@ -167,14 +167,6 @@ bool stiffness_met(const StiffnessResult& r) {
          (!r.target_poisson_ratio || within(nu_error(r), kStiffnessNuTolerance));
 }
 
-double ks_over_kr(double nu) {
-  return (1.0 - 3.0 * nu) / (1.0 + nu);
-}
-
-double nu_for_ks_over_kr(double ratio) {
-  return (1.0 - ratio) / (3.0 + ratio);
-}
-
 json stiffness_patch(const json& job_template, const StiffnessSetting& setting) {
   const char* field = stiffness_field(job_template);
   const double value = job_template.at("material").at(field).get<double>();

@@ -77,10 +77,6 @@ struct StiffnessResult {
 // Whether the confirming run met every target the request gave (E within 5%, nu within 0.03).
 bool stiffness_met(const StiffnessResult& result);
 
-// K_s / K_r by eq. 3 for its nu, and the nu for a K_s / K_r.
-double ks_over_kr(double nu);
-double nu_for_ks_over_kr(double ratio);
-
 // The patch of "job" that runs a setting: {"material": {field: template value x scale, "nu"}}.
 nlohmann::json stiffness_patch(const nlohmann::json& job_template, const StiffnessSetting& setting);
 
