@@ -44,6 +44,8 @@ const char* to_string(StopReason reason) {
       return "budget_exhausted";
     case StopReason::converged:
       return "converged";
+    case StopReason::answered:
+      return "answered";
     case StopReason::cancelled:
       return "cancelled";
   }

@@ -20,7 +20,9 @@
 
 namespace rockcal::calibration {
 
-enum class StopReason { tolerance_met, budget_exhausted, converged, cancelled };
+// answered (bayes): the credible region was unique with both predicted loads within the tolerance
+// over the last runs, so the budget left was not spent.
+enum class StopReason { tolerance_met, budget_exhausted, converged, answered, cancelled };
 // feasible: both loads within tolerance. compromise: the search ended without that (the reason
 // says whether the target ratio is out of the model's reach). incomplete: cancelled first.
 // failed: no evaluation succeeded.

@@ -177,6 +177,32 @@ TEST(BayesCalibration, NoWorkerIdlesWhileBudgetRemains) {
   EXPECT_EQ(r.strategy_used, "bayes");
 }
 
+// A question answered is not asked again: once the region has been unique with both loads met
+// over the last runs, the budget left is saved (stop_reason "answered") and the answer is the
+// same as the full budget's.
+TEST(BayesCalibration, ARegionThatStaysUniqueEndsTheSearchBeforeTheBudget) {
+  const CalibrationCampaign c = testing::campaign({120000, 9000}, bayes(200, 0.05));
+  ScatteringEvaluator e(testing::power_law);
+  e.sd_uct = e.sd_btt = 0.05;
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  EXPECT_EQ(r.stop_reason, StopReason::answered);
+  EXPECT_TRUE(r.posterior->unique) << r.posterior->why;
+  EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
+  EXPECT_LT(e.runs, 100);
+  std::printf("answered after %d of 200 runs\n", e.runs);
+  // Without the early stop (a width nothing meets) the search spends its budget.
+  nlohmann::json strict = bayes(60, 0.05);
+  strict["inference"]["unique_width"] = 1.01;
+  ScatteringEvaluator all(testing::power_law);
+  all.sd_uct = all.sd_btt = 0.05;
+  const CalibrationReport full = run_calibration(testing::campaign({120000, 9000}, strict), all);
+  EXPECT_NE(full.stop_reason, StopReason::answered);
+  ASSERT_TRUE(full.posterior);
+  EXPECT_TRUE(in_credible_region(*r.posterior, full.posterior->estimate, c))
+      << full.posterior->estimate.fr0_n << ", " << full.posterior->estimate.fs0_n;
+}
+
 TEST(BayesCalibration, AVerdictNamesTheBoundTheTargetsPressOn) {
   // Targets that need F_s0 above the box's upper bound.
   const PeakLoads beyond = testing::power_law({300, 3000});

@@ -20,6 +20,10 @@ namespace {
 // Below this share of the posterior's variance in the emulators, more runs narrow the region by
 // less than a tenth (sqrt(1.25) = 1.12).
 constexpr double kShareStop = 0.25;
+// The question answered: the posterior has been unique (narrower than the stated width, inside the
+// bounds) with its predicted loads within the tolerance at every refit over at least this many
+// runs. More runs would only narrow a region already narrow enough; the budget left is saved.
+constexpr int kAnsweredRuns = 10;
 constexpr int kSpaceFilling = 256;  // candidates spread over the box, besides the posterior's own
 constexpr int kDensest = 64;        // candidates at the posterior's densest cells
 constexpr double kFirstFineSpacing = 0.1;  // of the unit box, between the first fine points
@@ -74,11 +78,13 @@ class Search {
         const std::vector<double> share = emulator_shares(*current);
         converged_ =
             std::all_of(share.begin(), share.end(), [](double s) { return s < kShareStop; });
+        note_answer(*current, int(f.runs.size()));
       }
       while (flights_.size() < 2 && can_plan()) plan_next();
     }
     report.history = history_;
     report.stop_reason = cancelled_   ? StopReason::cancelled
+                         : answered_  ? StopReason::answered
                          : converged_ ? StopReason::converged
                                       : StopReason::budget_exhausted;
     if (fine_model_) {
@@ -104,6 +110,22 @@ class Search {
   }
 
  private:
+  // Counts the runs over which the current posterior has answered (unique, loads within the
+  // tolerance); past kAnsweredRuns the search ends with its check batch.
+  void note_answer(const Emulators& m, int runs_taken) {
+    const CalibrationCampaign& c = fine_phase_ ? fine_c_ : c_;
+    const PosteriorSummary p = summarise(m, c, rounds_);
+    bool met = p.unique && std::abs(p.uct.relative_error) <= c_.tolerance &&
+               std::abs(p.btt.relative_error) <= c_.tolerance;
+    for (const PredictedLoad& f : p.further)
+      met = met && std::abs(f.relative_error) <= c_.tolerance;
+    answered_runs_ = met ? answered_runs_ + runs_taken : 0;
+    if (answered_runs_ >= kAnsweredRuns) {
+      answered_ = true;
+      converged_ = true;
+    }
+  }
+
   std::vector<Run> start() {
     const int n = std::min(c_.max_evaluations, std::max(8, 2 * batch_));
     std::vector<Run> runs;
@@ -237,7 +259,8 @@ class Search {
     if (model_ && (converged_ || left <= (has_fine_ ? 0 : batch_))) {
       if (has_fine_) {
         fine_phase_ = true;
-        converged_ = false;
+        converged_ = answered_ = false;
+        answered_runs_ = 0;
         return plan_fine();
       }
       // The check batch: the estimate on `batch` packings (fewer when seeds do not matter).
@@ -395,6 +418,8 @@ class Search {
   int next_run_ = 0;
   int rounds_ = 0;
   bool cancelled_ = false, converged_ = false, checked_ = false;
+  bool answered_ = false;  // converged_ because the posterior answered (note_answer)
+  int answered_runs_ = 0;
   std::deque<Flight> flights_;
   std::vector<EvaluationRecord> history_;  // every run, in the order taken (the report's)
   std::vector<EvaluationRecord> coarse_history_, fine_history_;
