@@ -86,6 +86,8 @@ std::string diagnosis_text(const json& s) {
   std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %8s %-10s %s\n", "rank", "effect",
                 "identifiable", "fits cal", "G", "basis", "fitted parameter");
   out << line;
+  const json& missing = at(at(s, "gap"), "closure_missing");
+  if (missing.is_string()) out << "  No gap closure to show: " << fmt(missing) << ".\n";
   std::vector<json> ranked;
   for (const json& k : at(s, "candidates")) {
     if (k["effect"].is_string()) ranked.push_back(k);

@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "orchestrator/calibration/campaign.hpp"
-#include "orchestrator/diagnosis/dataset/consistency.hpp"
 #include "orchestrator/diagnosis/dataset/dataset.hpp"
 
 namespace rockcal::diagnosis {
@@ -70,33 +69,6 @@ std::string refused_csv_field(const std::string& text, std::string* message = nu
     return e.field;
   }
   return "";
-}
-
-// Two labs' UCT of one specimen size: 1,000 +- 20 and 1,200 +- 24 differ by 6.4 combined sd and
-// are named as the data's own disagreement; 1,030 +- 20 (1.1 sd) is not, nor is a UCT of
-// another height, however far apart.
-TEST(DiagnosisDataset, ObservationsThatDisagreeUnderTheSameConditionsAreNamed) {
-  json j = model_dataset();
-  json second = j["observations"][0];
-  second["id"] = "uct-2";
-  second["value"] = 1200.0;
-  second["uncertainty"] = 24.0;
-  j["observations"].push_back(second);
-  json taller = j["observations"][0];
-  taller["id"] = "uct-tall";
-  taller["conditions"]["height"] = 24;
-  taller["value"] = 2000.0;
-  j["observations"].push_back(taller);
-  const std::vector<Inconsistency> pairs = find_inconsistencies(parse_dataset_json(j));
-  ASSERT_EQ(pairs.size(), 1u);
-  EXPECT_EQ(pairs[0].first, "uct-1");
-  EXPECT_EQ(pairs[0].second, "uct-2");
-  EXPECT_NEAR(pairs[0].ln_difference, std::log(1.2), 1e-12);
-  EXPECT_NEAR(pairs[0].sigmas, std::log(1.2) / std::hypot(0.02, 0.02), 1e-9);
-  EXPECT_EQ(inconsistency_text(pairs), "uct-1 and uct-2 (the same test) differ by +20% (6.4 sd)");
-  j["observations"][2]["value"] = 1030.0;
-  j["observations"][2]["uncertainty"] = 20.6;
-  EXPECT_TRUE(find_inconsistencies(parse_dataset_json(j)).empty());
 }
 
 TEST(DiagnosisDataset, ErrorsNameTheField) {

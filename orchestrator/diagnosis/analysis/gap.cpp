@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "orchestrator/diagnosis/analysis/consistency.hpp"
+
 namespace rockcal::diagnosis {
 
 std::vector<double> ln_values(const RunOutcome& outcome) {
@@ -27,8 +29,26 @@ std::vector<double> residuals(const std::vector<double>& ln_sim,
   return out;
 }
 
-std::optional<double> rms(const std::vector<double>& r, const std::vector<Target>& targets,
+std::vector<double> charged_residuals(const std::vector<double>& residuals,
+                                      const std::vector<Target>& targets) {
+  const std::vector<DataSpan> spans = data_spans(targets);
+  std::vector<double> out = residuals;
+  for (std::size_t i = 0; i < out.size() && i < spans.size(); ++i) {
+    const DataSpan& s = spans[i];
+    if (out[i] > s.hi) {
+      out[i] -= s.hi;
+    } else if (out[i] < s.lo) {
+      out[i] -= s.lo;
+    } else if (std::isfinite(out[i])) {
+      out[i] = 0.0;
+    }
+  }
+  return out;
+}
+
+std::optional<double> rms(const std::vector<double>& residuals, const std::vector<Target>& targets,
                           Role role) {
+  const std::vector<double> r = charged_residuals(residuals, targets);
   double sum = 0.0;
   int n = 0;
   for (std::size_t i = 0; i < r.size(); ++i) {
@@ -58,9 +78,10 @@ double combined_budget(const std::vector<Target>& targets, const std::vector<dou
   return n ? std::sqrt(sum / n) : 0.0;
 }
 
-std::optional<double> rms_in_budgets(const std::vector<double>& r,
+std::optional<double> rms_in_budgets(const std::vector<double>& residuals,
                                      const std::vector<Target>& targets,
                                      const std::vector<double>& budget, Role role) {
+  const std::vector<double> r = charged_residuals(residuals, targets);
   double sum = 0.0;
   int n = 0;
   for (std::size_t i = 0; i < r.size(); ++i) {

@@ -17,7 +17,15 @@ std::vector<double> ln_lab(const std::vector<Target>& targets);
 // ln(sim / lab) per target (NaN where sim is NaN).
 std::vector<double> residuals(const std::vector<double>& ln_sim, const std::vector<double>& ln_lab);
 
-// rms over the targets of one role with a finite residual; nullopt when there are none.
+// The part of each residual the model is charged with: zero inside the span of values the data
+// themselves give under the same conditions (data_spans, consistency.hpp), the distance to the
+// nearer end of it outside; the residual itself for a target in no inconsistent pair. rms and
+// rms_in_budgets judge these, so a pair's disagreement is never a gap of the model.
+std::vector<double> charged_residuals(const std::vector<double>& residuals,
+                                      const std::vector<Target>& targets);
+
+// rms over the targets of one role with a finite residual, charged (charged_residuals); nullopt
+// when there are none.
 std::optional<double> rms(const std::vector<double>& residuals, const std::vector<Target>& targets,
                           Role role);
 
@@ -33,8 +41,8 @@ inline constexpr double kMinNoiseScale = 1e-3;
 double combined_budget(const std::vector<Target>& targets, const std::vector<double>& budget,
                        Role role);
 
-// sqrt(mean over the role's targets with a finite residual of (residual / noise_scale)^2): the
-// residuals each in units of its own observation's noise. The verdict calls a held-out gap only
+// sqrt(mean over the role's targets with a finite residual of (charged residual / noise_scale)^2):
+// the residuals each in units of its own observation's noise. The verdict calls a held-out gap only
 // above 1. Budgets differ by x10 between observations (on the 117-particle demo twins the 1.5x
 // UCT's has a median of 0.64 in ln, the 1.5x BTT's 0.21), and a pooled rms against the pooled
 // budget lets the noisy observation hide a gap the precise one shows. nullopt when there are none.

@@ -215,31 +215,37 @@ std::vector<std::string> on_bounds(const std::vector<double>& z) {
 }
 
 void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Confidence& conf) {
-  const std::string miss = e.calibration_miss
-                               ? "the base model misses its calibration observations by " +
-                                     fixed(*e.calibration_miss, 2) + " budgets"
-                               : "the base model's calibration residuals are unknown";
-  std::string cause;
+  std::vector<std::string> causes;
   if (e.held_out_observations == 0) {
-    cause = "no held-out observations, so no effect can be judged";
+    causes.push_back("no held-out observations, so no effect can be judged");
   } else if (!e.base_has_held_out) {
-    cause = "the base model has no held-out residual (its runs failed)";
-  } else if (!e.base_on_bounds.empty()) {
+    causes.push_back("the base model has no held-out residual (its runs failed)");
+  }
+  if (!e.base_on_bounds.empty()) {
     std::string where;
     for (const std::string& b : e.base_on_bounds) where += (where.empty() ? "" : ", ") + b;
-    cause = "the base model's fit lies on the search box (" + where +
-            "): its strengths are the bounds', not the data's; widen the bounds";
+    causes.push_back("the base model's fit lies on the search box (" + where +
+                     "): its strengths are the bounds', not the data's (widen the bounds)");
   }
-  if (!cause.empty()) {
+  if (!causes.empty()) {
     v.undetermined = true;
     v.candidate = -1;
-    v.reason = "undetermined: " + cause + "; " + miss;
+    v.reason = "undetermined: ";
+    for (const std::string& c : causes) v.reason += c + "; ";
+    v.reason += miss_text(e.base, rule.gap_budgets);
+    v.miss = e.base;
     conf.level = "none";
     return;
   }
-  if (v.candidate < 0 && e.calibration_miss && *e.calibration_miss > rule.gap_budgets) {
-    v.reason += "; " + miss + ", which no candidate explains";
-    conf.level = "low";
+  if (misses_beyond(e.verdict, rule.gap_budgets)) {
+    v.reason += "; not explained: " + miss_text(e.verdict, rule.gap_budgets);
+    v.miss = e.verdict;
+    // "No effect needed" denies the miss: low. A named effect explains part of it: not high.
+    if (v.candidate < 0) {
+      conf.level = "low";
+    } else if (conf.level == "high") {
+      conf.level = "medium";
+    }
   }
 }
 

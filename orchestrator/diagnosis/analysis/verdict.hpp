@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "orchestrator/diagnosis/analysis/candidate_result.hpp"
+#include "orchestrator/diagnosis/analysis/miss.hpp"
 #include "orchestrator/diagnosis/analysis/observations.hpp"
 
 namespace rockcal::diagnosis {
@@ -38,6 +39,7 @@ struct Verdict {
   int runner_up = -1;
   bool undetermined = false;  // the data cannot judge any effect (temper_verdict)
   std::string reason;
+  std::optional<ModelMiss> miss;  // the miss the reason states (temper_verdict), if any
 };
 
 // The verdict rule's two thresholds (docs/diagnosis.md). The defaults are the hand-set v1 values;
@@ -102,15 +104,25 @@ std::string verdict_label(const std::vector<CandidateResult>& candidates, const 
 // "s upper"): there the fit is the bound, not an optimum.
 std::vector<std::string> on_bounds(const std::vector<double>& z);
 
-// What the data let the verdict say. Nothing held out, no held-out residual of the base model, or
-// a base fit on the box's bounds: no effect can be judged, and the verdict is "undetermined"
-// with the calibration miss stated (its confidence "none"). A "no effect needed" beside a
-// calibration miss beyond the decision rule's budgets is never more than "low" confidence.
+// What the data let the verdict say (docs/diagnosis.md, "Verdict rules"), applied to the rule's
+// verdict and confidence last, so that no later step can make them surer:
+// 1. Undetermined when no effect can be judged: nothing is held out; the base model has no
+//    held-out residual (its runs failed); or the base model's fit lies on the search box (its
+//    strengths are the bounds', not the data's). Then the label is "undetermined" (never "no
+//    effect needed"), no effect is named, the confidence is "none", and the reason names every
+//    cause and states the base model's miss observation by observation (miss_text).
+// 2. An unexplained miss: the verdict's model (the named effect's real runs, or the base
+//    model's) misses its calibration or its held-out observations by more than the rule's
+//    gap_budgets (rms in noise budgets). Then the confidence is never "high": "low" beside "no
+//    effect needed" (the label denies the miss), at most "medium" beside a named effect (it
+//    explains part of it); the reason adds the miss.
+// The miss quoted is kept in Verdict::miss, so the report carries every figure of the sentence.
 struct Evidence {
   int held_out_observations = 0;
   bool base_has_held_out = false;
   std::vector<std::string> base_on_bounds;
-  std::optional<double> calibration_miss;  // the base's calibration rms in budgets
+  ModelMiss base;     // the base model's real residuals (model_miss)
+  ModelMiss verdict;  // the verdict's model: the named effect's, else the base model's
 };
 void temper_verdict(const DecisionRule& rule, const Evidence& evidence, Verdict& verdict,
                     Confidence& confidence);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "orchestrator/diagnosis/analysis/bootstrap.hpp"
+#include "orchestrator/diagnosis/analysis/consistency.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/identifiability.hpp"
 #include "orchestrator/diagnosis/analysis/ratio.hpp"
@@ -335,23 +336,32 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& c, Evaluator& evaluator,
   conf.level = confidence_level(conf);
   report.ratio = ratio_range(c.targets, samples[0].outcomes);
   count_failures(report, c, samples);
+  const int chosen_effect = report.verdict.candidate;
   Evidence evidence;
-  evidence.held_out_observations = count_role(c.targets, Role::held_out);
+  evidence.held_out_observations = int(count_role(c.targets, Role::held_out));
   evidence.base_has_held_out = report.candidates[0].confirmed_rms.held_out.has_value();
   evidence.base_on_bounds = on_bounds(report.candidates[0].calibration.z);
-  evidence.calibration_miss = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
-                                             c.targets, judged, Role::calibration);
+  evidence.base =
+      model_miss("the base model", c.targets, residuals(report.candidates[0].confirmed_ln, lab),
+                 judged, c.decision.gap_budgets);
+  evidence.verdict =
+      chosen_effect < 0
+          ? evidence.base
+          : model_miss("the model with " + report.candidates[chosen_effect].candidate.effect,
+                       c.targets, residuals(report.candidates[chosen_effect].confirmed_ln, lab),
+                       judged, c.decision.gap_budgets);
   temper_verdict(c.decision, evidence, report.verdict, conf);
-  report.inconsistencies = find_inconsistencies(c.dataset);
-  if (!report.inconsistencies.empty()) {
-    report.verdict.reason +=
-        "; the data disagree with themselves: " + inconsistency_text(report.inconsistencies) +
-        ", which no model can meet at once: that part of any gap is the data's";
-  }
   // Without held-out residuals there is nothing to judge; say what stopped the runs.
   if (evidence.held_out_observations > 0 && !evidence.base_has_held_out &&
       !report.first_error.empty()) {
     report.verdict.reason += " (first failure: " + report.first_error + ")";
+  }
+  report.inconsistencies = find_inconsistencies(c.targets);
+  if (!report.inconsistencies.empty()) {
+    report.verdict.reason += "; the data disagree with themselves: " +
+                             inconsistency_text(report.inconsistencies, c.targets) +
+                             ": no model meets both, so only a residual beyond the span of their "
+                             "values is charged to the model";
   }
   return report;
 }

@@ -8,10 +8,10 @@
 
 #include "orchestrator/diagnosis/analysis/budget.hpp"
 #include "orchestrator/diagnosis/analysis/candidate_result.hpp"
+#include "orchestrator/diagnosis/analysis/consistency.hpp"
 #include "orchestrator/diagnosis/analysis/evaluator.hpp"
 #include "orchestrator/diagnosis/analysis/ratio.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
-#include "orchestrator/diagnosis/dataset/consistency.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -38,8 +38,9 @@ struct DiagnosisResult {
   int failed_values = 0;
   std::string first_error;              // of the first run that left a value missing
   std::vector<int> base_grid_failures;  // per target: base grid runs without a value
-  // Pairs of observations under the same conditions that disagree beyond their uncertainties:
-  // the data's own, named in the verdict and not the model's to explain.
+  // Pairs of observations under nearly the same conditions that disagree beyond their
+  // uncertainties: the data's own, named in the verdict and not charged to the model
+  // (consistency.hpp).
   std::vector<Inconsistency> inconsistencies;
 };
 

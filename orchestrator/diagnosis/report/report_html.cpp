@@ -149,6 +149,12 @@ std::string residual_plot(const json& s) {
 }
 
 std::string closure_plot(const json& s) {
+  // Nothing to draw: the report's own reason, never an empty chart.
+  const json& missing = at(at(s, "gap"), "closure_missing");
+  if (missing.is_string()) {
+    return "<h2>Gap closure per effect</h2>\n<p class=\"note\">No gap closure to show: " +
+           show(missing) + ".</p>\n";
+  }
   BarChart chart;
   chart.y_label = "gap closure G (held out)";
   Series confirmed{"confirmed by real runs", "#1f77b4", {}};

@@ -118,10 +118,14 @@ json observation_json(std::size_t i, const DiagnosisResult& r, const std::vector
             {"base_grid_failures", i < r.base_grid_failures.size() ? r.base_grid_failures[i] : 0}};
   auto sim = [&](const CandidateResult& c) {
     const double res = c.ln_sim()[i] - lab[i];
+    // The part the model is charged with: the residual less the span of values the data
+    // themselves give under the same conditions (consistency.hpp); the residual elsewhere.
+    const double charged = charged_residuals(residuals(c.ln_sim(), lab), targets)[i];
     return json{{"sim", num(std::exp(c.ln_sim()[i]))},
                 {"residual", num(res)},
-                // A residual beyond budget + lab uncertainty is a gap, not noise.
-                {"significant", std::isfinite(res) && std::abs(res) > budget + t.sigma}};
+                {"charged", num(charged)},
+                // A charged residual beyond budget + lab uncertainty is a gap, not noise.
+                {"significant", std::isfinite(charged) && std::abs(charged) > budget + t.sigma}};
   };
   j["base"] = sim(r.candidates[0]);
   j["verdict"] = r.verdict.candidate >= 0 ? sim(r.candidates[r.verdict.candidate]) : json(nullptr);
@@ -157,6 +161,22 @@ json confidence_json(const Confidence& c) {
            ">= 70% and most counted seeds; low otherwise"}};
 }
 
+// The miss the verdict's reason states, figure by figure.
+json miss_json(const std::optional<ModelMiss>& m) {
+  if (!m) return nullptr;
+  json beyond = json::array();
+  for (const ObservationMiss& o : m->beyond) {
+    beyond.push_back({{"id", o.id},
+                      {"role", to_string(o.role)},
+                      {"charged", o.residual},
+                      {"noise", o.noise()},
+                      {"budgets", o.in_budgets()}});
+  }
+  return {{"model", m->model},
+          {"rms_budgets", {{"calibration", num(m->calibration)}, {"held_out", num(m->held_out)}}},
+          {"beyond", beyond}};
+}
+
 json verdict_json(const DiagnosisResult& r) {
   const CandidateResult& base = r.candidates[0];
   const int v = r.verdict.candidate;
@@ -186,6 +206,7 @@ json verdict_json(const DiagnosisResult& r) {
     j["runner_up"] = nullptr;
   }
   j["confidence"] = confidence_json(r.confidence);
+  j["miss"] = miss_json(r.verdict.miss);
   return j;
 }
 
@@ -217,10 +238,38 @@ json budget_json(const DiagnosisResult& r, const std::vector<Target>& targets, O
       {"variants", variants}};
 }
 
+// Why no effect has a gap closure G (null when one has): a chart of G left empty says so.
+json closure_missing(const DiagnosisResult& r, const std::vector<Target>& targets) {
+  const auto& c = r.candidates;
+  const std::string untried =
+      "no candidate effects were tried (the request's \"effects\" is empty)";
+  if (count_role(targets, Role::held_out) == 0) {
+    return "G is measured on held-out observations, and the dataset has none" +
+           (c.size() < 2 ? "; " + untried : "");
+  }
+  if (c.size() < 2) return untried + ": the diagnosis only locates the gap";
+  for (std::size_t k = 1; k < c.size(); ++k) {
+    if (c[k].g()) return nullptr;
+  }
+  if (!c[0].confirmed_rms.held_out) {
+    return "the base model has no held-out residual (its runs failed), so no G can be measured";
+  }
+  if (*c[0].confirmed_rms.held_out == 0) {
+    return "the base model meets every held-out observation exactly: there is no gap to close";
+  }
+  for (std::size_t k = 1; k < c.size(); ++k) {
+    if (c[k].fitted) {
+      return "no effect's held-out residuals could be compared with the base model's (their "
+             "held-out surfaces or runs are missing: runs.failed_values)";
+    }
+  }
+  return "no candidate effect could be fitted (candidates[].error says why)";
+}
+
 json gap_json(const DiagnosisResult& r, const std::vector<Target>& targets,
               const std::vector<double>& lab, const DecisionRule& rule) {
   const CandidateResult& base = r.candidates[0];
-  const std::vector<double> res = residuals(base.confirmed_ln, lab);
+  const std::vector<double> res = charged_residuals(residuals(base.confirmed_ln, lab), targets);
   json significant = json::array();
   for (std::size_t i = 0; i < targets.size(); ++i) {
     if (std::isfinite(res[i]) && std::abs(res[i]) > r.budget.per_target[i] + targets[i].sigma) {
@@ -233,7 +282,8 @@ json gap_json(const DiagnosisResult& r, const std::vector<Target>& targets,
           {"held_out_budgets", num(r.held_out_budgets)},
           {"threshold_budgets", rule.gap_budgets},
           {"exceeds_budget", r.held_out_budgets.value_or(0) > rule.gap_budgets},
-          {"significant", significant}};
+          {"significant", significant},
+          {"closure_missing", closure_missing(r, targets)}};
 }
 
 json ratio_json(const std::optional<LabRatio>& r, const std::vector<Target>& targets) {
@@ -248,13 +298,15 @@ json ratio_json(const std::optional<LabRatio>& r, const std::vector<Target>& tar
 
 namespace {
 
-json inconsistencies_json(const std::vector<Inconsistency>& pairs) {
+json inconsistencies_json(const std::vector<Inconsistency>& pairs,
+                          const std::vector<Target>& targets) {
   json out = json::array();
-  for (const Inconsistency& p : pairs)
-    out.push_back({{"first", p.first},
-                   {"second", p.second},
+  for (const Inconsistency& p : pairs) {
+    out.push_back({{"first", targets[p.first].id},
+                   {"second", targets[p.second].id},
                    {"ln_difference", p.ln_difference},
                    {"sigmas", p.sigmas}});
+  }
   return out;
 }
 
@@ -280,7 +332,7 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
       {"observations", observations},
       {"budget", budget_json(r, c.targets, c.dataset.origin)},
       {"ratio", ratio_json(r.ratio, c.targets)},
-      {"data_inconsistencies", inconsistencies_json(r.inconsistencies)},
+      {"data_inconsistencies", inconsistencies_json(r.inconsistencies, c.targets)},
       {"candidates", candidates},
       {"grid",
        {{"design", c.grid.design == Design::local ? "local" : "global"},

@@ -116,9 +116,13 @@ function candidateSection(s, width) {
     note: [c.gap_closure ? `basis ${c.gap_closure.basis}` : 'not fitted', c.identifiable === false ? 'not identifiable' : null,
       c.effect === s.verdict.effect ? 'the verdict' : null].filter(Boolean).join(', '),
   }));
-  const chart = items.length ? horizontalBars({title: 'Candidate effects: gap closure G', width, items,
-    xLabel: 'G, held-out gap closed (–)',
-    caption: 'the share of the held-out gap each effect closes (1 all, 0 none); solid: the verdict, hatched: the others'}) : note('No candidate effects were tried (base model only).');
+  // Nothing to draw: the report's own reason (gap.closure_missing), never an empty chart.
+  const missing = s.gap && s.gap.closure_missing;
+  const chart = missing ? note(`No gap closure to show: ${missing}.`)
+    : items.length ? horizontalBars({title: 'Candidate effects: gap closure G', width, items,
+      xLabel: 'G, held-out gap closed (–)',
+      caption: 'the share of the held-out gap each effect closes (1 all, 0 none); solid: the verdict, hatched: the others'})
+      : note('No candidate effects were tried (base model only).');
   const all = s.candidates || [];
   const rows = table([
     {label: 'candidate', value: (c) => effectName(c)},

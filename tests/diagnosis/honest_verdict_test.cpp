@@ -1,0 +1,158 @@
+// Focus: what the data let a verdict say (temper_verdict), on the rule alone. A diagnosis that
+// cannot judge (nothing held out, a base fit on the search box) answers "undetermined" with the
+// miss stated observation by observation, never "no effect needed"; a verdict beside a miss
+// beyond the noise budget is never "high". The seed lab case is replayed from its figures: both
+// calibration observations at -0.93 in ln, the fit on a bound, nothing held out.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+Target observation(const std::string& id, Role role, double sigma) {
+  Target t;
+  t.id = id;
+  t.role = role;
+  t.value = 1.0;
+  t.sigma = sigma;
+  return t;
+}
+
+// What the diagnosis knew: how many held-out observations (each with a base residual), where the
+// base fit sits on the box, and the base model's miss (also the verdict's model's, until a test
+// names an effect).
+Evidence evidence(int held_out, std::vector<std::string> on_bounds, const ModelMiss& base) {
+  Evidence e;
+  e.held_out_observations = held_out;
+  e.base_has_held_out = held_out > 0;
+  e.base_on_bounds = std::move(on_bounds);
+  e.base = base;
+  e.verdict = base;
+  return e;
+}
+
+// The verdict the rule gave before it was tempered, and a confidence it would have had.
+struct Judged {
+  Verdict verdict;
+  Confidence confidence;
+};
+
+Judged no_effect_needed(const std::string& reason) {
+  Judged j;
+  j.verdict.candidate = -1;
+  j.verdict.reason = reason;
+  j.confidence.level = "high";
+  return j;
+}
+
+// Undetermined: no effect named, confidence none, and exactly this reason.
+void expect_undetermined(const Judged& j, const std::string& reason) {
+  EXPECT_TRUE(j.verdict.undetermined);
+  EXPECT_EQ(j.verdict.candidate, -1);
+  EXPECT_EQ(verdict_label({}, j.verdict), "undetermined");
+  EXPECT_EQ(j.confidence.level, "none");
+  EXPECT_EQ(j.verdict.reason, reason);
+}
+
+// The seed lab case (examples/diagnose_seed_lab.json): uct-1 and btt-1, both calibration, 5% lab
+// uncertainty, both missed by -0.93 in ln (the figures); budgets 0.10 and 0.75 as the last
+// run recorded in docs/diagnosis-measurements.md; its base fit at F_s0's upper bound (480).
+TEST(HonestVerdict, TheSeedLabCaseIsUndeterminedWithItsMissStated) {
+  const std::vector<Target> targets = {observation("uct-1", Role::calibration, 0.05),
+                                       observation("btt-1", Role::calibration, 0.05)};
+  const std::vector<double> budget = {0.10, 0.75};
+  const std::vector<double> residuals = {-0.93, -0.93};
+  const DecisionRule rule;
+  const Evidence e = evidence(
+      0, {"fs0 upper"}, model_miss("the base model", targets, residuals, budget, rule.gap_budgets));
+  // What it answered before: "no effect needed", confidence high.
+  Judged j = no_effect_needed("the base model has no held-out residual");
+  temper_verdict(rule, e, j.verdict, j.confidence);
+  expect_undetermined(
+      j,
+      "undetermined: no held-out observations, so no effect can be judged; the base model's "
+      "fit lies on the search box (fs0 upper): its strengths are the bounds', not the data's "
+      "(widen the bounds); the base model misses uct-1 (calibration) by -0.93 in ln (61% "
+      "below the lab), 8.3 times its noise 0.112 (budget 0.100, lab uncertainty 0.050), and "
+      "btt-1 (calibration) by -0.93 in ln (61% below the lab), 1.2 times its noise 0.752 "
+      "(budget 0.750, lab uncertainty 0.050): rms 5.9 noise budgets over the calibration "
+      "observations");
+  // The figures of the sentence are the report's fields (verdict.miss).
+  ASSERT_TRUE(j.verdict.miss);
+  ASSERT_EQ(j.verdict.miss->beyond.size(), 2u);
+  EXPECT_EQ(j.verdict.miss->beyond[0].id, "uct-1");
+  EXPECT_DOUBLE_EQ(j.verdict.miss->beyond[0].residual, -0.93);
+  EXPECT_NEAR(*j.verdict.miss->calibration, 5.946, 1e-3);
+  EXPECT_FALSE(j.verdict.miss->held_out);
+}
+
+// With held-out data, a base fit on the search box still judges nothing: its strengths are the
+// bounds'. Undetermined, confidence none, even where the rule had named an effect.
+TEST(HonestVerdict, AFitOnABoundIsUndeterminedNeverHigh) {
+  const std::vector<Target> targets = {observation("uct", Role::calibration, 0.02),
+                                       observation("tri-high", Role::held_out, 0.02)};
+  const std::vector<double> budget = {0.01, 0.01};
+  Evidence e =
+      evidence(1, {"fr0 lower"}, model_miss("the base model", targets, {0.005, 0.30}, budget, 1.0));
+  e.verdict = model_miss("the model with rate", targets, {0.005, 0.01}, budget, 1.0);
+  Judged j;
+  j.verdict.candidate = 2;  // the rule had named an effect
+  j.confidence.level = "high";
+  temper_verdict(DecisionRule{}, e, j.verdict, j.confidence);
+  expect_undetermined(
+      j,
+      "undetermined: the base model's fit lies on the search box (fr0 lower): its "
+      "strengths are the bounds', not the data's (widen the bounds); the base model misses "
+      "tri-high (held out) by +0.30 in ln (35% above the lab), 13.4 times its noise 0.022 "
+      "(budget 0.010, lab uncertainty 0.020): rms 0.2 noise budgets over the calibration "
+      "observations, 13.4 over the held-out ones");
+}
+
+// "No effect needed" beside a calibration miss beyond the budget: low, the miss added. A named
+// effect whose model still misses: at most medium. Within the budget: the rule's level stands.
+TEST(HonestVerdict, AnUnexplainedMissBeyondTheBudgetIsNeverHigh) {
+  const std::vector<Target> targets = {observation("uct", Role::calibration, 0.02),
+                                       observation("btt", Role::calibration, 0.02),
+                                       observation("uct-large", Role::held_out, 0.02)};
+  const std::vector<double> budget = {0.0, 0.0, 0.0};
+  Evidence e =
+      evidence(1, {}, model_miss("the base model", targets, {0.06, -0.01, 0.01}, budget, 1.0));
+  Judged none = no_effect_needed("within the budgets");
+  temper_verdict(DecisionRule{}, e, none.verdict, none.confidence);
+  EXPECT_EQ(none.confidence.level, "low");
+  EXPECT_FALSE(none.verdict.undetermined);
+  EXPECT_EQ(none.verdict.reason,
+            "within the budgets; not explained: the base model misses uct (calibration) by +0.06 "
+            "in ln (6.2% above the lab), 3.0 times its noise 0.020 (budget 0.000, lab uncertainty "
+            "0.020): rms 2.2 noise budgets over the calibration observations, 0.5 over the "
+            "held-out ones");
+
+  Judged named;
+  named.verdict.candidate = 1;
+  named.verdict.reason = "size closes G = 0.50";
+  named.confidence.level = "high";
+  e.verdict = model_miss("the model with size", targets, {0.0, 0.0, 0.05}, budget, 1.0);
+  temper_verdict(DecisionRule{}, e, named.verdict, named.confidence);
+  EXPECT_EQ(named.confidence.level, "medium");
+  EXPECT_EQ(named.verdict.reason,
+            "size closes G = 0.50; not explained: the model with size misses uct-large (held out) "
+            "by +0.05 in ln (5.1% above the lab), 2.5 times its noise 0.020 (budget 0.000, lab "
+            "uncertainty 0.020): rms 0.0 noise budgets over the calibration observations, 2.5 "
+            "over the held-out ones");
+
+  Judged fine = no_effect_needed("within the budgets");
+  e = evidence(1, {}, model_miss("the base model", targets, {0.01, -0.01, 0.01}, budget, 1.0));
+  temper_verdict(DecisionRule{}, e, fine.verdict, fine.confidence);
+  EXPECT_EQ(fine.confidence.level, "high");
+  EXPECT_EQ(fine.verdict.reason, "within the budgets");
+  EXPECT_FALSE(fine.verdict.miss);
+}
+
+}  // namespace
+}  // namespace rockcal::diagnosis
