@@ -18,6 +18,8 @@ class RunnerEvaluator : public Evaluator {
       std::span<const EvaluationRequest> requests) override;
   std::vector<orch::Ensemble> probe_batch(std::span<const ProbeRequest> probes) override;
   void patch_template(const nlohmann::json& patch) override;
+  // The job template later runs start from (the campaign's, with every patch merged in).
+  const nlohmann::json& job_template() const { return job_template_; }
 
  private:
   // One ensemble per group of jobs (a run without a peak is a failed realisation, left out of the
