@@ -171,15 +171,12 @@ TEST_F(JobServiceTest, DriversSubmitJobsAndWaitForResults) {
   kind.name = "probe";
   kind.plan = [](const json&, const Limits&) { return CampaignPlan{"probe", {}}; };
   kind.driver = [](DriverContext& ctx) {
-    json spec = test::tiny_job_template();
-    spec["test"] = "uct";
+    PoolRunner runner(ctx.service, ctx.campaign_id, ctx.stop);
     json summary = json::array();
     for (double fr0 : {41.0, 43.0, 41.0}) {
-      spec["bond"]["fr0"] = fr0;
-      JobOutcome out = ctx.service.submit_and_wait(ctx.campaign_id, spec, ctx.stop);
-      summary.push_back({{"state", out.state},
-                         {"cached", out.cached},
-                         {"peak", out.result ? *out.result->peak_load : -1.0}});
+      const Realisation run = runner.run({uct_job(fr0, 1)}).value().front();
+      summary.push_back(
+          {{"state", run.state}, {"cached", run.cached}, {"peak", run.peak_load_n.value_or(-1)}});
     }
     return summary;
   };
