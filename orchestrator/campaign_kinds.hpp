@@ -26,8 +26,9 @@ struct CampaignPlan {
   std::vector<db::NewJob> jobs;  // created with the campaign, all in one transaction
 };
 
-// What a driver thread gets. It submits jobs through `service` (submit_and_wait) and should return
-// soon after `stop` is requested (server shutdown or campaign cancelled).
+// What a driver thread gets. It runs jobs on the service's pool through the one job runner
+// (orch::PoolRunner over `service`, orchestrator/pool_runner.hpp) and should return soon after
+// `stop` is requested (server shutdown or campaign cancelled).
 struct DriverContext {
   JobService& service;
   std::int64_t campaign_id;

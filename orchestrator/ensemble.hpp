@@ -57,6 +57,10 @@ struct Realisation {
   // absent when the run reported none (no peak, or an engine without the measure).
   std::optional<bool> quasi_static = std::nullopt;
   std::optional<double> poisson_ratio = std::nullopt;  // a UCT's, where the run measured it
+  bool cached = false;  // the job cache answered it (a run made before) without running
+  // The run's whole result.json when it succeeded (what the values above do not hold: the peak
+  // strain, the engine's version); null otherwise.
+  nlohmann::json result = nullptr;
 };
 
 struct Ensemble {

@@ -217,13 +217,6 @@ JobOutcome JobService::wait_job(std::int64_t job_id, std::stop_token stop) {
   }
 }
 
-JobOutcome JobService::submit_and_wait(std::int64_t campaign_id, const json& job_spec,
-                                       std::stop_token stop) {
-  const std::int64_t id = submit_job(campaign_id, job_spec, stop);
-  if (id == 0) return {};
-  return wait_job(id, stop);
-}
-
 void JobService::set_progress(std::int64_t campaign_id, const json& progress,
                               std::stop_token stop) {
   write_with_retry(

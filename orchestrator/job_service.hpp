@@ -81,9 +81,6 @@ class JobService {
                           std::stop_token stop = {});
   // Blocks until the job ends, or `stop` is requested (then state is whatever it is now).
   JobOutcome wait_job(std::int64_t job_id, std::stop_token stop = {});
-  // submit_job + wait_job (an empty outcome, job_id 0, when stopped before the job was stored).
-  JobOutcome submit_and_wait(std::int64_t campaign_id, const nlohmann::json& job_spec,
-                             std::stop_token stop = {});
   // Stores a running campaign's summary (its progress so far), waiting out a storage fault
   // (driver_storage_retry); gives up quietly when `stop` is requested first.
   void set_progress(std::int64_t campaign_id, const nlohmann::json& progress, std::stop_token stop);

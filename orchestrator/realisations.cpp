@@ -9,23 +9,25 @@ namespace {
 
 using nlohmann::json;
 
-Realisation from(std::uint64_t seed, std::int64_t job_id, const std::string& state,
+Realisation from(std::uint64_t seed, std::int64_t job_id, const std::string& state, bool cached,
                  const std::optional<db::ResultRow>& result,
                  const std::optional<std::string>& error) {
   Realisation r;
   r.seed = seed;
   r.job_id = job_id;
   r.state = state;
+  r.cached = cached;
   if (state == db::kSucceeded && result) {
     r.peak_load_n = result->peak_load;
     r.strength_pa = result->strength;
     r.youngs_modulus_pa = result->youngs_modulus;
     r.poisson_ratio = result->poisson_ratio;
-    const json doc = json::parse(result->result, nullptr, false);
+    json doc = json::parse(result->result, nullptr, false);
     if (doc.is_object() && doc.contains("loading_rate") && doc["loading_rate"].is_object()) {
       const json& q = doc["loading_rate"].value("quasi_static", json());
       if (q.is_boolean()) r.quasi_static = q.get<bool>();
     }
+    if (doc.is_object()) r.result = std::move(doc);
   } else if (state == db::kFailed || state == db::kCancelled) {
     r.error = error.value_or("job " + std::to_string(job_id) + " " + state);
   }
@@ -51,11 +53,13 @@ std::uint64_t seed_of(const json& spec) {
 }  // namespace
 
 Realisation realisation(const db::JobRow& job, const std::optional<db::ResultRow>& result) {
-  return from(seed_of(json::parse(job.spec, nullptr, false)), job.id, job.state, result, job.error);
+  return from(seed_of(json::parse(job.spec, nullptr, false)), job.id, job.state, job.cached, result,
+              job.error);
 }
 
-Realisation realisation(const JobOutcome& outcome, std::uint64_t seed) {
-  return from(seed, outcome.job_id, outcome.state, outcome.result, outcome.error);
+Realisation realisation(const JobOutcome& outcome, const json& spec) {
+  return from(seed_of(spec), outcome.job_id, outcome.state, outcome.cached, outcome.result,
+              outcome.error);
 }
 
 std::vector<PointEnsemble> point_ensembles(const std::vector<db::JobResultRow>& rows) {
@@ -71,7 +75,7 @@ std::vector<PointEnsemble> point_ensembles(const std::vector<db::JobResultRow>& 
       members.emplace_back();
     }
     members[it->second].push_back(
-        from(seed_of(spec), row.job.id, row.job.state, row.result, row.job.error));
+        from(seed_of(spec), row.job.id, row.job.state, row.job.cached, row.result, row.job.error));
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     points[i].ensemble = make_ensemble(std::move(members[i]));

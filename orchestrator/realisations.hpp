@@ -1,12 +1,14 @@
 // A campaign's jobs as ensembles: jobs whose canonical specs differ only in sample.seed are the
 // realisations of one test at one model point (a sweep's "realisations", a calibration's
-// evaluation). What the results API and the calibration's pool evaluator read jobs through.
+// evaluation). What the results API and the pool runner (pool_runner.hpp) read jobs through.
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "db/records.hpp"
 #include "orchestrator/ensemble.hpp"
@@ -16,8 +18,8 @@ namespace rockcal::orch {
 
 // One job as a realisation: its state, its values when it succeeded, else why it has none.
 Realisation realisation(const db::JobRow& job, const std::optional<db::ResultRow>& result);
-// The same for a job a driver waited for; `seed` is the seed it submitted.
-Realisation realisation(const JobOutcome& outcome, std::uint64_t seed);
+// The same for a job a driver waited for; `spec` is the job it submitted (its sample.seed).
+Realisation realisation(const JobOutcome& outcome, const nlohmann::json& spec);
 
 struct PointEnsemble {
   std::string test;

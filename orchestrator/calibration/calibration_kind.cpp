@@ -7,9 +7,10 @@
 
 #include "orchestrator/calibration/campaign.hpp"
 #include "orchestrator/calibration/driver.hpp"
-#include "orchestrator/calibration/pool_evaluator.hpp"
 #include "orchestrator/calibration/progress.hpp"
+#include "orchestrator/calibration/runner_evaluator.hpp"
 #include "orchestrator/job_service.hpp"
+#include "orchestrator/pool_runner.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::calibration {
@@ -20,7 +21,7 @@ namespace {
 // in the pace: they would make every later evaluation look nearly free.
 class Pace {
  public:
-  explicit Pace(db::Store& store) : store_(store), start_(Clock::now()) {}
+  Pace() : start_(Clock::now()) {}
 
   void add(const EvaluationRecord& r) {
     if (answered_by_cache(r)) return;
@@ -47,19 +48,17 @@ class Pace {
   using Clock = std::chrono::steady_clock;
   static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
-  bool answered_by_cache(const EvaluationRecord& r) const {
+  static bool answered_by_cache(const EvaluationRecord& r) {
     if (!r.uct || !r.btt) return false;
     for (const orch::Ensemble* e : {&*r.uct, &*r.btt}) {
       for (const orch::Realisation& run : e->realisations) {
-        const auto job = run.job_id > 0 ? store_.job(run.job_id) : std::nullopt;
-        if (!job || !job->cached) return false;
+        if (!run.cached) return false;
       }
     }
     return true;
   }
 
   static constexpr int kWindow = 8;
-  db::Store& store_;
   Clock::time_point start_;
   std::vector<Clock::time_point> times_;  // when each timed evaluation ended
 };
@@ -77,8 +76,9 @@ orch::CampaignKind calibration_kind() {
   // request, and the job cache replays the finished evaluations.
   kind.driver = [](orch::DriverContext& ctx) {
     const CalibrationCampaign c = parse_calibration_campaign(ctx.request);
-    PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, ctx.stop);
-    Pace pace(ctx.service.store());
+    orch::PoolRunner pool(ctx.service, ctx.campaign_id, ctx.stop);
+    RunnerEvaluator evaluator(pool, c.job_template);
+    Pace pace;
     // While it runs, the campaign's summary is the history so far, with the budget and the pace
     // a client needs for its progress line (from the start, so the budget shows before the first
     // evaluation ends); the report replaces it at the end.

@@ -1,7 +1,7 @@
 // The calibration driver: one campaign, one optimiser thread.
 //
 //   CalibrationCampaign c = parse_calibration_campaign(body);      // orch::RequestError -> 400
-//   CalibrationThread run(c, my_pool_evaluator, on_evaluation);    // starts the thread
+//   CalibrationThread run(c, my_evaluator, on_evaluation);         // starts the thread
 //   run.cancel();                                                  // DELETE: stop soon
 //   nlohmann::json report = to_json(run.wait(), c);                // joins
 //

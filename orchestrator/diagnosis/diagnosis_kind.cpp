@@ -3,9 +3,10 @@
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
-#include "orchestrator/diagnosis/pipeline/pool_evaluator.hpp"
+#include "orchestrator/diagnosis/pipeline/runner_evaluator.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "orchestrator/job_service.hpp"
+#include "orchestrator/pool_runner.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::diagnosis {
@@ -44,7 +45,8 @@ orch::CampaignKind diagnosis_kind() {
   // request, and the job cache replays the finished runs.
   kind.driver = [](orch::DriverContext& ctx) {
     const DiagnosisCampaign c = parse_diagnosis_campaign(ctx.request);
-    PoolEvaluator evaluator(ctx.service, ctx.campaign_id, c.job_template, c.targets, ctx.stop);
+    orch::PoolRunner pool(ctx.service, ctx.campaign_id, ctx.stop);
+    RunnerEvaluator evaluator(pool, c.job_template, c.targets);
     DiagnosisOptions options;
     options.stop = ctx.stop;
     // While it runs, the summary says which phase it is in and carries the progress model: jobs

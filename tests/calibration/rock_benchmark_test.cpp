@@ -11,8 +11,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "dem_evaluator.hpp"
+#include "engine_runner.hpp"
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/runner_evaluator.hpp"
 
 namespace rockcal::calibration {
 namespace {
@@ -39,13 +40,13 @@ TEST(RockBenchmark, TheGraniteAtSmallSizeEndsWithAVerdictFromQuasiStaticRuns) {
   const json request = at_small_size(json::parse(file), 8, 20);
   const CalibrationCampaign c = parse_calibration_campaign(request);
 
-  testing::DemEvaluator evaluator;
-  evaluator.engine = ROCKCAL_DEM;
-  evaluator.work_dir =
+  testing::EngineRunner engine;
+  engine.engine = ROCKCAL_DEM;
+  engine.work_dir =
       std::filesystem::temp_directory_path() / ("rockcal-rock-" + std::to_string(getpid()));
-  evaluator.job_template = request["job"];
+  RunnerEvaluator evaluator(engine, request["job"]);
   const CalibrationReport r = run_calibration(c, evaluator);
-  std::filesystem::remove_all(evaluator.work_dir);
+  std::filesystem::remove_all(engine.work_dir);
   std::printf("granite at D/R 8: %zu evaluations, verdict %s: %s\n", r.history.size(),
               to_string(r.verdict), r.verdict_reason.c_str());
 

@@ -8,9 +8,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "dem_evaluator.hpp"
+#include "engine_runner.hpp"
 #include "orchestrator/calibration/bayes/emulators.hpp"
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/runner_evaluator.hpp"
 #include "orchestrator/calibration/stiffness.hpp"
 
 namespace rockcal::calibration {
@@ -25,9 +26,8 @@ class Twin : public ::testing::Test {
     setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
     setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
     work_ = std::filesystem::temp_directory_path() / ("rockcal-twin-" + std::to_string(getpid()));
-    evaluator_.engine = ROCKCAL_DEM;
-    evaluator_.work_dir = work_;
-    evaluator_.job_template = job_template();
+    engine_.engine = ROCKCAL_DEM;
+    engine_.work_dir = work_;
   }
   void TearDown() override { std::filesystem::remove_all(work_); }
 
@@ -38,7 +38,8 @@ class Twin : public ::testing::Test {
   }
 
   std::filesystem::path work_;
-  testing::DemEvaluator evaluator_;
+  testing::EngineRunner engine_;
+  RunnerEvaluator evaluator_{engine_, job_template()};
 };
 
 TEST_F(Twin, RecoversTheEngineOwnBondStrengths) {
@@ -133,8 +134,8 @@ TEST_F(Twin, TheBayesRegionHoldsTheEngineOwnBondStrengths) {
   json seeded = job_template();
   seeded["sample"]["lattice"] = "seeded";
   seeded["sample"]["seed"] = 1;
-  evaluator_.job_template = seeded;
-  const std::vector<EvaluationOutcome> runs = evaluator_.evaluate_batch(lab);
+  RunnerEvaluator evaluator(engine_, seeded);
+  const std::vector<EvaluationOutcome> runs = evaluator.evaluate_batch(lab);
   double lu = 0, lb = 0, su = 0, sb = 0;
   for (const EvaluationOutcome& o : runs) {
     ASSERT_TRUE(o.ok()) << o.error;
@@ -158,7 +159,7 @@ TEST_F(Twin, TheBayesRegionHoldsTheEngineOwnBondStrengths) {
       {"tolerance", 0.02},
       {"inference", {{"lab_uncertainty", {{"uct", se_uct}, {"btt", se_btt}}}}}};
   const CalibrationCampaign c = parse_calibration_campaign(campaign_json);
-  const CalibrationReport r = run_calibration(c, evaluator_);
+  const CalibrationReport r = run_calibration(c, evaluator);
   ASSERT_TRUE(r.posterior) << r.verdict_reason;
   const PosteriorSummary& p = *r.posterior;
   std::printf("bayes twin: %d runs, lab se %.3f/%.3f, F_r0 [%g, %g], F_s0 [%g, %g], verdict %s\n",
@@ -176,7 +177,7 @@ TEST_F(Twin, TheStiffnessStageMeetsAReachableNuAndTheTargetEOnARandomPacking) {
   json random = job_template();
   random["sample"] = {{"diameter", 16},      {"height", 32},        {"radius", 1},
                       {"packing", "random"}, {"radius_ratio", 1.5}, {"seed", 1}};
-  evaluator_.job_template = random;
+  RunnerEvaluator evaluator(engine_, random);
   const json campaign_json = {{"kind", "calibration"},
                               {"name", "stiffness twin"},
                               {"job", random},
@@ -188,7 +189,7 @@ TEST_F(Twin, TheStiffnessStageMeetsAReachableNuAndTheTargetEOnARandomPacking) {
                               {"bounds", {{"fr0", {10, 400}}, {"fs0", {10, 400}}}},
                               {"strategy", "bayes"}};
   const CalibrationCampaign c = parse_calibration_campaign(campaign_json);
-  const std::optional<StiffnessResult> s = calibrate_stiffness(c, evaluator_);
+  const std::optional<StiffnessResult> s = calibrate_stiffness(c, evaluator);
   ASSERT_TRUE(s && s->youngs_modulus_pa && s->poisson_ratio);
   for (const StiffnessRun& x : s->runs)
     std::printf("  %s K_s/K_r %.3f nu %.3f (sd %.3f) E %.0f\n", x.phase.c_str(),
@@ -201,8 +202,8 @@ TEST_F(Twin, TheStiffnessStageMeetsAReachableNuAndTheTargetEOnARandomPacking) {
   EXPECT_GE(s->runs.size(), 3u);  // eq. 3's start measures a mean nu 0.50: the search moved it
   EXPECT_NEAR(*s->youngs_modulus_pa / 4000, 1.0, kStiffnessETolerance);
   EXPECT_TRUE(stiffness_met(*s));
-  EXPECT_DOUBLE_EQ(evaluator_.job_template["material"]["kr"].get<double>(), s->kr_n_m);
-  EXPECT_DOUBLE_EQ(evaluator_.job_template["material"]["nu"].get<double>(), s->setting.nu);
+  EXPECT_DOUBLE_EQ(evaluator.job_template()["material"]["kr"].get<double>(), s->kr_n_m);
+  EXPECT_DOUBLE_EQ(evaluator.job_template()["material"]["nu"].get<double>(), s->setting.nu);
 }
 
 }  // namespace

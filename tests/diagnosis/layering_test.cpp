@@ -1,5 +1,7 @@
 // Focus: the diagnosis's layers (orchestrator/diagnosis/CMakeLists.txt). Each folder includes only
 // the folders below it: dataset < twin; dataset < analysis < pipeline < report < the campaign kind.
+// And below every domain the one job runner: calibration and diagnosis reach the service's pool
+// only through their campaign kinds.
 // Above all the analysis (surfaces, budget, identifiability, gap, verdict) works on observations
 // and run outcomes and must never reach the request, the pipeline that runs it or the report, so
 // that a numerical routine can be tested, reused and reasoned about without them. Follows the
@@ -75,6 +77,24 @@ std::vector<std::string> reaches_above(const std::string& folder,
 
 using Chains = std::vector<std::string>;
 
+// Every chain from a file under `folder` (recursively), other than a campaign kind (*_kind.*), to
+// the service or its pool.
+std::vector<std::string> reaches_the_pool(const std::string& folder) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(kRoot / folder)) {
+    const std::string ext = e.path().extension().string();
+    const std::string name = e.path().stem().string();
+    if ((ext != ".hpp" && ext != ".cpp") || name.ends_with("_kind")) continue;
+    const std::string file = fs::relative(e.path(), kRoot).string();
+    std::map<std::string, std::string> seen;
+    reach(file, file, seen);
+    for (const char* pool : {"orchestrator/job_service.hpp", "orchestrator/pool_runner.hpp"}) {
+      if (seen.count(pool)) out.push_back(seen[pool]);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST(DiagnosisLayering, TheAnalysisNeverIncludesTheRequestThePipelineOrTheReport) {
@@ -94,4 +114,17 @@ TEST(DiagnosisLayering, TheCheckSeesAnInclusionAbove) {
   const Chains found = reaches_above("report", {"dataset", "analysis", "report"});
   ASSERT_FALSE(found.empty());
   EXPECT_NE(found.front().find("orchestrator/diagnosis/pipeline/"), std::string::npos);
+}
+
+TEST(RunnerLayering, TheDomainsRunJobsOnlyThroughTheOneRunner) {
+  // Calibration and diagnosis (twins included) see the engine through orchestrator/job_runner.hpp;
+  // only their campaign kinds put the service's pool behind it.
+  EXPECT_EQ(reaches_the_pool("orchestrator/calibration"), Chains{});
+  EXPECT_EQ(reaches_the_pool("orchestrator/diagnosis"), Chains{});
+}
+
+TEST(RunnerLayering, TheCheckSeesTheKindsReachThePool) {
+  std::map<std::string, std::string> seen;
+  reach("orchestrator/calibration/calibration_kind.cpp", "calibration_kind.cpp", seen);
+  EXPECT_TRUE(seen.count("orchestrator/pool_runner.hpp"));
 }

@@ -1,12 +1,16 @@
 // The orchestrator with the fault-injecting fake engine: retries, failures kept with their log,
-// timeouts, cancellation, and the submit-and-wait API a calibration driver uses.
+// timeouts, cancellation, the submit-and-wait API, and the one job runner on the pool
+// (orch::PoolRunner) that calibration, diagnosis and twins run their jobs through.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
+#include <thread>
 
 #include "orchestrator/all_kinds.hpp"
 #include "orchestrator/job_service.hpp"
 #include "orchestrator/local_executor.hpp"
+#include "orchestrator/pool_runner.hpp"
 #include "orchestrator/process_groups.hpp"
 #include "support.hpp"
 
@@ -55,6 +59,28 @@ struct JobServiceTest : ::testing::Test {
       if (row.job.fr0 == fr0) return row.job;
     }
     throw std::runtime_error("no such job");
+  }
+  // A UCT of the tiny template at (fr0, 60) on the packing `seed` (the fake engine's peak load is
+  // fr0 + seed - 1; fr0 61 ends without a peak, 17 hangs).
+  static json uct_job(double fr0, std::uint64_t seed) {
+    json spec = test::tiny_job_template();
+    spec["test"] = "uct";
+    spec["bond"] = {{"fr0", fr0}, {"fs0", 60.0}};
+    spec["sample"]["seed"] = seed;
+    return spec;
+  }
+  // Waits until the campaign's job at fr0 runs, then calls `then` (on its own thread).
+  std::thread when_running(std::int64_t campaign, double fr0, std::function<void()> then) {
+    return std::thread([this, campaign, fr0, then] {
+      test::poll_until(
+          [&] {
+            for (const auto& row : service->store().campaign_results(campaign))
+              if (row.job.fr0 == fr0 && row.job.state == "running") return true;
+            return false;
+          },
+          10s);
+      then();
+    });
   }
 };
 
@@ -145,15 +171,12 @@ TEST_F(JobServiceTest, DriversSubmitJobsAndWaitForResults) {
   kind.name = "probe";
   kind.plan = [](const json&, const Limits&) { return CampaignPlan{"probe", {}}; };
   kind.driver = [](DriverContext& ctx) {
-    json spec = test::tiny_job_template();
-    spec["test"] = "uct";
+    PoolRunner runner(ctx.service, ctx.campaign_id, ctx.stop);
     json summary = json::array();
     for (double fr0 : {41.0, 43.0, 41.0}) {
-      spec["bond"]["fr0"] = fr0;
-      JobOutcome out = ctx.service.submit_and_wait(ctx.campaign_id, spec, ctx.stop);
-      summary.push_back({{"state", out.state},
-                         {"cached", out.cached},
-                         {"peak", out.result ? *out.result->peak_load : -1.0}});
+      const Realisation run = runner.run({uct_job(fr0, 1)}).value().front();
+      summary.push_back(
+          {{"state", run.state}, {"cached", run.cached}, {"peak", run.peak_load_n.value_or(-1)}});
     }
     return summary;
   };
@@ -190,6 +213,66 @@ TEST_F(JobServiceTest, WaitingDriverSeesCancellation) {
   canceller.join();
   EXPECT_EQ(outcome.state, "cancelled");
   EXPECT_FALSE(outcome.result);
+}
+
+// The one runner: one realisation per job in order, with its values, seed and result.json; a
+// failure's reason, and a run without a peak as a failed run with the engine's reason; equal jobs
+// within a batch run once; a job run before answered by the cache and said so (a restarted
+// campaign's replay).
+TEST_F(JobServiceTest, PoolRunnerGivesEachJobItsRealisationAndRunsEqualJobsOnce) {
+  start(2);
+  const auto campaign = service->create_campaign(points_request({{1, 1}}));
+  PoolRunner runner(*service, campaign, {});
+  const auto runs = runner.run({uct_job(41, 1), uct_job(41, 2), uct_job(61, 1), uct_job(41, 1)});
+  ASSERT_TRUE(runs);
+  ASSERT_EQ(runs->size(), 4u);
+  const Realisation& first = (*runs)[0];
+  EXPECT_EQ(first.state, "succeeded");
+  EXPECT_EQ(first.seed, 1u);
+  EXPECT_EQ(first.peak_load_n, 41.0);
+  EXPECT_EQ(first.strength_pa, 60.0);
+  EXPECT_EQ(first.youngs_modulus_pa, 1000.0);
+  EXPECT_EQ(first.error, "");
+  EXPECT_FALSE(first.cached);
+  EXPECT_EQ(first.result.value("engine_version", ""), "fake");
+  EXPECT_EQ((*runs)[1].seed, 2u);
+  EXPECT_EQ((*runs)[1].peak_load_n, 42.0);
+  const Realisation& no_peak = (*runs)[2];
+  EXPECT_EQ(no_peak.state, "failed");
+  EXPECT_EQ(no_peak.error, "no peak: the load fell on a loose particle with no bond broken (fake)");
+  EXPECT_FALSE(no_peak.peak_load_n);
+  EXPECT_TRUE(no_peak.result.is_null());
+  EXPECT_EQ((*runs)[3].job_id, first.job_id);
+  EXPECT_EQ(service->store().counts(campaign).total(), 1 + 3);
+
+  const auto again = runner.run({uct_job(41, 1)});
+  ASSERT_TRUE(again);
+  EXPECT_TRUE(again->front().cached);
+  EXPECT_NE(again->front().job_id, first.job_id);
+  EXPECT_EQ(again->front().peak_load_n, 41.0);
+}
+
+// A cancelled campaign, or a stop (the server shutting down), ends the batch with no partial
+// results.
+TEST_F(JobServiceTest, PoolRunnerEndsWithoutResultsWhenTheCampaignIsCancelled) {
+  start(2);
+  const auto campaign = service->create_campaign(points_request({{1, 1}}));
+  PoolRunner runner(*service, campaign, {});
+  std::thread canceller = when_running(campaign, 17, [&] { service->cancel_campaign(campaign); });
+  const auto runs = runner.run({uct_job(41, 1), uct_job(17, 1)});
+  canceller.join();
+  EXPECT_FALSE(runs);
+}
+
+TEST_F(JobServiceTest, PoolRunnerEndsWithoutResultsOnAStop) {
+  start(2);
+  const auto campaign = service->create_campaign(points_request({{1, 1}}));
+  std::stop_source stop;
+  PoolRunner runner(*service, campaign, stop.get_token());
+  std::thread stopper = when_running(campaign, 17, [&] { stop.request_stop(); });
+  const auto runs = runner.run({uct_job(17, 1)});
+  stopper.join();
+  EXPECT_FALSE(runs);
 }
 
 }  // namespace

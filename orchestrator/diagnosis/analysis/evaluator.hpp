@@ -1,7 +1,7 @@
 // The diagnosis's only view of the engine: "run the conditions of every target at this model point
 // (bond strengths, optionally one effect at fraction s of its range), with these numerics".
-// The service implements it on its worker pool (PoolEvaluator); the unit tests with formulas in
-// which each hidden effect leaves its own signature.
+// The service implements it over the one job runner (the pipeline's RunnerEvaluator, on the
+// pool); the unit tests with formulas in which each hidden effect leaves its own signature.
 #pragma once
 
 #include <cstdint>

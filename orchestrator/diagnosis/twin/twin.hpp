@@ -63,7 +63,7 @@ struct Twin {
 };
 
 // Runs the design's distinct jobs at the truth with the effect on (`run` fails on a run without a
-// peak, as pool_run_jobs does), reads each observation off its run, and applies the noise: value =
+// peak, as results_of does), reads each observation off its run, and applies the noise: value =
 // noise-free x exp(noise N(0,1)), uncertainty = noise x value. The seed's stream draws u1, u2, then
 // one N(0,1) per observation in design order (SplitMix64 and Box-Muller, so a seed gives the same
 // twin on every platform).

@@ -3,8 +3,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "orchestrator/job_batch.hpp"
 #include "orchestrator/json_fields.hpp"
+#include "orchestrator/pool_runner.hpp"
 #include "orchestrator/progress_model.hpp"
 #include "orchestrator/request_error.hpp"
 #include "orchestrator/request_fields.hpp"
@@ -39,17 +39,17 @@ TwinCampaign parse_twin_campaign(const json& request) {
   return c;
 }
 
-RunJobs pool_run_jobs(orch::JobService& service, std::int64_t campaign_id, std::stop_token stop) {
-  return [&service, campaign_id, stop](const std::vector<json>& jobs) {
-    const auto outcomes = orch::run_batch(service, campaign_id, jobs, stop);
-    if (!outcomes) throw TwinCancelled();
+RunJobs results_of(orch::JobRunner& runner) {
+  return [&runner](const std::vector<json>& jobs) {
+    const std::optional<std::vector<orch::Realisation>> runs = runner.run(jobs);
+    if (!runs) throw TwinCancelled();
     std::vector<json> results;
-    for (const orch::JobOutcome& o : *outcomes) {
-      if (o.state != "succeeded" || !o.result) {
-        throw std::runtime_error("twin job " + std::to_string(o.job_id) + " " + o.state + ": " +
-                                 o.error.value_or("(no error recorded)"));
+    for (const orch::Realisation& run : *runs) {
+      if (!run.result.is_object()) {
+        throw std::runtime_error("twin job " + std::to_string(run.job_id) + " " + run.state + ": " +
+                                 run.error);
       }
-      results.push_back(json::parse(o.result->result));
+      results.push_back(run.result);
     }
     return results;
   };
@@ -82,7 +82,8 @@ orch::CampaignKind twin_kind() {
                                        int(ctx.service.store().counts(ctx.campaign_id).ended()),
                                        parts, 0, std::nullopt, finished);
     };
-    const RunJobs pool = pool_run_jobs(ctx.service, ctx.campaign_id, ctx.stop);
+    orch::PoolRunner runner(ctx.service, ctx.campaign_id, ctx.stop);
+    const RunJobs pool = results_of(runner);
     const RunJobs run = [&](const std::vector<json>& jobs) {
       ctx.service.store().set_driver_status(ctx.campaign_id, "running",
                                             json{{"progress", model(false)}}.dump());

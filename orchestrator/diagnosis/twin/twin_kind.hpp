@@ -1,7 +1,7 @@
 // The "twin" campaign kind: a synthetic twin made on the service's pool. Its runs go through the
-// one batch of jobs every campaign uses (orch::run_batch), so they are cached like any job, a
-// twin re-made after a crash or with a new noise seed replays the runs it has, and a diagnosis in
-// the same store finds the twin's runs too.
+// one job runner every campaign uses (orchestrator/job_runner.hpp), so they are cached like any
+// job, a twin re-made after a crash or with a new noise seed replays the runs it has, and a
+// diagnosis in the same store finds the twin's runs too.
 //
 // Request: {"kind": "twin", "name"?, "effect", "value" (unless "none"), "seed"?, "noise"?,
 //           "resolution"?, "job"? (the template; default demo_twin_template())}
@@ -10,7 +10,6 @@
 
 #include <cstdint>
 #include <stdexcept>
-#include <stop_token>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -18,7 +17,7 @@
 #include "orchestrator/campaign_kinds.hpp"
 #include "orchestrator/diagnosis/twin/twin.hpp"
 #include "orchestrator/diagnosis/twin/twin_design.hpp"
-#include "orchestrator/job_service.hpp"
+#include "orchestrator/job_runner.hpp"
 #include "orchestrator/progress_model.hpp"
 
 namespace rockcal::diagnosis {
@@ -36,10 +35,11 @@ struct TwinCancelled : std::runtime_error {
   TwinCancelled() : std::runtime_error("twin cancelled") {}
 };
 
-// Runs jobs as one batch of the campaign and returns each run's result.json, in order. Throws
-// std::runtime_error with the job's id and error for a failed run (a run without a peak fails),
-// TwinCancelled when `stop` is requested or the campaign is cancelled.
-RunJobs pool_run_jobs(orch::JobService& service, std::int64_t campaign_id, std::stop_token stop);
+// Runs jobs as one batch on `runner` (the campaign's pool, orch::PoolRunner) and returns each
+// run's result.json, in order. Throws std::runtime_error with the job's id, state and failure
+// reason for a failed run (a run without a peak fails), TwinCancelled when the runner is
+// cancelled (the campaign, or the server stops).
+RunJobs results_of(orch::JobRunner& runner);
 
 // The jobs a twin plans, by part: "design" (its template's base UCT) and "observations" (the
 // distinct runs of its observations, twin_jobs): the budget of its progress model

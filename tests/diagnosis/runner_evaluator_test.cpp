@@ -1,14 +1,15 @@
-// The diagnosis's pool evaluator on the service with the fake engine: a run that ended without a
-// peak is a failed job, and the diagnosis sees a failed run with that reason, never its largest
-// load (nor the modulus of that run).
+// The diagnosis's evaluator over the service's pool (RunnerEvaluator on orch::PoolRunner) with the
+// fake engine: a run that ended without a peak is a failed job, and the diagnosis sees a failed run
+// with that reason, never its largest load (nor the modulus of that run).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 
 #include "orchestrator/all_kinds.hpp"
-#include "orchestrator/diagnosis/pipeline/pool_evaluator.hpp"
+#include "orchestrator/diagnosis/pipeline/runner_evaluator.hpp"
 #include "orchestrator/local_executor.hpp"
+#include "orchestrator/pool_runner.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -45,10 +46,10 @@ TEST(DiagnosisPool, ARunWithoutAPeakIsAFailedRunWithItsReason) {
     // A campaign for the evaluator's jobs (its own one job runs too).
     const std::int64_t campaign = service.create_campaign(
         {{"kind", "sweep"}, {"tests", {"uct"}}, {"job", job_template}, {"points", {{1, 1}}}});
-    PoolEvaluator evaluator(service, campaign, job_template,
-                            {uct_target("uct-peak", Observable::peak_load),
-                             uct_target("uct-modulus", Observable::youngs_modulus)},
-                            {});
+    orch::PoolRunner pool(service, campaign, {});
+    RunnerEvaluator evaluator(pool, job_template,
+                              {uct_target("uct-peak", Observable::peak_load),
+                               uct_target("uct-modulus", Observable::youngs_modulus)});
     // fr0 61: the fake engine's run reaches no peak; fr0 50: peak 50, modulus 1000.
     const std::vector<RunRequest> requests = {{{61, 60, "", 0}, {1, 1, 1}},
                                               {{50, 60, "", 0}, {1, 1, 1}}};
