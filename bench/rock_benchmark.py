@@ -9,8 +9,13 @@ of them were quasi-static by their own measure, and the wall time. Rocks already
 skipped, so the benchmark may be run in parts; then the markdown table of every row in --out is
 written between the table markers of --doc, with the command that produced it.
 
+rocks.csv holds the numbers; a request restates them (targets, lab E, nu, density, specimen,
+lab_uncertainty = sd / mean). Before anything runs, every request is checked against its row and
+the first disagreement stops the script, naming the file, the field and both values; --check only
+does that.
+
   bench/rock_benchmark.py [ROCK ...] [--build build] [--out bench/results/rocks.jsonl]
-      [--doc docs/rock-benchmark.md] [--max-evaluations N] [--table-only]
+      [--doc docs/rock-benchmark.md] [--max-evaluations N] [--table-only] [--check]
 
 ROCK: names of rocks.csv's `rock` column (default: all). --max-evaluations overrides the requests'
 budget (a reduced run: give it its own --out and --doc). On demand only (up to about 30 minutes a
@@ -19,6 +24,7 @@ rock on 2 idle cores at the requests' budget); it builds nothing.
 import argparse
 import csv
 import json
+import math
 import os
 import sys
 import tempfile
@@ -38,6 +44,65 @@ def lab_values(row):
     return {"ucs_mpa": number("ucs_mpa"), "bts_mpa": number("bts_mpa"),
             "youngs_modulus_gpa": number("youngs_modulus_gpa"),
             "poisson_ratio": number("poisson_ratio")}
+
+
+def close(a, b, rel=1e-3):
+    return abs(a - b) <= rel * abs(b)
+
+
+def lab_strength(target, test, specimen):
+    """The lab strength (Pa) a request's UCT or BTT target states: "strength" itself, or a peak load
+    read as UCS = 4P / (pi D^2) or BTS = 2P / (pi D t)."""
+    if "strength" in target:
+        return target["strength"]
+    d = specimen["diameter"]
+    if test == "uct":
+        return 4 * target["peak_load"] / (math.pi * d * d)
+    return 2 * target["peak_load"] / (math.pi * d * specimen["thickness"])
+
+
+def disagreement(row, request):
+    """The first field of a rock's request that differs from its rocks.csv row, as
+    (field, request value, rocks.csv value), or None."""
+    number = lambda key, scale=1.0: float(row[key]) * scale if row[key] else None
+    lab = request["targets"]["lab"]
+    specimen, material = lab["specimen"], lab["material"]
+    inference = request.get("inference", {}).get("lab_uncertainty", {})
+    pairs = [
+        ("targets.uct", lab_strength(request["targets"]["uct"], "uct", specimen),
+         number("ucs_mpa", 1e6)),
+        ("targets.btt", lab_strength(request["targets"]["btt"], "btt", specimen),
+         number("bts_mpa", 1e6)),
+        ("targets.lab.material.youngs_modulus", material["youngs_modulus"],
+         number("youngs_modulus_gpa", 1e9)),
+        ("targets.lab.material.nu", material["nu"], number("poisson_ratio")),
+        ("job.material.nu", request["job"]["material"]["nu"], number("poisson_ratio")),
+        ("targets.lab.material.density", material["density"], number("density_kg_m3")),
+        ("targets.lab.specimen.diameter", specimen["diameter"], number("core_diameter_mm", 1e-3)),
+        ("targets.lab.specimen.diameter", specimen["diameter"], number("disc_diameter_mm", 1e-3)),
+        ("targets.lab.specimen.height", specimen["height"], number("core_height_mm", 1e-3)),
+        ("targets.lab.specimen.thickness", specimen["thickness"],
+         number("disc_thickness_mm", 1e-3))]
+    for field, value, expected in pairs:
+        if not close(value, expected):
+            return field, value, expected
+    for test, mean, sd in (("uct", "ucs_mpa", "ucs_sd_mpa"), ("btt", "bts_mpa", "bts_sd_mpa")):
+        value, expected = inference.get(test), number(sd) / number(mean) if row[sd] else None
+        if (value is None) != (expected is None) or (
+                value is not None and abs(value - expected) > 0.005):
+            return "inference.lab_uncertainty." + test, value, expected
+    return None
+
+
+def check_requests(rows):
+    """Stops the script at the first request that disagrees with rocks.csv."""
+    for rock, row in rows.items():
+        path = os.path.join(ROCKS, rock + ".json")
+        if not os.path.exists(path):
+            sys.exit("rocks.csv names %s but %s does not exist" % (rock, path))
+        wrong = disagreement(row, json.load(open(path)))
+        if wrong:
+            sys.exit("%s: %s is %s, rocks.csv says %s" % ((path,) + wrong))
 
 
 def quasi_static_count(history):
@@ -148,8 +213,14 @@ def main():
     ap.add_argument("--doc", default=os.path.join(ROOT, "docs", "rock-benchmark.md"))
     ap.add_argument("--max-evaluations", type=int)
     ap.add_argument("--table-only", action="store_true")
+    ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
-    labs = {r["rock"]: lab_values(r) for r in csv.DictReader(open(os.path.join(ROCKS, "rocks.csv")))}
+    rows = {r["rock"]: r for r in csv.DictReader(open(os.path.join(ROCKS, "rocks.csv")))}
+    check_requests(rows)
+    if a.check:
+        print("%d requests agree with rocks.csv" % len(rows))
+        return
+    labs = {rock: lab_values(row) for rock, row in rows.items()}
     unknown = [r for r in a.rocks if r not in labs]
     if unknown:
         sys.exit("unknown rock(s) %s; rocks.csv has %s" % (", ".join(unknown), ", ".join(labs)))

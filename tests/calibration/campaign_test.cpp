@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
+#include <string>
 
 #include "orchestrator/calibration/campaign.hpp"
 #include "synthetic.hpp"
@@ -128,6 +130,43 @@ TEST(Campaign, ExampleSeedLabCampaignIsValid) {
   // Lab UCT/BTT load ratio 311 / 51.9 = 5.99 survives the (linear) force scaling.
   EXPECT_NEAR(c.targets.model_loads_n.uct_n / c.targets.model_loads_n.btt_n, 311000.0 / 51900.0,
               1e-9);
+}
+
+// The lab load a UCT or BTT target of a benchmark request stands for: its peak load, or its
+// strength on the lab specimen (UCS pi D^2 / 4, BTS pi D t / 2).
+double lab_load(const json& target, const json& specimen, bool uct) {
+  if (target.contains("peak_load")) return target["peak_load"].get<double>();
+  const double d = specimen["diameter"].get<double>();
+  const double s = target["strength"].get<double>();
+  return uct ? s * std::numbers::pi * d * d / 4
+             : s * std::numbers::pi * d * specimen["thickness"].get<double>() / 2;
+}
+
+// Every rock of the benchmark (a row of examples/rocks/rocks.csv) has a request the service
+// accepts, and its model targets keep the rock's lab UCT/BTT load ratio: the ratio the reach of
+// the specimen is judged by.
+TEST(Campaign, EveryBenchmarkRockRequestIsValidAndKeepsItsLabRatio) {
+  std::ifstream csv(ROCKCAL_SOURCE_DIR "/examples/rocks/rocks.csv");
+  ASSERT_TRUE(csv.good());
+  std::string line;
+  std::getline(csv, line);  // the header
+  int rocks = 0;
+  while (std::getline(csv, line)) {
+    const std::string rock = line.substr(0, line.find(','));  // rock names hold no comma
+    std::ifstream in(ROCKCAL_SOURCE_DIR "/examples/rocks/" + rock + ".json");
+    ASSERT_TRUE(in.good()) << rock;
+    const json request = json::parse(in);
+    const CalibrationCampaign c = parse_calibration_campaign(request);
+    ASSERT_TRUE(c.targets.lab.has_value()) << rock;
+    const json& t = request["targets"];
+    const double lab_ratio = lab_load(t["uct"], t["lab"]["specimen"], true) /
+                             lab_load(t["btt"], t["lab"]["specimen"], false);
+    EXPECT_NEAR(c.targets.model_loads_n.uct_n / c.targets.model_loads_n.btt_n, lab_ratio,
+                1e-9 * lab_ratio)
+        << rock;
+    ++rocks;
+  }
+  EXPECT_GE(rocks, 6) << "the benchmark's six public rocks";
 }
 
 }  // namespace
