@@ -158,5 +158,24 @@ TEST(Screen, TheNullTwinSaysWhatItSaid) {
   EXPECT_EQ(on.summary["screen"]["invisible"], json::array({"uniform"}));
 }
 
+// With every candidate invisible nothing is designed, and a gap left unexplained says why.
+TEST(Screen, AGapWithEveryEffectInvisibleNamesThem) {
+  Diagnosed r{twin_campaign("size", 0.8), {}, {}, 0};
+  std::erase_if(r.campaign.candidates, [](const Candidate& k) { return k.effect != "uniform"; });
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  EXPECT_EQ(r.summary["candidates"].size(), 1u);
+  EXPECT_TRUE(r.summary["gap"]["exceeds_budget"].get<bool>());
+  const std::string reason = r.summary["verdict"]["reason"];
+  const std::string tail = "; not tried, as invisible to these tests (screen): uniform";
+  ASSERT_GE(reason.size(), tail.size());
+  EXPECT_EQ(reason.substr(reason.size() - tail.size()), tail) << reason;
+  std::printf("every effect invisible: %s\n", reason.c_str());
+  EXPECT_EQ(r.summary["gap"]["closure_missing"],
+            "the screen found every candidate effect invisible to these tests (screen.reason): "
+            "the diagnosis only locates the gap");
+}
+
 }  // namespace
 }  // namespace rockcal::diagnosis

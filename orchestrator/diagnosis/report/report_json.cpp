@@ -243,7 +243,9 @@ json budget_json(const DiagnosisResult& r, const std::vector<Target>& targets, O
 json closure_missing(const DiagnosisResult& r, const std::vector<Target>& targets) {
   const auto& c = r.candidates;
   const std::string untried =
-      "no candidate effects were tried (the request's \"effects\" is empty)";
+      r.screen.effects.empty()
+          ? "no candidate effects were tried (the request's \"effects\" is empty)"
+          : "the screen found every candidate effect invisible to these tests (screen.reason)";
   if (count_role(targets, Role::held_out) == 0) {
     return "G is measured on held-out observations, and the dataset has none" +
            (c.size() < 2 ? "; " + untried : "");
