@@ -423,12 +423,13 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
       !report.first_error.empty()) {
     report.verdict.reason += " (first failure: " + report.first_error + ")";
   }
-  // A gap left unexplained may lie with an effect these tests cannot see: say which were dropped.
+  // A gap left unexplained (not undetermined: then the data judged nothing) may lie with an effect
+  // these tests cannot see: say which were dropped.
   std::string invisible;
   for (const ScreenedEffect& e : report.screen.effects) {
     if (!e.visible) invisible += (invisible.empty() ? "" : ", ") + e.effect;
   }
-  if (chosen_effect < 0 && !invisible.empty() &&
+  if (chosen_effect < 0 && !report.verdict.undetermined && !invisible.empty() &&
       report.held_out_budgets.value_or(0) > c.decision.gap_budgets) {
     report.verdict.reason += "; not tried, as invisible to these tests (screen): " + invisible;
   }
