@@ -14,9 +14,11 @@ namespace rockcal::diagnosis {
 std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
   const int runs = int(plan_runs(c.targets).runs.size());
   const int seeds = int(c.budget.seeds.size());
-  // Measured at the base model's first fit and, if it moved, again at its confirmed fit.
+  // Measured at the base model's first fit, with the screen's runs, and, if it moved, again at its
+  // confirmed fit.
   const int budget = 2 * int(budget_offsets(c.budget.points).size()) *
-                     int(budget_runs_per_point(c.budget, c.dataset.origin));
+                         int(budget_runs_per_point(c.budget, c.dataset.origin)) +
+                     (c.screen ? int(c.candidates.size()) : 0);
   const int confirm = (1 + c.confirm) * (1 + c.refine + seeds);
   return {{"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
 }

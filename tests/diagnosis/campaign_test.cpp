@@ -70,15 +70,16 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   EXPECT_EQ(c.candidates[0].effect, "heterogeneity");
   EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3}));
   // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points at most twice (the first and
-  // the confirmed fit), 3 confirmed candidates x (3 refinement runs + 2 seeds).
-  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + 3 * 5) * 4u);
+  // the confirmed fit) and the screen's point per effect, 3 confirmed candidates x (3 refinement
+  // runs + 2 seeds).
+  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + 2 + 3 * 5) * 4u);
   // The progress model's budget names them by phase.
   const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
   ASSERT_EQ(parts.size(), 3u);
   EXPECT_EQ(parts[0].name, "grid");
   EXPECT_EQ(parts[0].budget, (9 + 2 * 18) * 4);
   EXPECT_EQ(parts[1].name, "budget");
-  EXPECT_EQ(parts[1].budget, 2 * 5 * 5 * 4);
+  EXPECT_EQ(parts[1].budget, (2 * 5 * 5 + 2) * 4);
   EXPECT_EQ(parts[2].name, "confirm");
   EXPECT_EQ(parts[2].budget, 3 * 5 * 4);
   EXPECT_EQ(c.budget.resolutions, std::vector<double>{1.25});
@@ -87,7 +88,7 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   two["budget"] = {{"resolution", {1.25, 1.5}}};
   const DiagnosisCampaign c2 = parse_diagnosis_campaign(two);
   EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
-  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + 3 * 5) * 4u);
+  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + 2 + 3 * 5) * 4u);
   EXPECT_EQ(budget_runs_per_point(c2.budget), 6u);  // reference, 2 seeds, speed, 2 resolutions
   // The local design: the 3 x 3 base grid, its star, 4 points per effect (both continuous at
   // neutral); the step is read.
@@ -96,7 +97,7 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   const DiagnosisCampaign c3 = parse_diagnosis_campaign(local);
   EXPECT_EQ(c3.grid.design, Design::local);
   EXPECT_EQ(c3.grid.step, 0.15);
-  EXPECT_EQ(planned_jobs(c3), (9 + 5 + 2 * 4 + 2 * 5 * 5 + 3 * 5) * 4u);
+  EXPECT_EQ(planned_jobs(c3), (9 + 5 + 2 * 4 + 2 * 5 * 5 + 2 + 3 * 5) * 4u);
   EXPECT_EQ(c.grid.design, Design::global);
   // Without "effects", every registered effect is a candidate.
   json all = request();
@@ -123,6 +124,7 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
       {"grid.fr0", [](json& r) { r["grid"]["fr0"] = 1.5; }},
       {"grid.design", [](json& r) { r["grid"]["design"] = "adaptive"; }},
       {"grid.step", [](json& r) { r["grid"]["step"] = 0.5; }},
+      {"screen", [](json& r) { r["screen"] = "yes"; }},
       {"effects[1]",
        [](json& r) {
          r["effects"] = {"heterogeneity", "gremlins"};
@@ -220,6 +222,21 @@ TEST(DiagnosisRequest, AutoPlatenSpeedIsRefused) {
   }
 }
 
+// Screening is on unless the request turns it off; anything but true or false is refused.
+TEST(DiagnosisRequest, ScreeningDefaultsOnAndIsRead) {
+  EXPECT_TRUE(parse_diagnosis_campaign(request()).screen);
+  json r = request();
+  r["screen"] = false;
+  EXPECT_FALSE(parse_diagnosis_campaign(r).screen);
+  r["screen"] = 1;
+  try {
+    parse_diagnosis_campaign(r);
+    FAIL() << "accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(std::string(e.what()), "screen: must be true or false");
+  }
+}
+
 TEST(DiagnosisRequest, TheDecisionRuleDefaultsAndIsRead) {
   DiagnosisCampaign c = parse_diagnosis_campaign(request());
   EXPECT_EQ(c.decision.gap_budgets, 1.0);
@@ -306,11 +323,12 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   // A 5 x 5 (x 5) grid: 25 + 7 x 25 x 4 (+ packing's, interaction_range's and brazilian_flats'
   // own 25 x 5), twice
   // 5 points x 8 budget runs
-  // (reference, 2 seeds, half speed, 4 resolutions), every confirmed: 8 x (3 + 2).
+  // (reference, 2 seeds, half speed, 4 resolutions), the screen's 10 effects, every confirmed:
+  // 8 x (3 + 2).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
-  EXPECT_EQ(planned_jobs(c), (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 8 * 5) * 7u);
+  EXPECT_EQ(planned_jobs(c), (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 10 + 8 * 5) * 7u);
 }
 
 TEST(DiagnosisRuns, ARunWithoutAPeakHasNoValueAtAll) {

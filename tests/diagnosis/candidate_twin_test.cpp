@@ -3,6 +3,7 @@
 // An effect whose mark reaches a calibration observation (so its parameter can be fitted) and a
 // held-out one (so it predicts something) is the verdict, with its parameter; an effect without
 // such a mark is never named, the report says which it lacks, and no twin names another effect.
+// One with no mark at all is screened out before its runs and named invisible.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,7 +23,7 @@ enum class Mark {
   named,             // on calibration and held-out observations: the verdict, with its parameter
   calibration_only,  // fixed by the calibration observations, predicts nothing held out
   held_out_only,     // seen on held-out observations only: nothing fixes its parameter
-  absorbed,          // nothing the re-fitted strengths leave
+  absorbed,          // nothing the re-fitted strengths leave: screened out, named invisible
 };
 
 struct RegisteredTwin {
@@ -52,6 +53,15 @@ TEST_P(RegisteredEffectTwin, IsNamedOnlyWhenItsMarkIsResolved) {
   std::printf("%s at s = %.2f: verdict %s, held-out gap %.2f budgets, G %s\n", twin.effect,
               kHiddenS, v["label"].get<std::string>().c_str(),
               summary["gap"]["held_out_budgets"].get<double>(), v["gap_closure"].dump().c_str());
+  if (twin.mark == Mark::absorbed) {
+    EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
+    EXPECT_NE(summary["screen"]["reason"].get<std::string>().find(std::string(twin.effect) +
+                                                                  " (its largest change"),
+              std::string::npos)
+        << summary["screen"].dump(2);
+    for (const json& c : summary["candidates"]) EXPECT_NE(c["effect"], twin.effect);
+    return;
+  }
   if (twin.mark != Mark::named) {
     EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
     const json* mine = nullptr;
@@ -91,6 +101,10 @@ TEST(RegisteredEffectTwins, TheNullTwinNamesNoEffect) {
   const json summary = diagnose_registered("", 0);
   EXPECT_TRUE(summary["verdict"]["effect"].is_null()) << summary["verdict"].dump(2);
   EXPECT_FALSE(summary["gap"]["exceeds_budget"].get<bool>()) << summary["gap"].dump(2);
+  // The three effects without a measured mark are the screen's invisible ones, in registry order.
+  EXPECT_EQ(summary["screen"]["invisible"],
+            json::array({"platen_friction", "rolling_resistance", "brazilian_flats"}))
+      << summary["screen"].dump(2);
 }
 
 INSTANTIATE_TEST_SUITE_P(

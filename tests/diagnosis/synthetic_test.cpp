@@ -222,7 +222,12 @@ TEST(Diagnosis, ABaseFitOnTheBoundsIsReported) {
 }
 
 TEST(Diagnosis, AnEffectTheStrengthsAbsorbIsNotIdentifiable) {
-  const Diagnosed r = diagnose("uniform", 1.0);
+  // Unscreened: the screen would leave it out before its surfaces (screen_test.cpp).
+  Diagnosed r{twin_campaign("uniform", 1.0), {}, {}};
+  r.campaign.screen = false;
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
   const CandidateResult& uniform = candidate(r.report, "uniform");
   ASSERT_TRUE(uniform.identifiability);
   EXPECT_FALSE(uniform.identifiability->identifiable);
@@ -267,7 +272,7 @@ TEST(Diagnosis, ReportHasTheGapTableBudgetRatioAndHistory) {
   EXPECT_EQ(s["budget"]["variants"].size(), 4u);  // 2 seeds, half speed, 1.25x resolution
   EXPECT_TRUE(s["ratio"]["inside"].is_boolean());
   EXPECT_LT(s["ratio"]["min"].get<double>(), s["ratio"]["max"].get<double>());
-  EXPECT_EQ(s["candidates"].size(), 6u);
+  EXPECT_EQ(s["candidates"].size(), 5u);  // the base and 4 effects: the screen left uniform out
   EXPECT_FALSE(s["candidates"][0]["history"].empty());
   EXPECT_EQ(s["verdict"]["confidence"]["seeds"].size(), 2u);
   // No NaN can reach JSON; the page names no other origin.
@@ -343,9 +348,10 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   const Diagnosed a = diagnose("rate", 0.7);
   const Diagnosed b = diagnose("rate", 0.7);
   EXPECT_EQ(a.summary.dump(), b.summary.dump());
-  // Grids, budget and confirmations: 16 + 5 x 32 grid points, 5 x 5 budget points at the first fit
-  // and again at the confirmed one if it moved; per confirmed candidate (3) 1 to 3 refinement runs
-  // and 2 seed runs.
+  // Grids, screen, budget and confirmations: the base's 16 grid points, one screen point per
+  // effect (5), the 32 grid points of each effect the screen kept (all but uniform), 5 x 5 budget
+  // points at the first fit and again at the confirmed one if it moved; per confirmed candidate
+  // (3) 1 to 3 refinement runs and 2 seed runs.
   DiagnosisCampaign c = twin_campaign("rate", 0.7);
   SyntheticModel model(c.targets);
   const DiagnosisResult report = run_diagnosis(c, model);
@@ -360,7 +366,7 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   // Here the confirmed fit moved off the first fit, so the budget ran twice and the one judged is
   // the one measured around the confirmed fit.
   EXPECT_NE(report.budget_point.fr0_n, report.weight_budget_point.fr0_n);
-  EXPECT_EQ(model.runs, 16 + 5 * 32 + 2 * 5 * 5 + refinement_runs + 3 * 2);
+  EXPECT_EQ(model.runs, 16 + 5 + 4 * 32 + 2 * 5 * 5 + refinement_runs + 3 * 2);
   EXPECT_EQ(report.budget_point.fr0_n, report.candidates[0].point.fr0_n);
   EXPECT_EQ(report.budget_point.fs0_n, report.candidates[0].point.fs0_n);
 }

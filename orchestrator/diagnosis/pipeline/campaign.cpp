@@ -263,6 +263,7 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
     bounds.reject_unknown();
   }
   c.grid = parse_grid(root);
+  c.screen = root.boolean("screen").value_or(c.screen);
   c.budget = parse_budget(root, c.sample_seed);
   c.confirm = int(root.integer("confirm", 1, 16).value_or(c.confirm));
   c.refine = int(root.integer("refine", 0, 5).value_or(c.refine));

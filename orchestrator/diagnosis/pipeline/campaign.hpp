@@ -42,6 +42,7 @@ struct DiagnosisCampaign {
   calibration::Range fr0_n{16, 256};
   calibration::Range fs0_n{16, 256};
   GridSpec grid;
+  bool screen = true;  // each effect run once at s = 1 first; those that move nothing dropped
   BudgetSpec budget;
   int confirm = 2;                // top candidates confirmed by real runs (besides the base)
   int refine = 2;                 // re-fits of each confirmed candidate on run-corrected surfaces

@@ -28,34 +28,47 @@ int grid_levels(const Candidate& candidate, int s_values) {
   return candidate.shares_base_grid() ? s_values - 1 : s_values;
 }
 
-int grid_points(const DiagnosisCampaign& c) {
-  if (c.grid.design == Design::local) {
-    // The base grid and its star; per effect its s levels at the fit and two arms at s = 1, or a
-    // star at each level and a corner for an effect that jumps at neutral.
-    int points = c.grid.fr0 * c.grid.fs0 + 5;
-    for (const Candidate& k : c.candidates) {
-      points += k.shares_base_grid() ? c.grid.s - 1 + 2 : 5 * c.grid.s + 1;
-    }
-    return points;
-  }
-  int levels = 1;
-  for (const Candidate& k : c.candidates) levels += grid_levels(k, c.grid.s);
-  return c.grid.fr0 * c.grid.fs0 * levels;
+int base_grid_points(const DiagnosisCampaign& c) {
+  // The local design adds a star at the base fit.
+  return c.grid.fr0 * c.grid.fs0 + (c.grid.design == Design::local ? 5 : 0);
 }
 
-std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator) {
+int effect_grid_points(const DiagnosisCampaign& c, const Candidate& k) {
+  if (c.grid.design == Design::local) {
+    // Its s levels at the fit and two arms at s = 1, or a star at each level and a corner for an
+    // effect that jumps at neutral.
+    return k.shares_base_grid() ? c.grid.s - 1 + 2 : 5 * c.grid.s + 1;
+  }
+  return c.grid.fr0 * c.grid.fs0 * grid_levels(k, c.grid.s);
+}
+
+int grid_points(const DiagnosisCampaign& c) {
+  int points = base_grid_points(c);
+  for (const Candidate& k : c.candidates) points += effect_grid_points(c, k);
+  return points;
+}
+
+Samples run_base_grid(const DiagnosisCampaign& c, Evaluator& evaluator) {
   const Candidate base;
   const Numerics numerics{c.sample_seed, 1.0, 1.0};
-  std::vector<Samples> samples(1 + c.candidates.size());
+  Samples samples;
   std::vector<RunRequest> requests;
-  std::vector<std::size_t> owner;  // which candidate's samples each request feeds
   for (double x : grid_axis(c.grid.fr0)) {
     for (double y : grid_axis(c.grid.fs0)) {
-      samples[0].z.push_back({x, y});
+      samples.z.push_back({x, y});
       requests.push_back({model_point(c, base, std::vector<double>{x, y}), numerics});
-      owner.push_back(0);
     }
   }
+  samples.outcomes = evaluator.run_batch(requests);
+  return samples;
+}
+
+void run_effect_grids(const DiagnosisCampaign& c, Evaluator& evaluator,
+                      std::vector<Samples>& samples) {
+  const Numerics numerics{c.sample_seed, 1.0, 1.0};
+  samples.resize(1 + c.candidates.size());
+  std::vector<RunRequest> requests;
+  std::vector<std::size_t> owner;  // which candidate's samples each request feeds
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
     const Candidate& candidate = c.candidates[k];
     for (double s : grid_axis(c.grid.s)) {
@@ -74,7 +87,6 @@ std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator)
   for (std::size_t r = 0; r < outcomes.size(); ++r)
     samples[owner[r]].outcomes.push_back(outcomes[r]);
   share_base_slice(samples, c);
-  return samples;
 }
 
 void share_base_slice(std::vector<Samples>& samples, const DiagnosisCampaign& c) {

@@ -22,8 +22,10 @@ ModelPoint model_point(const DiagnosisCampaign& c, const Candidate& candidate,
 
 // The s levels a candidate's own grid runs: all but u = 0 when it shares the base grid.
 int grid_levels(const Candidate& candidate, int s_values);
-// Model points of every candidate's surfaces together, under the campaign's design (the base grid
-// counted once).
+// Model points of the base model's surface runs, of one effect's, and of every candidate's
+// together (the base grid counted once), under the campaign's design.
+int base_grid_points(const DiagnosisCampaign& c);
+int effect_grid_points(const DiagnosisCampaign& c, const Candidate& effect);
 int grid_points(const DiagnosisCampaign& c);
 
 // The runs behind one candidate's surfaces.
@@ -32,11 +34,14 @@ struct Samples {
   std::vector<RunOutcome> outcomes;
 };
 
-// Runs every grid in one batch: the base grid of (ln F_r0, ln F_s0), and per effect the same grid
-// at each s > 0. The base grid is the s = 0 slice of every effect continuous at neutral (s = 0 is
-// the base model), so it is run once and shared; an effect that jumps at neutral runs its own
-// u = 0 slice. Result: [0] = base, then one per campaign candidate.
-std::vector<Samples> run_grids(const DiagnosisCampaign& c, Evaluator& evaluator);
+// The base grid of (ln F_r0, ln F_s0), one batch.
+Samples run_base_grid(const DiagnosisCampaign& c, Evaluator& evaluator);
+// Every effect's grid, one batch: per effect the base grid at each s > 0. The base grid is the
+// s = 0 slice of every effect continuous at neutral (s = 0 is the base model), so it is run once
+// and shared; an effect that jumps at neutral runs its own u = 0 slice. samples[0] is the base's;
+// the result has one more per campaign candidate.
+void run_effect_grids(const DiagnosisCampaign& c, Evaluator& evaluator,
+                      std::vector<Samples>& samples);
 
 // The s = 0 slice of every effect continuous at neutral is the base model's samples: appended to
 // theirs (samples[0] = the base, then one per campaign candidate).

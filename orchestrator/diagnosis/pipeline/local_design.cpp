@@ -46,9 +46,8 @@ std::vector<std::vector<double>> star(std::span<const double> z, double h) {
   return {c, {c[0] + h, c[1]}, {c[0] - h, c[1]}, {c[0], c[1] + h}, {c[0], c[1] - h}};
 }
 
-std::vector<Samples> run_local_design(const DiagnosisCampaign& c, Evaluator& evaluator) {
-  const double h = c.grid.step;
-  std::vector<Samples> samples(1 + c.candidates.size());
+Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator) {
+  std::vector<Samples> samples(1);
   std::vector<Point> grid;
   for (double x : grid_axis(c.grid.fr0)) {
     for (double y : grid_axis(c.grid.fs0)) grid.push_back({0, {x, y}});
@@ -56,9 +55,16 @@ std::vector<Samples> run_local_design(const DiagnosisCampaign& c, Evaluator& eva
   run_into(samples, grid, c, evaluator);
 
   std::vector<Point> around;
-  for (std::vector<double>& z : star(base_fit(c, samples[0]), h)) around.push_back({0, z});
+  for (std::vector<double>& z : star(base_fit(c, samples[0]), c.grid.step))
+    around.push_back({0, z});
   run_into(samples, around, c, evaluator);
+  return samples[0];
+}
 
+void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
+                       std::vector<Samples>& samples) {
+  const double h = c.grid.step;
+  samples.resize(1 + c.candidates.size());
   // The fit on grid and star: the star's runs pin the surfaces' slope and curvature there.
   const std::vector<double> z0 = inside(base_fit(c, samples[0]), h);
   std::vector<Point> effects;
@@ -83,7 +89,6 @@ std::vector<Samples> run_local_design(const DiagnosisCampaign& c, Evaluator& eva
   }
   run_into(samples, effects, c, evaluator);
   share_base_slice(samples, c);
-  return samples;
 }
 
 }  // namespace rockcal::diagnosis

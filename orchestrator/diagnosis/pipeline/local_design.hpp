@@ -5,8 +5,9 @@
 // the refined fit: its s levels there, plus two arms at s = 1 that measure how the effect changes
 // the strengths' leverage. With the base model's runs as every effect's s = 0 slice, that is the
 // least a full quadratic in (ln F_r0, ln F_s0, s) needs: 4 runs per effect instead of 50 on a
-// 5 x 5 x 3 grid (an effect that jumps at neutral has no base slice: 5 per level and a corner). The surfaces are then exact near the fit and extrapolate beyond it; the
-// confirmation's real runs (driver.cpp) correct them where the candidates' fits land.
+// 5 x 5 x 3 grid (an effect that jumps at neutral has no base slice: 5 per level and a corner). The
+// surfaces are then exact near the fit and extrapolate beyond it; the confirmation's real runs
+// (driver.cpp) correct them where the candidates' fits land.
 #pragma once
 
 #include <span>
@@ -20,9 +21,11 @@ namespace rockcal::diagnosis {
 // in the unit square.
 std::vector<std::vector<double>> star(std::span<const double> z, double h);
 
-// Three batches, each in parallel on the pool: the base grid; the star at the base fit on it; every
-// effect's points at the base fit on grid and star. Result as run_grids: [0] = the base, then one
-// per campaign candidate.
-std::vector<Samples> run_local_design(const DiagnosisCampaign& c, Evaluator& evaluator);
+// Two batches, each in parallel on the pool: the base grid; the star at the base fit on it.
+Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator);
+// One batch: every effect's points at the base fit on grid and star (samples[0], the base's).
+// As run_effect_grids, the result has one more Samples per campaign candidate.
+void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
+                       std::vector<Samples>& samples);
 
 }  // namespace rockcal::diagnosis

@@ -11,9 +11,20 @@
 #include "orchestrator/diagnosis/analysis/consistency.hpp"
 #include "orchestrator/diagnosis/analysis/evaluator.hpp"
 #include "orchestrator/diagnosis/analysis/ratio.hpp"
+#include "orchestrator/diagnosis/analysis/screen.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 
 namespace rockcal::diagnosis {
+
+// The screening (screen.hpp): every effect at s = 1 at the base model's first fit, in the budget's
+// batch there; effects that are not `visible` get no surfaces and are not candidates.
+struct ScreenResult {
+  bool enabled = false;
+  ModelPoint point;                     // the base model's first fit
+  std::vector<ScreenedEffect> effects;  // request order
+  int model_points = 0;                 // the effects' runs (the base's are the budget's)
+  int skipped_model_points = 0;         // the surfaces' model points of the effects left out
+};
 
 struct DiagnosisResult {
   // The budget the residuals are judged against (gap test, calibration-fit rule after the
@@ -30,7 +41,9 @@ struct DiagnosisResult {
   // The base model's held-out residuals (real runs) in budgets: rms_in_budgets, what the verdict
   // calls a gap above the campaign's decision.gap_budgets.
   std::optional<double> held_out_budgets;
-  std::vector<CandidateResult> candidates;  // [0] = the base, then the effects in request order
+  ScreenResult screen;
+  // [0] = the base, then the effects the screen kept, in request order.
+  std::vector<CandidateResult> candidates;
   std::optional<LabRatio> ratio;
   Verdict verdict;
   Confidence confidence;

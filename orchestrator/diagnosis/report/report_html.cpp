@@ -191,8 +191,11 @@ std::string history_plot(const json& s) {
 }
 
 std::string candidates_table(const json& s) {
+  const json& screen = at(at(s, "screen"), "reason");
   std::string out =
-      "<h2>Candidates</h2>\n<table><tr><th>rank</th><th>model</th><th>identifiable</th>"
+      "<h2>Candidates</h2>\n" +
+      (screen.is_string() ? "<p>Screen: " + show(screen) + "</p>\n" : std::string()) +
+      "<table><tr><th>rank</th><th>model</th><th>identifiable</th>"
       "<th>fits calibration</th>"
       "<th>moves</th><th>fitted parameter</th><th>F_r0</th><th>F_s0</th><th>G</th><th>basis</th>"
       "<th>rms cal.</th><th>rms held out</th><th>surface leave-one-out rms (max)</th></tr>\n";

@@ -1,5 +1,6 @@
 // to_json of the diagnosis report. JSON has no NaN: quantities that do not exist are null.
 #include <cmath>
+#include <cstdio>
 
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/identifiability.hpp"
@@ -242,7 +243,9 @@ json budget_json(const DiagnosisResult& r, const std::vector<Target>& targets, O
 json closure_missing(const DiagnosisResult& r, const std::vector<Target>& targets) {
   const auto& c = r.candidates;
   const std::string untried =
-      "no candidate effects were tried (the request's \"effects\" is empty)";
+      r.screen.effects.empty()
+          ? "no candidate effects were tried (the request's \"effects\" is empty)"
+          : "the screen found every candidate effect invisible to these tests (screen.reason)";
   if (count_role(targets, Role::held_out) == 0) {
     return "G is measured on held-out observations, and the dataset has none" +
            (c.size() < 2 ? "; " + untried : "");
@@ -310,6 +313,56 @@ json inconsistencies_json(const std::vector<Inconsistency>& pairs,
   return out;
 }
 
+// The screen's effects and the sentence the report prints, from these fields.
+json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
+  json effects = json::array(), invisible = json::array();
+  std::string named;
+  char line[256];
+  for (const ScreenedEffect& e : screen.effects) {
+    json largest = nullptr;
+    if (e.largest) {
+      const std::size_t i = *e.largest;
+      largest = {{"id", c.targets[i].id},
+                 {"change", e.change[i]},
+                 {"noise", e.noise[i]},
+                 {"in_noise", e.largest_in_noise}};
+    }
+    effects.push_back({{"effect", e.effect},
+                       {"visible", e.visible},
+                       {"largest", largest},
+                       {"change", by_target(c.targets, e.change)}});
+    if (e.visible) continue;
+    invisible.push_back(e.effect);
+    std::snprintf(line, sizeof line,
+                  " (its largest change %.2f of its noise, on %s: %+.3f in ln, noise %.3f)",
+                  e.largest_in_noise, c.targets[*e.largest].id.c_str(), e.change[*e.largest],
+                  e.noise[*e.largest]);
+    named += (named.empty() ? "" : ", ") + e.effect + line;
+  }
+  std::string reason;
+  if (!screen.enabled) {
+    reason = c.screen ? "no candidate effect to screen" : "not screened (\"screen\": false)";
+  } else if (named.empty()) {
+    reason =
+        "every effect moves some observation beyond its noise (budget + lab uncertainty) at "
+        "its strong value (s = 1) with the strengths re-fitted: none screened out";
+  } else {
+    reason = "invisible to these tests: " + named +
+             ": at its strong value (s = 1), with the strengths re-fitted, each moves no "
+             "observation beyond its noise (budget + lab uncertainty), so it was not designed "
+             "further (" +
+             std::to_string(screen.skipped_model_points) + " model points of surfaces not run)";
+  }
+  return {{"enabled", screen.enabled},
+          {"point", screen.enabled ? json{{"fr0", screen.point.fr0_n}, {"fs0", screen.point.fs0_n}}
+                                   : json(nullptr)},
+          {"model_points", screen.model_points},
+          {"skipped_model_points", screen.skipped_model_points},
+          {"invisible", invisible},
+          {"effects", effects},
+          {"reason", reason}};
+}
+
 }  // namespace
 
 json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
@@ -333,6 +386,7 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
       {"budget", budget_json(r, c.targets, c.dataset.origin)},
       {"ratio", ratio_json(r.ratio, c.targets)},
       {"data_inconsistencies", inconsistencies_json(r.inconsistencies, c.targets)},
+      {"screen", screen_json(r.screen, c)},
       {"candidates", candidates},
       {"grid",
        {{"design", c.grid.design == Design::local ? "local" : "global"},

@@ -1,0 +1,37 @@
+#include "orchestrator/diagnosis/analysis/screen.hpp"
+
+#include <cmath>
+
+#include "orchestrator/diagnosis/analysis/budget.hpp"
+
+namespace rockcal::diagnosis {
+
+ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
+                             const std::vector<std::array<double, 2>>& jacobian,
+                             const std::vector<double>& weight, const std::vector<Target>& targets,
+                             const std::vector<double>& budget) {
+  const std::size_t n = targets.size();
+  std::vector<double> raw(n, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& b = base.values[i];
+    const auto& s = strong.values[i];
+    if (b && s) raw[i] = std::log(*s / *b);
+  }
+  ScreenedEffect out;
+  out.effect = std::move(effect);
+  out.change = change_after_refit(raw, jacobian, weight);
+  for (std::size_t i = 0; i < n; ++i) {
+    // Budget and lab uncertainty added, not in quadrature, as identifiability judges.
+    out.noise.push_back(budget[i] + targets[i].sigma);
+    if (!std::isfinite(out.change[i])) continue;
+    const double in_noise = std::abs(out.change[i]) / out.noise[i];
+    if (!out.largest || in_noise > out.largest_in_noise) {
+      out.largest = i;
+      out.largest_in_noise = in_noise;
+    }
+  }
+  out.visible = !out.largest || out.largest_in_noise > 1.0;
+  return out;
+}
+
+}  // namespace rockcal::diagnosis

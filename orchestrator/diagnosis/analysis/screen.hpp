@@ -1,0 +1,41 @@
+// Screening: before any effect's surfaces are run, each candidate is run once at its strong value
+// (s = 1) at the base model's first fit, on every condition of the dataset, and compared with the
+// base model's run there. The strengths' re-fit is removed linearly with the base model's local
+// sensitivity (change_after_refit, as the budget's resolution term), and what is left is judged as
+// identifiability judges a change: against the observation's budget + lab uncertainty. An effect
+// that moves no observation beyond that, at its strongest, is invisible to these tests: whatever
+// its surfaces showed would be noise, so they are not run.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "orchestrator/diagnosis/analysis/evaluator.hpp"
+#include "orchestrator/diagnosis/analysis/observations.hpp"
+
+namespace rockcal::diagnosis {
+
+struct ScreenedEffect {
+  std::string effect;
+  // Per target: ln(strong / base) after the strengths' linear re-fit (NaN: a run without the
+  // value).
+  std::vector<double> change;
+  std::vector<double> noise;           // per target: budget + lab uncertainty
+  std::optional<std::size_t> largest;  // the target moved most in noise units; none measured: none
+  double largest_in_noise = std::numeric_limits<double>::quiet_NaN();
+  // Some target moves beyond its noise. An effect with no value to compare is kept: unknown is
+  // not nothing.
+  bool visible = true;
+};
+
+// One effect's mark: `strong` is its run at s = 1, `base` the base model's at the same strengths;
+// jacobian and weight as StrengthResponse at that point (budget.hpp).
+ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
+                             const std::vector<std::array<double, 2>>& jacobian,
+                             const std::vector<double>& weight, const std::vector<Target>& targets,
+                             const std::vector<double>& budget);
+
+}  // namespace rockcal::diagnosis

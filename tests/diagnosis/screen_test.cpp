@@ -1,0 +1,181 @@
+// Screening (orchestrator/diagnosis/analysis/screen.hpp): each effect run once at s = 1 at the base
+// model's first fit, the strengths' re-fit removed, judged against budget + lab uncertainty. An
+// effect that moves nothing beyond that is named invisible and gets no surfaces; one with a mark
+// is kept and can still be the verdict; the null twin's verdict does not change.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "api/cli/diagnosis_text.hpp"
+#include "orchestrator/diagnosis/analysis/screen.hpp"
+#include "orchestrator/diagnosis/pipeline/driver.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
+#include "orchestrator/diagnosis/report/report.hpp"
+#include "synthetic_model.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+using testing::SyntheticModel;
+using testing::twin_campaign;
+
+RunOutcome run(std::vector<std::optional<double>> v) {
+  return RunOutcome{std::move(v), ""};
+}
+
+std::vector<Target> three_targets() {
+  std::vector<Target> t(3);
+  const char* ids[] = {"uct-peak", "btt-peak", "uct-fast"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    t[i].id = ids[i];
+    t[i].sigma = 0.02;
+    t[i].role = i < 2 ? Role::calibration : Role::held_out;
+  }
+  return t;
+}
+
+TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
+  // d ln / dz: target 0 on F_r0, 1 on F_s0, 2 on both; budget 0.01 each, noise 0.03.
+  const std::vector<std::array<double, 2>> jacobian{{1.0, 0.0}, {0.0, 1.0}, {0.5, 0.5}};
+  const std::vector<double> weight{2500, 2500, 0}, budget{0.01, 0.01, 0.01};
+  const RunOutcome base = run({100.0, 50.0, 70.0});
+  const double e = std::exp(0.2);
+  // Every value up by e^0.2: a change of both strengths, nothing left once they are re-fitted.
+  const ScreenedEffect absorbed = screen_effect("uniform", base, run({100 * e, 50 * e, 70 * e}),
+                                                jacobian, weight, three_targets(), budget);
+  EXPECT_FALSE(absorbed.visible);
+  EXPECT_LT(absorbed.largest_in_noise, 1e-9);
+  EXPECT_NEAR(absorbed.noise[2], 0.03, 1e-12);
+  // The held-out value moves by 0.1 beyond what the re-fit explains: 3.3 noise budgets.
+  const ScreenedEffect marked =
+      screen_effect("rate", base, run({100 * e, 50 * e, 70 * e * std::exp(0.1)}), jacobian, weight,
+                    three_targets(), budget);
+  EXPECT_TRUE(marked.visible);
+  ASSERT_TRUE(marked.largest);
+  EXPECT_EQ(*marked.largest, 2u);
+  EXPECT_NEAR(marked.change[2], 0.1, 1e-12);
+  EXPECT_NEAR(marked.largest_in_noise, 0.1 / 0.03, 1e-9);
+  // A strong run without values cannot show that the effect moves nothing: it is kept.
+  const ScreenedEffect failed =
+      screen_effect("packing", base, run({std::nullopt, std::nullopt, std::nullopt}), jacobian,
+                    weight, three_targets(), budget);
+  EXPECT_TRUE(failed.visible);
+  EXPECT_FALSE(failed.largest);
+}
+
+struct Diagnosed {
+  DiagnosisCampaign campaign;
+  DiagnosisResult report;
+  json summary;
+  int runs = 0;
+};
+
+Diagnosed diagnose(const std::string& effect, double s, bool screen) {
+  Diagnosed r{twin_campaign(effect, s), {}, {}, 0};
+  r.campaign.screen = screen;
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  r.runs = model.runs;
+  return r;
+}
+
+std::vector<std::string> effects_of(const json& summary) {
+  std::vector<std::string> out;
+  for (const json& c : summary["candidates"]) {
+    if (!c["effect"].is_null()) out.push_back(c["effect"]);
+  }
+  return out;
+}
+
+// The sentence the report prints, rebuilt from the screen's own fields.
+std::string screen_reason_from_fields(const json& screen) {
+  std::string named;
+  char line[256];
+  for (const json& e : screen["effects"]) {
+    if (e["visible"].get<bool>()) continue;
+    const json& l = e["largest"];
+    std::snprintf(line, sizeof line,
+                  " (its largest change %.2f of its noise, on %s: %+.3f in ln, noise %.3f)",
+                  l["in_noise"].get<double>(), l["id"].get<std::string>().c_str(),
+                  l["change"].get<double>(), l["noise"].get<double>());
+    named += (named.empty() ? "" : ", ") + e["effect"].get<std::string>() + line;
+  }
+  return "invisible to these tests: " + named +
+         ": at its strong value (s = 1), with the strengths re-fitted, each moves no observation "
+         "beyond its noise (budget + lab uncertainty), so it was not designed further (" +
+         std::to_string(screen["skipped_model_points"].get<int>()) +
+         " model points of surfaces not run)";
+}
+
+TEST(Screen, AnEffectThatLeavesNoMarkIsNamedInvisibleAndNotDesigned) {
+  // Hidden: size. "uniform" lowers every peak by one factor, which the strengths absorb.
+  const Diagnosed on = diagnose("size", 0.8, true);
+  const Diagnosed off = diagnose("size", 0.8, false);
+  const json& screen = on.summary["screen"];
+  EXPECT_TRUE(screen["enabled"].get<bool>());
+  EXPECT_EQ(screen["invisible"], json::array({"uniform"})) << screen.dump(2);
+  EXPECT_EQ(effects_of(on.summary),
+            (std::vector<std::string>{"size", "confinement", "rate", "modulus"}));
+  EXPECT_EQ(effects_of(off.summary),
+            (std::vector<std::string>{"size", "confinement", "rate", "uniform", "modulus"}));
+  // Judged at the base model's first fit, where the budget weighted the calibration.
+  EXPECT_EQ(screen["point"]["fr0"], on.summary["budget"]["weights"]["point"]["fr0"]);
+  for (const json& e : screen["effects"]) {
+    const double in_noise = e["largest"]["in_noise"].get<double>();
+    EXPECT_EQ(e["visible"].get<bool>(), in_noise > 1.0) << e.dump(2);
+  }
+  const std::string reason = screen_reason_from_fields(screen);
+  EXPECT_EQ(screen["reason"], reason);
+  EXPECT_NE(api::diagnosis_text(on.summary).find("Screen: " + reason + "\n"), std::string::npos);
+  EXPECT_NE(report_html(on.summary).find("<p>Screen: " + reason + "</p>"), std::string::npos);
+  // The kept effect with the mark is still the verdict.
+  EXPECT_EQ(on.summary["verdict"]["effect"], "size");
+  EXPECT_EQ(off.summary["verdict"]["effect"], "size");
+  // uniform's 2 x 16 grid points are not run; the screen ran one point per effect (5).
+  EXPECT_EQ(screen["skipped_model_points"], 32);
+  EXPECT_EQ(screen["model_points"], 5);
+  EXPECT_EQ(off.runs - on.runs, 32 - 5);
+  EXPECT_EQ(off.summary["runs"]["model_points"].get<int>() -
+                on.summary["runs"]["model_points"].get<int>(),
+            32 - 5);
+  EXPECT_EQ(off.summary["screen"]["reason"], "not screened (\"screen\": false)");
+  std::printf("screen: %d model points without it, %d with it; %s\n", off.runs, on.runs,
+              reason.c_str());
+}
+
+TEST(Screen, TheNullTwinSaysWhatItSaid) {
+  const Diagnosed on = diagnose("", 0.0, true);
+  const Diagnosed off = diagnose("", 0.0, false);
+  for (const char* field : {"label", "reason", "effect"}) {
+    EXPECT_EQ(on.summary["verdict"][field], off.summary["verdict"][field]) << field;
+  }
+  EXPECT_EQ(on.summary["verdict"]["label"], "no effect needed");
+  EXPECT_EQ(on.summary["verdict"]["confidence"]["level"],
+            off.summary["verdict"]["confidence"]["level"]);
+  EXPECT_EQ(on.summary["screen"]["invisible"], json::array({"uniform"}));
+}
+
+// With every candidate invisible nothing is designed, and a gap left unexplained says why.
+TEST(Screen, AGapWithEveryEffectInvisibleNamesThem) {
+  Diagnosed r{twin_campaign("size", 0.8), {}, {}, 0};
+  std::erase_if(r.campaign.candidates, [](const Candidate& k) { return k.effect != "uniform"; });
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  EXPECT_EQ(r.summary["candidates"].size(), 1u);
+  EXPECT_TRUE(r.summary["gap"]["exceeds_budget"].get<bool>());
+  const std::string reason = r.summary["verdict"]["reason"];
+  const std::string tail = "; not tried, as invisible to these tests (screen): uniform";
+  ASSERT_GE(reason.size(), tail.size());
+  EXPECT_EQ(reason.substr(reason.size() - tail.size()), tail) << reason;
+  std::printf("every effect invisible: %s\n", reason.c_str());
+  EXPECT_EQ(r.summary["gap"]["closure_missing"],
+            "the screen found every candidate effect invisible to these tests (screen.reason): "
+            "the diagnosis only locates the gap");
+}
+
+}  // namespace
+}  // namespace rockcal::diagnosis
