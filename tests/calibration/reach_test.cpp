@@ -171,6 +171,25 @@ TEST(Reach, WithAnETargetTheStiffnessStageIsRedoneAtTheNewRange) {
   EXPECT_EQ(e.template_patch["material"]["kr"], 10000);
 }
 
+// The bayes strategy at a range ends by its own stop rule; here it leaves budget for the next.
+TEST(Reach, TheBayesStrategyMovesOnWhenItsRunsLeaveBudget) {
+  json overrides = kReach;
+  overrides["strategy"] = "bayes";
+  const PeakLoads targets = ranged({200, 60}, 1.5);
+  const CalibrationCampaign c = testing::campaign(targets, overrides);
+  RangedEvaluator e;
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.reach);
+  ASSERT_EQ(r.reach->tried.size(), 2u);
+  const ReachAttempt& first = r.reach->tried[0];
+  EXPECT_FALSE(first.ratio->target_inside());
+  EXPECT_TRUE(r.reach->tried[1].ratio->target_inside());
+  EXPECT_LE(first.history.size() + r.history.size(), 40u);
+  EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
+  EXPECT_NE(r.verdict_reason.find(". Reach: interaction range 1.5: "), std::string::npos)
+      << r.verdict_reason;
+}
+
 std::string refusal(const json& reach, const json& more = json::object()) {
   json overrides = {{"reach", reach}};
   overrides.merge_patch(more);
