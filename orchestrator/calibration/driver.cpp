@@ -362,6 +362,10 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
     reach.cancelled = report.stop_reason == StopReason::cancelled;
     const PeakLoads& t = campaign.targets.model_loads_n;
     reach.why = reach_why(reach, t.uct_n / t.btt_n);
+    // The verdict so far is the last range's: say so when it was not the only one.
+    if (reach.tried.size() > 1)
+      report.verdict_reason = sentence("at interaction range %.3g, the last tried: ", ranges[i]) +
+                              report.verdict_reason;
     append_reason(report, "Reach", reach.why);
     report.reach = std::move(reach);
     return report;

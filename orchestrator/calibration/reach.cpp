@@ -1,5 +1,6 @@
 #include "orchestrator/calibration/reach.hpp"
 
+#include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 
 namespace rockcal::calibration {
@@ -7,8 +8,10 @@ namespace {
 
 std::string attempt_text(const ReachAttempt& a) {
   if (!a.ratio) {
-    return sentence("range %.3g: no run gave both loads (%.0f runs)", a.interaction_range,
-                    double(a.history.size()));
+    const std::string faults = no_peak_text(a.history);
+    return sentence("range %.3g: no run gave both loads (%.0f evaluations", a.interaction_range,
+                    double(a.history.size())) +
+           (faults.empty() ? ")" : "; " + faults + ")");
   }
   return sentence("range %.3g: [%.4g, %.4g] over ", a.interaction_range, a.ratio->min,
                   a.ratio->max) +

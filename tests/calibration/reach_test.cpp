@@ -86,6 +86,11 @@ TEST(Reach, ARatioReachedOnlyAtTheSecondRangeMovesThereAndMeetsTheTargets) {
           targets.uct_n / targets.btt_n) +
       ratio_text(first) + "; " + ratio_text(second) + ")";
   EXPECT_EQ(r.reach->why, why);
+  EXPECT_EQ(r.verdict_reason.rfind("at interaction range 1.5, the last tried: both peak loads "
+                                   "within 2% of their targets",
+                                   0),
+            0u)
+      << r.verdict_reason;
   EXPECT_NE(r.verdict_reason.find(". Reach: " + why), std::string::npos) << r.verdict_reason;
 
   const json j = to_json(r, c);
@@ -135,7 +140,9 @@ TEST(Reach, ARatioNoRangeReachesIsACompromiseNamingEveryRangeTried) {
                           ")";
   EXPECT_EQ(r.reach->why, why);
   // Today's ratio-out-of-reach reason (the last range's ratios), then every range tried.
-  EXPECT_EQ(r.verdict_reason.rfind("the target UCT/BTT load ratio 60 lies outside the range", 0),
+  EXPECT_EQ(r.verdict_reason.rfind("at interaction range 1.5, the last tried: the target UCT/BTT "
+                                   "load ratio 60 lies outside the range",
+                                   0),
             0u)
       << r.verdict_reason;
   EXPECT_NE(r.verdict_reason.find(". Reach: " + why), std::string::npos) << r.verdict_reason;
@@ -155,6 +162,41 @@ TEST(Reach, ABudgetSpentAtTheFirstRangeSaysTheNextWasNotTried) {
                double(r.reach->evaluations_left));
   EXPECT_LT(r.reach->evaluations_left, 4);
   EXPECT_EQ(r.reach->why.substr(r.reach->why.size() - tail.size()), tail) << r.reach->why;
+}
+
+// Measured on the engine at D/R 8: range 1.5's runs can all end without a peak (the load still
+// rising past the bond-controlled window). The reason says so for that range, and the verdict,
+// the last range's, says which range it is.
+TEST(Reach, ARangeWhoseRunsAllFailSaysWhyAndTheVerdictNamesTheRange) {
+  struct NoPeakBeyondRange1 : RangedEvaluator {
+    std::vector<EvaluationOutcome> evaluate_batch(
+        std::span<const EvaluationRequest> requests) override {
+      failure_rate = range_of(*this) > 1 ? 1.0 : 0.0;
+      return RangedEvaluator::evaluate_batch(requests);
+    }
+  } e;
+  e.failure_error =
+      "no peak: the load was still rising past the bond-controlled window "
+      "(loading.past_window \"stop\")";
+  const CalibrationReport r = run_calibration(beyond_range_1(), e);
+  ASSERT_EQ(r.reach ? r.reach->tried.size() : 0u, 2u);
+  EXPECT_EQ(r.verdict, Verdict::failed);
+  const std::size_t n = r.history.size();
+  ASSERT_GE(n, 4u);
+  const std::string why =
+      "no interaction range tried reaches the target UCT/BTT load ratio 41.29 (" +
+      ratio_text(r.reach->tried[0]) +
+      sentence(
+          "; range 1.5: no run gave both loads (%.0f evaluations; %.0f of %.0f runs ended "
+          "without a peak and count as failed",
+          double(n), double(2 * n), double(2 * n)) +
+      sentence(
+          " (%.0f still loading up past the bond-controlled window: no peak set by the "
+          "bond strengths there)))",
+          double(2 * n));
+  EXPECT_EQ(r.reach->why, why);
+  EXPECT_EQ(r.verdict_reason,
+            "at interaction range 1.5, the last tried: no evaluation succeeded. Reach: " + why);
 }
 
 // The range multiplies E at a given K_r (docs/reach.md): E = 0.3 K_r (2 x range - 1).
