@@ -61,14 +61,14 @@ void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& rep
   local_search_with_restarts(ledger, c, best ? best->point : start[0].point);
 }
 
-// E and nu are targets too: the reason says how they came out, and a feasible strength answer
-// whose stiffness misses is a compromise.
 // A further sentence of the verdict's reason, after what it says already.
 void append_reason(CalibrationReport& r, const char* label, const std::string& text) {
   if (!r.verdict_reason.empty()) r.verdict_reason += r.verdict_reason.back() == '.' ? " " : ". ";
   r.verdict_reason.append(label).append(": ").append(text);
 }
 
+// E and nu are targets too: the reason says how they came out, and a feasible strength answer
+// whose stiffness misses is a compromise.
 void judge_stiffness(CalibrationReport& r) {
   if (!r.stiffness) return;
   append_reason(r, "Stiffness", r.stiffness->why);
