@@ -8,6 +8,7 @@
 #include "engine/spec.hpp"
 #include "orchestrator/calibration/algorithms.hpp"
 #include "orchestrator/calibration/lab_case.hpp"
+#include "orchestrator/calibration/reach.hpp"
 #include "orchestrator/json_fields.hpp"
 
 namespace rockcal::calibration {
@@ -278,6 +279,41 @@ void parse_further_targets(orch::JsonFields& root, CalibrationCampaign& c) {
   }
 }
 
+// "reach": {"interaction_range": [factor, ...]}: the ranges the calibration may take, in order.
+// The template at each range goes through the engine's validation like the job itself.
+void parse_reach(orch::JsonFields& root, CalibrationCampaign& c) {
+  const json* v = root.get("reach");
+  if (!v) return;
+  if (!v->is_object()) throw orch::RequestError("reach", "must be an object");
+  orch::JsonFields f(*v, "reach");
+  const std::string field = f.path_of("interaction_range");
+  const json& list = f.require("interaction_range");
+  if (!list.is_array() || list.empty() || list.size() > 4)
+    throw orch::RequestError(field, "must be an array of 1 to 4 range factors");
+  const json* effects = c.job_template.contains("effects") ? &c.job_template["effects"] : nullptr;
+  if (effects && effects->is_object() && effects->contains("interaction_range"))
+    throw orch::RequestError(
+        field, "not with job.effects.interaction_range (give the ranges in one place)");
+  if (!c.fine_patch.is_null())
+    throw orch::RequestError(field, "not with \"fidelity\" (the ranges are tried on one specimen)");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string at = field + "[" + std::to_string(i) + "]";
+    const double factor = orch::finite_number(list[i], at);
+    for (double earlier : c.interaction_ranges) {
+      if (earlier == factor) throw orch::RequestError(at, "is repeated");
+    }
+    json tmpl = c.job_template;
+    tmpl.merge_patch(interaction_range_patch(factor));
+    try {
+      validate_template(tmpl, c.fr0_n, c.fs0_n);
+    } catch (const orch::RequestError& e) {
+      throw orch::RequestError(at, std::string("the job at this range: ") + e.what());
+    }
+    c.interaction_ranges.push_back(factor);
+  }
+  f.reject_unknown();
+}
+
 CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   orch::JsonFields root(campaign, "");
   CalibrationCampaign c;
@@ -316,6 +352,7 @@ CalibrationCampaign parse_calibration_campaign(const json& campaign) {
   parse_inference(root, c);
   check_fidelity_fields(campaign, c);
   parse_further_targets(root, c);
+  parse_reach(root, c);
   if (c.targets.elastic.any() && !c.fine_patch.is_null())
     throw orch::RequestError(
         c.targets.elastic.youngs_modulus_pa ? "targets.youngs_modulus" : "targets.poisson_ratio",

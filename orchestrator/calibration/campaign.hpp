@@ -90,6 +90,10 @@ struct CalibrationCampaign {
   // F on the fine specimen = F of the search x this: (R_fine / R_coarse)^2 when the fine specimen
   // has smaller grains at the same stress scale (bond forces scale with the bond's area).
   double fine_strength_scale = 1.0;
+  // "reach": {"interaction_range": [...]}: the interaction ranges the calibration may take, tried
+  // in order while the target UCT/BTT load ratio lies outside what a range's runs reached
+  // (reach.hpp). Empty: the template's own bond network.
+  std::vector<double> interaction_ranges;
 };
 
 // The pilot ensemble that measures the scatter for "realisations": "auto".

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include <nlopt.hpp>
 
@@ -11,6 +12,7 @@
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/local_search.hpp"
 #include "orchestrator/calibration/ratio_scale.hpp"
+#include "orchestrator/calibration/reach.hpp"
 #include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/calibration/start_design.hpp"
@@ -59,12 +61,17 @@ void search(Ledger& ledger, const CalibrationCampaign& c, CalibrationReport& rep
   local_search_with_restarts(ledger, c, best ? best->point : start[0].point);
 }
 
+// A further sentence of the verdict's reason, after what it says already.
+void append_reason(CalibrationReport& r, const char* label, const std::string& text) {
+  if (!r.verdict_reason.empty()) r.verdict_reason += r.verdict_reason.back() == '.' ? " " : ". ";
+  r.verdict_reason.append(label).append(": ").append(text);
+}
+
 // E and nu are targets too: the reason says how they came out, and a feasible strength answer
 // whose stiffness misses is a compromise.
 void judge_stiffness(CalibrationReport& r) {
   if (!r.stiffness) return;
-  if (!r.verdict_reason.empty()) r.verdict_reason += r.verdict_reason.back() == '.' ? " " : ". ";
-  r.verdict_reason.append("Stiffness: ").append(r.stiffness->why);
+  append_reason(r, "Stiffness", r.stiffness->why);
   if (r.verdict == Verdict::feasible && !stiffness_met(*r.stiffness))
     r.verdict = Verdict::compromise;
 }
@@ -224,12 +231,17 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   if (!fast.empty()) r.verdict_reason += "; " + fast;
 }
 
-}  // namespace
+// Whether the runs at a range send the calibration on to the next one (reach.hpp): from the
+// ratios they reached and how many they were.
+using LeaveRange = std::function<bool(const std::optional<RatioRange>& ratio, int runs)>;
 
-CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
-                                  const RunOptions& options) {
+// One calibration at the evaluator's template as it stands: the stiffness stage, the strategy's
+// search and what follows it. Returns true, with report.history and report.ratio filled, when
+// `leave` says the search's runs send the calibration on to another range: before the steps after
+// the search, which would spend runs on an answer this range cannot give.
+bool calibrate_at(const CalibrationCampaign& campaign, Evaluator& evaluator,
+                  const RunOptions& options, CalibrationReport& report, const LeaveRange& leave) {
   nlopt::srand(campaign.random_seed);  // per thread: seed it in the optimising one
-  CalibrationReport report;
   // The stiffnesses first: the strengths are searched at them.
   try {
     report.stiffness = calibrate_stiffness(campaign, evaluator);
@@ -237,12 +249,15 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
   } catch (const EvaluationCancelled&) {
     report.stop_reason = StopReason::cancelled;
     report.verdict = Verdict::incomplete;
-    return report;
+    return false;
   }
   if (campaign.strategy == Strategy::bayes) {
     bayes_calibration(campaign, evaluator, options, report);
+    if (report.stop_reason != StopReason::cancelled &&
+        leave(report.ratio, int(report.history.size())))
+      return true;
     judge_stiffness(report);
-    return report;
+    return false;
   }
   bool cancelled = false;
   try {
@@ -258,6 +273,14 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
   } catch (const SearchDone&) {
   } catch (const EvaluationCancelled&) {
     cancelled = true;
+  }
+  if (!cancelled && !options.stop.stop_requested()) {
+    const std::optional<RatioRange> ratio = ratio_range(ledger.history(), ledger.targets());
+    if (leave(ratio, int(ledger.history().size()))) {
+      report.history = ledger.history();
+      report.ratio = ratio;
+      return true;
+    }
   }
   // The start batch may already meet the targets (SearchDone before the check): measure anyway.
   if (report.homogeneity.checks.empty() && ledger.history().size() >= 2) {
@@ -304,7 +327,49 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
                        scatter_as_estimate(report.scatter, c.tolerance), c.tolerance);
   judge(report, c);
   judge_stiffness(report);
-  return report;
+  return false;
+}
+
+}  // namespace
+
+CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
+                                  const RunOptions& options) {
+  CalibrationReport report;
+  const std::vector<double>& ranges = campaign.interaction_ranges;
+  if (ranges.empty()) {
+    calibrate_at(campaign, evaluator, options, report,
+                 [](const std::optional<RatioRange>&, int) { return false; });
+    return report;
+  }
+  // The ranges in order, each with the budget the ranges before it left.
+  ReachResult reach;
+  reach.listed = ranges;
+  int left = campaign.max_evaluations;
+  for (std::size_t i = 0;; ++i) {
+    evaluator.patch_template(interaction_range_patch(ranges[i]));
+    CalibrationCampaign c = campaign;
+    c.max_evaluations = left;
+    report = {};
+    const bool another = i + 1 < ranges.size();
+    const bool moved = calibrate_at(c, evaluator, options, report,
+                                    [&](const std::optional<RatioRange>& ratio, int runs) {
+                                      return leave_range(ratio, another, left - runs);
+                                    });
+    left -= int(report.history.size());
+    reach.tried.push_back({ranges[i], report.history, report.ratio});
+    if (moved) continue;
+    reach.evaluations_left = left;
+    reach.cancelled = report.stop_reason == StopReason::cancelled;
+    const PeakLoads& t = campaign.targets.model_loads_n;
+    reach.why = reach_why(reach, t.uct_n / t.btt_n);
+    // The verdict so far is the last range's: say so when it was not the only one.
+    if (reach.tried.size() > 1)
+      report.verdict_reason = sentence("at interaction range %.3g, the last tried: ", ranges[i]) +
+                              report.verdict_reason;
+    append_reason(report, "Reach", reach.why);
+    report.reach = std::move(reach);
+    return report;
+  }
 }
 
 CalibrationThread::CalibrationThread(CalibrationCampaign campaign, Evaluator& evaluator,

@@ -14,6 +14,7 @@
 #include "orchestrator/calibration/fidelity.hpp"
 #include "orchestrator/calibration/homogeneity.hpp"
 #include "orchestrator/calibration/ledger.hpp"
+#include "orchestrator/calibration/reach.hpp"
 #include "orchestrator/calibration/stiffness.hpp"
 #include "orchestrator/calibration/suggestion.hpp"
 #include "orchestrator/ratio_range.hpp"
@@ -67,6 +68,8 @@ struct CalibrationReport {
   EnsembleSize ensemble;  // packings per evaluation: how many, why, what the scatter calls for
   std::optional<PosteriorSummary> posterior;  // the "bayes" strategy's answer
   std::optional<StiffnessResult> stiffness;   // the stiffness stage, when E or nu is a target
+  // The interaction ranges tried ("reach" in the request); `history` is the last range's runs.
+  std::optional<ReachResult> reach;
 };
 
 std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& history,

@@ -313,11 +313,53 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
   return j;
 }
 
+json ratio_json(const std::optional<RatioRange>& ratio) {
+  if (!ratio) return nullptr;
+  return {{"target", ratio->target},
+          {"min", ratio->min},
+          {"max", ratio->max},
+          {"target_inside", ratio->target_inside()}};
+}
+
+// The ranges tried, each with its runs' ratio span; the earlier ranges' runs in full (the last
+// range's are the report's history).
+json reach_json(const std::optional<ReachResult>& reach) {
+  if (!reach) return nullptr;
+  json tried = json::array();
+  for (std::size_t i = 0; i < reach->tried.size(); ++i) {
+    const ReachAttempt& a = reach->tried[i];
+    const bool last = i + 1 == reach->tried.size();
+    tried.push_back({{"interaction_range", a.interaction_range},
+                     {"runs", a.history.size()},
+                     {"ratio", ratio_json(a.ratio)},
+                     {"history", last ? json(nullptr) : history_json(a.history)}});
+  }
+  return {{"interaction_range", reach->tried.back().interaction_range},
+          {"listed", reach->listed},
+          {"tried", tried},
+          {"why", reach->why}};
+}
+
+// Every run the budget paid for: the earlier ranges' and the report's history.
+std::size_t runs_of(const CalibrationReport& r) {
+  std::size_t n = r.history.size();
+  if (r.reach) {
+    for (std::size_t i = 0; i + 1 < r.reach->tried.size(); ++i)
+      n += r.reach->tried[i].history.size();
+  }
+  return n;
+}
+
 }  // namespace
 
 json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
   int failed = 0;
   for (const EvaluationRecord& e : r.history) failed += e.loads ? 0 : 1;
+  if (r.reach) {
+    for (std::size_t i = 0; i + 1 < r.reach->tried.size(); ++i) {
+      for (const EvaluationRecord& e : r.reach->tried[i].history) failed += e.loads ? 0 : 1;
+    }
+  }
   json j = {{"kind", "calibration"},
             {"name", c.name},
             {"stop_reason", to_string(r.stop_reason)},
@@ -331,7 +373,7 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"tolerance", c.tolerance},
             {"realisations", r.ensemble.realisations},
             {"ensemble", ensemble_json(r.ensemble, c)},
-            {"evaluations", r.history.size()},
+            {"evaluations", runs_of(r)},
             {"failed_evaluations", failed},
             {"max_evaluations", c.max_evaluations},
             {"consistency_evaluations", c.consistency_evaluations},
@@ -346,7 +388,8 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
             {"unique", r.consistent.unique},
             {"suggestion", suggestion_json(r.suggestion)},
             {"fidelity", r.fidelity ? to_json(*r.fidelity, c) : json(nullptr)},
-            {"posterior", posterior_json(r.posterior, c)}};
+            {"posterior", posterior_json(r.posterior, c)},
+            {"reach", reach_json(r.reach)}};
   // Which specimen each evaluation ran on: the template's, coarse when a fine one follows, fine
   // for the bayes strategy's fine runs.
   for (json& row : j["history"]) {
@@ -355,16 +398,9 @@ json to_json(const CalibrationReport& r, const CalibrationCampaign& c) {
                         : phase.rfind("fine", 0) == 0 ? "fine"
                                                       : "coarse";
   }
-  if (r.ratio) {
-    j["ratio"] = {
-        {"target", r.ratio->target},
-        {"min", r.ratio->min},
-        {"max", r.ratio->max},
-        {"target_inside", r.ratio->target_inside()},
-        {"best", r.best ? json(r.best->loads->uct_n / r.best->loads->btt_n) : json(nullptr)}};
-  } else {
-    j["ratio"] = nullptr;
-  }
+  j["ratio"] = ratio_json(r.ratio);
+  if (r.ratio)
+    j["ratio"]["best"] = r.best ? json(r.best->loads->uct_n / r.best->loads->btt_n) : json(nullptr);
   return j;
 }
 

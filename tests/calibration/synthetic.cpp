@@ -144,4 +144,13 @@ CalibrationCampaign campaign(const PeakLoads& targets, const nlohmann::json& ove
   return parse_calibration_campaign(campaign_json(targets, overrides));
 }
 
+std::string refusal(const nlohmann::json& overrides) {
+  try {
+    campaign({1000, 100}, overrides);
+  } catch (const orch::RequestError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
 }  // namespace rockcal::calibration::testing

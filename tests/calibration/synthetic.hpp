@@ -87,5 +87,8 @@ struct CachingEvaluator : Evaluator {
 // in.
 nlohmann::json campaign_json(const PeakLoads& targets, const nlohmann::json& overrides = {});
 CalibrationCampaign campaign(const PeakLoads& targets, const nlohmann::json& overrides = {});
+// What parsing such a campaign (targets 1000 N and 100 N) refuses: the RequestError's text
+// ("field: message"), or "accepted".
+std::string refusal(const nlohmann::json& overrides);
 
 }  // namespace rockcal::calibration::testing
