@@ -8,10 +8,15 @@ realisations; seeds far from the calibration's), stated to the standard error th
 budget) with those model-unit targets. Recorded: whether the truth lies in the 90% region (its
 cells on the log grid), the intervals, the verdict, runs and wall time.
 
+`--strategy auto --realisations auto` runs the same twins (the same lab, from the same seeds) with
+the previous driver instead, for the runs side by side: its "inside" is the truth within the
+consistent set's F_r0 and F_s0 ranges.
+
 Resumes: rows already in --out (one JSON object per line) are kept and their twins skipped, so it
 may be run in parts; commit the file as it grows.
 
   bench/bayes_twins.py [--build build] [--twins 10] [--out bench/results/bayes_twins_d20.jsonl]
+                       [--strategy bayes|auto|ratio_scale|direct_2d] [--realisations auto|N]
 On demand only (3-5 minutes a twin on 2 idle cores); it builds nothing.
 """
 import argparse
@@ -43,6 +48,8 @@ def main():
     ap.add_argument("--lab-packings", type=int, default=4)
     ap.add_argument("--request", default=os.path.join(ROOT, "examples", "calibrate_seed_lab.json"))
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "bayes_twins_d20.jsonl"))
+    ap.add_argument("--strategy", default="bayes")
+    ap.add_argument("--realisations", default=None, help="the previous driver's packings an evaluation")
     a = ap.parse_args()
     os.makedirs(os.path.dirname(a.out), exist_ok=True)
     done = load_rows(a.out, "twin")
@@ -78,14 +85,32 @@ def main():
                 req = json.loads(json.dumps(base))
                 req["name"] = f"bayes twin {twin}"
                 req["targets"] = {"uct": {"peak_load": lab["uct"][0]}, "btt": {"peak_load": lab["btt"][0]}}
-                req.setdefault("inference", {})["lab_uncertainty"] = {"uct": lab["uct"][1], "btt": lab["btt"][1]}
+                if a.strategy == "bayes":
+                    req.setdefault("inference", {})["lab_uncertainty"] = {"uct": lab["uct"][1], "btt": lab["btt"][1]}
+                else:
+                    req["strategy"] = a.strategy
+                    req.pop("inference", None)
+                    if a.realisations:
+                        req["realisations"] = a.realisations if a.realisations == "auto" else int(a.realisations)
                 cal = finish(url, call(f"{url}/api/v1/campaigns", req)["id"])
                 s = cal.get("summary") or {}
                 post = s.get("posterior")
                 row = {"twin": twin, "truth": truth, "lab_sd": [lab["uct"][1], lab["btt"][1]],
                        "verdict": s.get("verdict"), "wall_seconds": round(time.time() - t0, 1),
-                       "platen_velocity": base["job"].get("loading", {}).get("platen_velocity")}
-                if post:
+                       "platen_velocity": base["job"].get("loading", {}).get("platen_velocity"),
+                       "strategy": a.strategy, "jobs": (cal.get("progress") or {}).get("total"),
+                       "stop_reason": s.get("stop_reason")}
+                best = s.get("best") or {}
+                if a.strategy != "bayes":
+                    cons = s.get("consistent") or {}
+                    row.update({"unique": s.get("unique"), "fr0": cons.get("fr0"), "fs0": cons.get("fs0"),
+                                "best": {"fr0": best.get("fr0"), "fs0": best.get("fs0"),
+                                         "uct": (best.get("uct") or {}).get("relative_error"),
+                                         "btt": (best.get("btt") or {}).get("relative_error")}})
+                    if cons.get("fr0") and cons.get("fs0"):
+                        row["inside"] = (cons["fr0"][0] <= truth[0] <= cons["fr0"][1]
+                                         and cons["fs0"][0] <= truth[1] <= cons["fs0"][1])
+                elif post:
                     row.update({"inside": in_region(post, *truth), "fr0": post["fr0"], "fs0": post["fs0"],
                                 "estimate": post["estimate"], "runs": post["runs"], "unique": post["unique"]})
             done[twin] = row
