@@ -61,8 +61,9 @@ void expect_undetermined(const Judged& j, const std::string& reason) {
 }
 
 // The seed lab case (examples/diagnose_seed_lab.json): uct-1 and btt-1, both calibration, 5% lab
-// uncertainty, both missed by -0.93 in ln (the figures); budgets 0.10 and 0.75 as the last
-// run recorded in docs/diagnosis-measurements.md; its base fit at F_s0's upper bound (480).
+// uncertainty, both missed by -0.93 in ln (as measured on that example); budgets 0.10 and 0.75 as
+// the last run recorded in docs/diagnosis-measurements.md; its base fit at F_s0's upper bound
+// (480).
 TEST(HonestVerdict, TheSeedLabCaseIsUndeterminedWithItsMissStated) {
   const std::vector<Target> targets = {observation("uct-1", Role::calibration, 0.05),
                                        observation("btt-1", Role::calibration, 0.05)};
