@@ -226,7 +226,7 @@ std::string stiffness_text(const json& st) {
 
 // The "bayes" strategy's answer: the estimate and the credible intervals of both strengths, the
 // predicted loads with their intervals, in the targets' units (lab beside model when given).
-std::string posterior_text(const json& p, const json& best) {
+std::string posterior_text(const json& p) {
   std::ostringstream out;
   const json& lab = at(p, "lab");
   const bool in_lab = lab.is_object();
@@ -274,10 +274,19 @@ std::string posterior_text(const json& p, const json& best) {
   }
   out << "  one packing's scatter: UCT sd " << num(100 * p["uct"]["run_sd"].get<double>(), "%.3g")
       << "%, BTT sd " << num(100 * p["btt"]["run_sd"].get<double>(), "%.3g") << "% (in ln)\n";
-  if (best.is_object() && at(best, "uct").is_object()) {
-    out << "  check runs at the estimate: UCT " << error_text(best["uct"]) << ", BTT "
-        << error_text(best["btt"]) << " (mean of " << value_text(at(best["uct"], "n"))
-        << " packings)\n";
+  const json& uct_check = at(p["uct"], "check");
+  const json& btt_check = at(p["btt"], "check");
+  if (uct_check.is_object() && btt_check.is_object()) {
+    // The check runs against the prediction, with the spread the prediction allows their mean.
+    auto check_text = [](const char* name, const json& k) {
+      return std::string(name) + " " + num(100 * k["relative_error"].get<double>(), "%+.2f") +
+             "% of the target, " + num(100 * k["relative_to_prediction"].get<double>(), "%+.2f") +
+             "% of the prediction (its sd " + num(100 * k["sd"].get<double>(), "%.2g") +
+             "%: " + (k["agrees"] == true ? "agrees" : "DISAGREES") + ")";
+    };
+    out << "  check runs at the estimate (mean of " << value_text(at(uct_check, "runs"))
+        << " packings): " << check_text("UCT", uct_check) << "; " << check_text("BTT", btt_check)
+        << "\n";
   }
   return out.str();
 }
@@ -292,7 +301,7 @@ std::string calibration_text(const json& s) {
   const json& best = at(s, "best");
   const json& posterior = at(s, "posterior");
   if (posterior.is_object()) {
-    out << posterior_text(posterior, best);
+    out << posterior_text(posterior);
     out << rock_text(at(s, "rock_properties"));
     out << "unique: " << (at(posterior, "unique") == true ? "yes" : "no") << " - "
         << value_text(at(posterior, "why")) << "\n";

@@ -1,6 +1,7 @@
 // to_json of the report. JSON has no NaN: quantities that do not exist are null, never NaN.
 #include <cmath>
 
+#include "orchestrator/calibration/bayes/check.hpp"
 #include "orchestrator/calibration/objective.hpp"
 #include "orchestrator/calibration/report.hpp"
 #include "orchestrator/calibration/rock_properties.hpp"
@@ -243,6 +244,17 @@ json predicted_json(const PredictedLoad& l, const CalibrationCampaign& c) {
             {"emulator_sd", l.emulator_sd},
             {"run_sd", l.run_sd},
             {"emulator_share", l.emulator_share}};
+  if (l.check) {
+    const CheckAgreement& a = *l.check;
+    j["check"] = {{"runs", a.n},
+                  {"mean", a.mean_n},
+                  {"relative_to_prediction", a.relative_to_prediction},
+                  {"relative_error", a.relative_to_target},
+                  {"sd", a.sd},
+                  {"z", a.z},
+                  {"level", kCheckLevel},
+                  {"agrees", a.agrees}};
+  }
   if (c.targets.scaling) {
     const Scaling& s = *c.targets.scaling;
     j["lab"] = {{"target", s.force_to_lab(l.target_n)},

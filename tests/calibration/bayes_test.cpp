@@ -123,7 +123,7 @@ nlohmann::json bayes(int budget, double lab_sd) {
 TEST(BayesCalibration, TheNinetyPercentRegionHoldsTheTruthInEightyToNinetySevenPercentOfTwins) {
   constexpr int kTwins = 24;
   constexpr double kLabSd = 0.05;
-  int inside = 0, feasible = 0, runs = 0;
+  int inside = 0, feasible = 0, runs = 0, checked = 0, disagree = 0;
   for (int twin = 0; twin < kTwins; ++twin) {
     // The truth inside the box, away from its edges; the lab's means drawn with their sd.
     const BondPoint probe{double(twin + 1), 7.0};
@@ -145,14 +145,22 @@ TEST(BayesCalibration, TheNinetyPercentRegionHoldsTheTruthInEightyToNinetySevenP
     inside += in_credible_region(p, truth, c) ? 1 : 0;
     runs += e.runs;
     feasible += r.verdict == Verdict::feasible ? 1 : 0;
+    for (const PredictedLoad* l : {&p.uct, &p.btt}) {
+      if (!l->check) continue;
+      ++checked;
+      disagree += l->check->agrees ? 0 : 1;
+    }
     EXPECT_LE(e.runs, 60);
   }
   const double coverage = double(inside) / kTwins;
-  std::printf("coverage %d of %d twins, %d feasible, %.1f runs a twin\n", inside, kTwins, feasible,
-              double(runs) / kTwins);
+  std::printf("coverage %d of %d twins, %d feasible, %.1f runs a twin; %d of %d checks disagree\n",
+              inside, kTwins, feasible, double(runs) / kTwins, disagree, checked);
   EXPECT_GE(coverage, 0.80) << inside << " of " << kTwins;
   EXPECT_LE(coverage, 0.97) << inside << " of " << kTwins;
   EXPECT_GE(feasible, kTwins / 2);
+  // The check runs test the prediction at its 99% level: with honest emulators few disagree.
+  EXPECT_EQ(checked, 2 * kTwins);
+  EXPECT_LE(disagree, 3) << "of " << checked;
 }
 
 TEST(BayesCalibration, NoWorkerIdlesWhileBudgetRemains) {

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "orchestrator/calibration/bayes/box.hpp"
+#include "orchestrator/calibration/bayes/check.hpp"
 #include "orchestrator/calibration/bayes/emulators.hpp"
 #include "orchestrator/calibration/bayes/next_test.hpp"
 #include "orchestrator/calibration/bayes/verdict.hpp"
@@ -93,7 +94,13 @@ class Search {
       report.posterior = summarise(*model_, c_, rounds_);
       if (has_fine_) report.posterior->resolution = "coarse";
     }
-    if (!check_.empty()) report.best = check_record();
+    if (!check_.empty()) {
+      report.best = check_record();
+      if (report.posterior && report.best->uct && report.best->btt) {
+        report.posterior->uct.check = check_agreement(report.posterior->uct, *report.best->uct);
+        report.posterior->btt.check = check_agreement(report.posterior->btt, *report.best->btt);
+      }
+    }
     // A region too wide to call unique: which further test would cut it most (on the specimen
     // searched; with a fine specimen the further tests would need fine runs of their own, which
     // this does not design).

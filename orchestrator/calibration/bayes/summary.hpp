@@ -2,6 +2,7 @@
 // campaign's model units. Every figure here comes from the emulators and runs of the campaign.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,17 @@
 #include "orchestrator/calibration/evaluator.hpp"
 
 namespace rockcal::calibration {
+
+// The check runs at the estimate against the prediction there (bayes/check.hpp).
+struct CheckAgreement {
+  int n = 0;                            // successful check runs
+  double mean_n = 0.0;                  // their geometric mean
+  double relative_to_prediction = 0.0;  // mean_n / the predicted mean - 1
+  double relative_to_target = 0.0;      // mean_n / target - 1
+  double sd = 0.0;                      // the sd of ln(mean_n) the prediction allows
+  double z = 0.0;                       // ln(mean_n / predicted mean) / sd
+  bool agrees = true;                   // |z| within the 99% quantile
+};
 
 // One target's prediction at the estimate: the emulator's mean of the ensemble-mean load, its
 // `level` interval, and the interval one more packing's run would fall in.
@@ -22,6 +34,7 @@ struct PredictedLoad {
   double emulator_sd = 0.0;               // sd of ln(mean) from the emulator at the estimate
   double run_sd = 0.0;                    // sd of ln(load) of one packing (the pooled scatter)
   double emulator_share = 0.0;            // posterior-weighted emulator variance / lab variance
+  std::optional<CheckAgreement> check;    // the check runs', once they ran
 };
 
 // A row of the region's cells on the posterior's grid: cells [i_lo, i_hi] of F_r0 at F_s0 row j.

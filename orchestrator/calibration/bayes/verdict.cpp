@@ -1,7 +1,9 @@
 #include "orchestrator/calibration/bayes/verdict.hpp"
 
 #include <cmath>
+#include <utility>
 
+#include "orchestrator/calibration/bayes/check.hpp"
 #include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 
@@ -20,6 +22,18 @@ std::string region_text(const PosteriorSummary& p) {
   return sentence("the %.0f%% credible interval of F_r0 is [%.4g, %.4g]", 100 * p.level, p.fr0.lo,
                   p.fr0.hi) +
          sentence(" and of F_s0 [%.4g, %.4g]", p.fs0.lo, p.fs0.hi);
+}
+
+// The loads whose check runs fall outside what the prediction allows, as "UCT -20.1% (z -3.1)".
+std::string disagreeing_checks(const PosteriorSummary& p) {
+  std::string out;
+  for (const auto& [name, load] : {std::pair{"UCT", &p.uct}, std::pair{"BTT", &p.btt}}) {
+    if (!load->check || load->check->agrees) continue;
+    out +=
+        (out.empty() ? "" : ", ") + std::string(name) +
+        sentence(" %+.3g%% (z %+.2g)", 100 * load->check->relative_to_prediction, load->check->z);
+  }
+  return out;
 }
 
 }  // namespace
@@ -52,6 +66,21 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   for (const std::string& f :
        {no_peak_text(r.history), not_quasi_static_text(r.history, platen_velocity_of(c))}) {
     if (!f.empty()) faults += "; " + f;
+  }
+  const std::string disagree = disagreeing_checks(p);
+  if (met && !disagree.empty()) {
+    // The prediction meets the targets, the real runs at the estimate do not bear it out.
+    r.verdict = Verdict::compromise;
+    r.verdict_reason =
+        "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
+        "), but the check runs there disagree with the prediction beyond the packings' scatter "
+        "and the emulators' variance (" +
+        disagree +
+        sentence(" from the prediction, outside its %.0f%% interval)", 100 * kCheckLevel) +
+        ": the emulators are wrong near the estimate; more runs there (a larger "
+        "\"max_evaluations\") would correct them" +
+        runs + "; " + region_text(p) + faults;
+    return;
   }
   if (met) {
     r.verdict = Verdict::feasible;

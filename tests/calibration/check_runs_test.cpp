@@ -1,0 +1,101 @@
+// Focus: the check runs at a bayes calibration's estimate judge its prediction. Their mean is
+// compared with the predicted mean within the spread the emulator's variance and the packings'
+// scatter allow that mean; a check outside it turns "feasible" into a compromise naming it, so the
+// summary never says "feasible" on the emulators' word alone when real runs say otherwise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "orchestrator/calibration/bayes/check.hpp"
+#include "orchestrator/calibration/bayes/verdict.hpp"
+#include "orchestrator/calibration/report.hpp"
+#include "synthetic.hpp"
+
+namespace rockcal::calibration {
+namespace {
+
+orch::Ensemble runs(std::initializer_list<double> loads) {
+  std::vector<orch::Realisation> rs;
+  std::uint64_t seed = 1;
+  for (double l : loads) rs.push_back({seed++, 0, "succeeded", l, {}, {}, ""});
+  return orch::make_ensemble(rs);
+}
+
+PredictedLoad prediction(double target, double mean) {
+  PredictedLoad p;
+  p.target_n = target;
+  p.mean_n = mean;
+  p.relative_error = mean / target - 1.0;
+  p.emulator_sd = 0.03;
+  p.run_sd = 0.132;
+  return p;
+}
+
+TEST(CheckRuns, TheirMeanIsJudgedAgainstTheSpreadThePredictionAllowsIt) {
+  // Two packings 8% and 11% below a prediction on target: sd of their ln mean
+  // sqrt(0.03^2 + 0.132^2 / 2) = 0.098041; z = ln(sqrt(0.92 * 0.89)) / 0.098041 = -1.01955.
+  const std::optional<CheckAgreement> a =
+      check_agreement(prediction(100.0, 100.0), runs({92.0, 89.0}));
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->n, 2);
+  EXPECT_NEAR(a->mean_n, std::sqrt(92.0 * 89.0), 1e-9);
+  EXPECT_NEAR(a->sd, 0.098041, 1e-6);
+  EXPECT_NEAR(a->z, -1.01955, 1e-5);
+  EXPECT_NEAR(a->relative_to_target, std::sqrt(92.0 * 89.0) / 100.0 - 1.0, 1e-12);
+  EXPECT_TRUE(a->agrees);
+  // 30% low on both packings: z = ln(0.7) / 0.098041 = -3.64, beyond the 99% quantile 2.576.
+  const std::optional<CheckAgreement> low =
+      check_agreement(prediction(100.0, 100.0), runs({70.0, 70.0}));
+  ASSERT_TRUE(low);
+  EXPECT_FALSE(low->agrees);
+  // Failed check runs leave nothing to judge.
+  std::vector<orch::Realisation> failed = {{1, 0, "failed", {}, {}, {}, "no peak"}};
+  EXPECT_FALSE(check_agreement(prediction(100.0, 100.0), orch::make_ensemble(failed)));
+}
+
+CalibrationReport report_with(const CalibrationCampaign& c, double uct_check, double btt_check) {
+  CalibrationReport r;
+  r.stop_reason = StopReason::answered;
+  PosteriorSummary p;
+  p.uct = prediction(c.targets.model_loads_n.uct_n, c.targets.model_loads_n.uct_n * 1.001);
+  p.btt = prediction(c.targets.model_loads_n.btt_n, c.targets.model_loads_n.btt_n * 0.999);
+  p.fr0 = {30, 40};
+  p.fs0 = {60, 70};
+  p.runs = 75;
+  p.points = 39;
+  p.unique = true;
+  p.why = "the region is narrow";
+  p.uct.check = check_agreement(p.uct, runs({p.uct.mean_n * uct_check, p.uct.mean_n * uct_check}));
+  p.btt.check = check_agreement(p.btt, runs({p.btt.mean_n * btt_check, p.btt.mean_n * btt_check}));
+  r.posterior = p;
+  return r;
+}
+
+TEST(CheckRuns, ChecksThatDisagreeTurnAFeasiblePredictionIntoACompromiseNamingThem) {
+  const CalibrationCampaign c =
+      testing::campaign({120000, 9000}, {{"strategy", "bayes"}, {"max_evaluations", 100}});
+  CalibrationReport agree = report_with(c, 0.9, 1.05);
+  judge_posterior(agree, c);
+  EXPECT_EQ(agree.verdict, Verdict::feasible) << agree.verdict_reason;
+
+  CalibrationReport disagree = report_with(c, 0.7, 1.05);
+  judge_posterior(disagree, c);
+  EXPECT_EQ(disagree.verdict, Verdict::compromise);
+  EXPECT_NE(disagree.verdict_reason.find(
+                "but the check runs there disagree with the prediction beyond the packings' "
+                "scatter and the emulators' variance (UCT -30% (z -3.6) from the prediction, "
+                "outside its 99% interval): the emulators are wrong near the estimate"),
+            std::string::npos)
+      << disagree.verdict_reason;
+  EXPECT_EQ(disagree.verdict_reason.find("BTT +5%"), std::string::npos) << disagree.verdict_reason;
+  // The JSON carries the figures the sentence quotes.
+  const nlohmann::json j = to_json(disagree, c);
+  const nlohmann::json& k = j["posterior"]["uct"]["check"];
+  EXPECT_EQ(k["agrees"], false);
+  EXPECT_EQ(k["runs"], 2);
+  EXPECT_NEAR(k["z"].get<double>(), std::log(0.7) / 0.098041, 1e-4);
+  EXPECT_EQ(j["posterior"]["btt"]["check"]["agrees"], true);
+}
+
+}  // namespace
+}  // namespace rockcal::calibration
