@@ -12,7 +12,6 @@
 #include "orchestrator/calibration/bayes/next_test.hpp"
 #include "orchestrator/calibration/bayes/verdict.hpp"
 #include "orchestrator/calibration/latin_hypercube.hpp"
-#include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/inference/design/batch_design.hpp"
 #include "orchestrator/inference/posterior/region.hpp"
 
@@ -366,22 +365,6 @@ class Search {
         exact.push_back(p);
       }
     }
-    // No candidate in a posterior cell where a run already ended without a peak: whether a
-    // specimen peaks is set by its strengths (a ratio zone), so another packing there would fail
-    // again, and the cell's feasibility, smoothed with its neighbours' runs, can still rank it
-    // high.
-    const std::vector<Eigen::Vector2d> failed =
-        no_peak_points(fine ? fine_history_ : coarse_history_, c);
-    const double half_cell = 0.5 / std::max(1, m.grid.per_dim);
-    for (std::size_t i = cand.size(); i-- > 0;) {
-      const bool dead = std::any_of(failed.begin(), failed.end(), [&](const Eigen::Vector2d& f) {
-        return (cand[i] - f).cwiseAbs().maxCoeff() < half_cell;
-      });
-      if (dead && cand.size() > 1) {
-        cand.erase(cand.begin() + std::ptrdiff_t(i));
-        exact.erase(exact.begin() + std::ptrdiff_t(i));
-      }
-    }
     inference::DesignInput in;
     in.emulators = m.emulators();
     in.targets = m.targets;
@@ -408,16 +391,6 @@ class Search {
       runs.push_back(run_at(p, fine ? "fine" : "design", fine));
     }
     return runs;
-  }
-
-  // Where runs ended without a peak, on the campaign's unit box.
-  static std::vector<Eigen::Vector2d> no_peak_points(const std::vector<EvaluationRecord>& history,
-                                                     const CalibrationCampaign& c) {
-    std::vector<Eigen::Vector2d> out;
-    for (const EvaluationRecord& r : history) {
-      if (!r.loads && is_no_peak(r.error)) out.push_back(to_unit(r.point, c));
-    }
-    return out;
   }
 
   // The check runs as one ensemble: the estimate's loads over its packings.
