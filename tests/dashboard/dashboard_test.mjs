@@ -478,6 +478,12 @@ test('a bayes calibration: the posterior, its intervals and its region drawn ove
   assert.ok(text.includes(p.why), p.why);
   assert.ok(text.includes(`From ${p.runs} runs at ${p.points} points`));
   assert.match(text, /a default: the request did not state it/);
+  // The check runs at the estimate, judged against the prediction, in the loads' table.
+  // (A check whose runs reached no peak has nothing to judge: the tiny disc sometimes does not.)
+  const checks = [p.uct.check, p.btt.check].filter(Boolean);
+  assert.ok(checks.length > 0, JSON.stringify(p.uct));
+  for (const k of checks)
+    assert.ok(text.includes(`n ${k.runs}): ${k.agrees ? 'agrees' : 'DISAGREES'}`), text);
   await shot(page, '05e-calibration-posterior');
   assert.deepEqual(page.problems, []);
 });

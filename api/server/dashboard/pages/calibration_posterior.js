@@ -33,6 +33,13 @@ export function regionOutline(region) {
   return outline;
 }
 
+// The check runs' mean against the prediction and the sd the prediction allows it.
+function checkText(k) {
+  if (!k) return '-';
+  return `${signed(100 * k.relative_to_prediction, 3)} % (sd ${pct(k.sd)}, n ${k.runs}): ` +
+    (k.agrees ? 'agrees' : 'DISAGREES');
+}
+
 export function posteriorSection(s, history, width) {
   const p = s.posterior;
   const level = `${Math.round(100 * p.level)}%`;
@@ -53,6 +60,7 @@ export function posteriorSection(s, history, width) {
     {label: `${level} interval of the mean`, num: true, value: (r) => interval(r.t.interval)},
     {label: 'one packing', num: true, value: (r) => interval(r.t.run_interval)},
     {label: 'error', num: true, value: (r) => `${signed(100 * r.t.relative_error, 3)} %`},
+    {label: 'check runs against the prediction', num: true, value: (r) => checkText(r.t.check)},
   ], [{name: 'UCT', t: p.uct}, {name: 'BTT', t: p.btt}],
   {caption: 'Peak loads predicted at the estimate (model units, N)'});
   const lu = p.lab_uncertainty || {};
