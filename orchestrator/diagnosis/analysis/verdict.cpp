@@ -153,7 +153,7 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
     v.reason = c.candidate.effect + ": " + evidence_text(v.candidate);
     if (c.g_confirmed) {
       v.reason += "; it closes G = " + fixed(*c.g_confirmed, 2) +
-                  " of the held-out gap (held-out " + "rms " + fixed(*base_rms) + " -> " +
+                  " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
                   fixed(c.confirmed_rms.held_out.value_or(0)) + ")";
     }
     v.reason += "; the base model's held-out residuals are " + fixed(*gap, 2) +
