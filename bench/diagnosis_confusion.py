@@ -167,7 +167,7 @@ def main():
                     "verdict": found, "parameter": (v.get("parameter") or {}).get("value"),
                     "gap_closure": v.get("gap_closure"), "gap": v.get("gap"),
                     # The best contender's evidence (nats over the base), named or not.
-                    "evidence": v.get("evidence"),
+                    "evidence": v.get("evidence"), "undetermined": v.get("undetermined"),
                     "confidence": (v.get("confidence") or {}).get("level"),
                     "runner_up": (v.get("runner_up") or {}).get("effect"),
                     "ranking": [x.get("effect") for x in sorted(
@@ -265,13 +265,16 @@ def write_matrix(rows, work, wall):
                   f" of {len(eff)}"]
     def evidence(r):
         return ((r.get("evidence") or {}).get("value"))
-    null_evidence = [evidence(r) for r in null if evidence(r) is not None]
+    # An undetermined verdict judged nothing (the fit on a bound, no held-out residual): its
+    # contenders' evidence is no sample of what a judged null gives.
+    null_evidence = [evidence(r) for r in null
+                     if evidence(r) is not None and not r.get("undetermined")]
     if null_evidence:
         t = null_threshold(null_evidence)
         used = (null[0].get("evidence") or {}).get("threshold")
         lines += [f"- null twins' best contender evidence (nats over the base), sorted: "
                   + ", ".join(f"{x:.2f}" for x in sorted(null_evidence)),
-                  f"- evidence threshold that at most 10% of these {len(null_evidence)} nulls "
+                  f"- evidence threshold that at most 10% of these {len(null_evidence)} judged nulls "
                   f"exceed: {t:.2f} nats (the requests used {used}); effect twins whose best "
                   f"contender exceeds it: {sum(1 for r in eff if (evidence(r) or -1e300) > t)} "
                   f"of {len(eff)}, the hidden effect among them: "
