@@ -87,7 +87,9 @@ void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<T
     c.density.reset();
     c.evidence.reset();
     if (!c.fitted) continue;
-    c.density = held_out_density(residuals(c.ln_sim(), lab), targets, budget, surface_variance(c));
+    HeldOutDensity d =
+        held_out_density(residuals(c.ln_sim(), lab), targets, budget, surface_variance(c));
+    if (!d.terms.empty()) c.density = std::move(d);  // none: no held-out value, or no surface error
   }
   const CandidateResult& base = candidates[0];
   if (!base.confirmed || !base.density) return;
@@ -104,7 +106,9 @@ std::vector<int> rank_effects(std::vector<CandidateResult>& candidates) {
     const CandidateResult& x = candidates[a];
     const CandidateResult& y = candidates[b];
     if (group(x) != group(y)) return group(x) < group(y);
-    return x.evidence.value_or(-1e300) > y.evidence.value_or(-1e300);
+    if (x.evidence && y.evidence) return *x.evidence > *y.evidence;
+    if (x.evidence || y.evidence) return x.evidence.has_value();
+    return x.g().value_or(-1e300) > y.g().value_or(-1e300);
   });
   for (std::size_t r = 0; r < order.size(); ++r) candidates[order[r]].rank = int(r) + 1;
   return order;

@@ -75,7 +75,8 @@ inline constexpr double kCalibrationFitBudgets = 4.0;
 void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration);
 
 // Every fitted candidate's held-out density from its real runs if confirmed, else from its
-// surfaces with their leave-one-out error added; each effect's evidence over the (confirmed) base.
+// surfaces with their leave-one-out error added (none without a term); each effect's evidence
+// over the (confirmed) base.
 void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<Target>& targets,
                    const std::vector<double>& ln_lab, const std::vector<double>& budget);
 
@@ -87,7 +88,8 @@ std::vector<double> surface_variance(const CandidateResult& c);
 // ones that fit the calibration by their evidence (real runs), then the other identifiable ones
 // that fit by their evidence on the surfaces, then identifiable ones that do not fit the
 // calibration observations, then the non-identifiable ones, then those that could not be fitted;
-// by evidence within each. Returns the indices in rank order.
+// by evidence within each, those without any (surfaces too thin for a leave-one-out error, as the
+// local design's effects) after those with, by G. Returns the indices in rank order.
 std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
 
 // The verdict over the confirmed identifiable effects that fit the calibration (real runs only,
