@@ -1,7 +1,8 @@
 // Focus: the held-out log predictive density and the evidence that ranks the candidates
 // (evidence.hpp), with exact numbers: which observations count, the variance each term uses (lab
 // uncertainty, budget, a surface's own error, the floor), charged residuals, and the evidence of
-// an effect as its density minus the base model's over the observations both predict.
+// an effect as its density minus the base model's over the observations both predict, each
+// candidate's from its real runs or its surfaces, and the ranking by it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -92,6 +93,47 @@ TEST(Evidence, IsTheDensityOverTheBaseModelsOnTheObservationsBothPredict) {
   EXPECT_NEAR(*evidence_over(effect, base), 1.92, 1e-12);
   EXPECT_NEAR(*evidence_over(base, effect), -1.92, 1e-12);
   EXPECT_FALSE(evidence_over(effect, HeldOutDensity{}));
+}
+
+CandidateResult candidate(const char* effect, bool confirmed, std::vector<double> ln_sim) {
+  CandidateResult c;
+  c.candidate.effect = effect;
+  c.fitted = true;
+  c.confirmed = confirmed;
+  (confirmed ? c.confirmed_ln : c.predicted) = std::move(ln_sim);
+  if (*effect) c.identifiability = Identifiability{true, {}, {0}};
+  return c;
+}
+
+// Real runs for the base and a confirmed effect; surfaces with their leave-one-out error for the
+// others. Lab values 1 (ln 0), so ln(sim) is the residual.
+TEST(Evidence, EachCandidateFromItsRunsOrItsSurfacesRanksTheEffects) {
+  std::vector<CandidateResult> c = {
+      candidate("", true, {0.5, 0.1, -0.05, kNan}),
+      candidate("from-surfaces", false, {0.0, 0.1, -0.05, 0.0}),
+      candidate("without-error", false, {0.0, 0.0, 0.0, 0.0}),
+      candidate("confirmed", true, {0.0, 0.02, -0.05, 0.3}),
+  };
+  Surface exact, rough, thin;
+  rough.rms = std::sqrt(0.0075);
+  thin.rms = kNan;  // too few runs to leave one out
+  c[1].surfaces.per_target = {exact, rough, thin, exact};
+  c[2].surfaces.per_target = {thin, thin, thin, thin};
+  c[1].g_surface = 0.1;
+  c[2].g_surface = 0.9;  // a larger G, but no evidence to rank by
+  mark_evidence(c, four(), {0, 0, 0, 0}, kBudget);
+  ASSERT_TRUE(c[0].density && c[1].density && c[3].density);
+  EXPECT_FALSE(c[0].evidence);
+  // held-1 with v = 0.0025 + 0.0075, held-2 left out (no surface error), held-3 exact: r = 0.
+  ASSERT_EQ(c[1].density->terms.size(), 2u);
+  EXPECT_NEAR(c[1].density->lpd, 2.960440300138691, 1e-12);
+  EXPECT_NEAR(*c[1].evidence, 0.8068528194400552, 1e-12);  // on held-1, the one both predict
+  EXPECT_FALSE(c[2].density) << "no held-out observation scored: no density, not an lpd of 0";
+  EXPECT_FALSE(c[2].evidence);
+  EXPECT_NEAR(*c[3].evidence, 1.92, 1e-12);
+  EXPECT_EQ(rank_effects(c), (std::vector<int>{3, 1, 2}));
+  EXPECT_EQ(c[3].rank, 1);
+  EXPECT_EQ(c[2].rank, 3);
 }
 
 // The rule names the contender with the most evidence when it exceeds the threshold.
