@@ -12,9 +12,12 @@ docs/effects.md), seeds 1, 2, 3; the null case with seeds 1, 2, 3.
 
   bench/diagnosis_confusion.py [--build build] [--out DIR] [--effects a,b] [--twins 3] [--values x,y]
                                [--request examples/diagnose_twin.json] [--gap-budgets X]
+                               [--min-evidence X]
 
-Also printed: the gap threshold (held-out rms in budgets) that at most 10% of the null twins
-exceed, to be set as the request's "decision": {"gap_budgets": ...} for that template; and per
+Also printed: the evidence threshold (nats of held-out log predictive density over the base
+model, verdict.evidence) that at most 10% of the null twins' best contenders exceed, to be set as
+the request's "decision": {"min_evidence": ...} for that template; the same for the gap
+(held-out rms in budgets, "gap_budgets", the report's gap test); and per
 effect the share identified at each hidden value and its detection limit (the smallest value
 identified in >= 80% of >= 5 twins; --twins 15 gives 5 per value). A twin the engine cannot make
 (a specimen with no peak) is recorded and left out, not replaced.
@@ -91,6 +94,8 @@ def main():
     ap.add_argument("--request", default=os.path.join(ROOT, "examples", "diagnose_twin.json"))
     ap.add_argument("--gap-budgets", type=float, default=None,
                     help="the request's decision.gap_budgets (e.g. the threshold a null run printed)")
+    ap.add_argument("--min-evidence", type=float, default=None,
+                    help="the request's decision.min_evidence (e.g. the threshold a null run printed)")
     ap.add_argument("--reuse-twins", action="store_true",
                     help="keep twin files already in --out (e.g. a copy of an earlier run's, with its job store)")
     a = ap.parse_args()
@@ -101,6 +106,8 @@ def main():
     base_request.pop("dataset_file", None)
     if a.gap_budgets is not None:
         base_request.setdefault("decision", {})["gap_budgets"] = a.gap_budgets
+    if a.min_evidence is not None:
+        base_request.setdefault("decision", {})["min_evidence"] = a.min_evidence
     # The twins are made on the request's template, so that a larger template (--request with
     # another "job") gets twins of its own resolution.
     template = os.path.join(work, "template.json")
@@ -159,6 +166,8 @@ def main():
                     "resolution": a.resolution,
                     "verdict": found, "parameter": (v.get("parameter") or {}).get("value"),
                     "gap_closure": v.get("gap_closure"), "gap": v.get("gap"),
+                    # The best contender's evidence (nats over the base), named or not.
+                    "evidence": v.get("evidence"), "undetermined": v.get("undetermined"),
                     "confidence": (v.get("confidence") or {}).get("level"),
                     "runner_up": (v.get("runner_up") or {}).get("effect"),
                     "ranking": [x.get("effect") for x in sorted(
@@ -181,8 +190,9 @@ def main():
 
 
 def null_threshold(null_gaps, max_false_positive=0.10):
-    """The smallest gap threshold (held-out rms in budgets) that at most max_false_positive of the
-    null twins exceed, i.e. the decision threshold calibrated on these nulls."""
+    """The smallest threshold that at most max_false_positive of the null twins' figures exceed
+    (their gap in budgets, or their best contender's evidence in nats), i.e. the decision
+    threshold calibrated on these nulls."""
     gaps = sorted(null_gaps, reverse=True)
     allowed = int(max_false_positive * len(gaps))  # nulls that may lie above the threshold
     return gaps[allowed] if allowed < len(gaps) else 0.0
@@ -229,7 +239,7 @@ def write_matrix(rows, work, wall):
     g_all = [x for x in g_all if x is not None]
     over = [r for r in eff if (r["base_gap"] or {}).get("exceeds_budget")]
     lines += ["",
-              f"- twins whose base held-out gap exceeds the decision threshold: {len(over)} of "
+              f"- twins whose base held-out gap exceeds the gap threshold (gap_budgets): {len(over)} of "
               f"{len(eff)}; identified among those: "
               f"{sum(1 for r in over if r['verdict'] == r['hidden'])}",
               f"- top-1 identification: {len(hits)} of {len(eff)}"
@@ -253,6 +263,22 @@ def write_matrix(rows, work, wall):
                   f"{t:.2f} budgets; effect twins above it: "
                   f"{sum(1 for r in eff if ((r['base_gap'] or {}).get('held_out_budgets') or 0) > t)}"
                   f" of {len(eff)}"]
+    def evidence(r):
+        return ((r.get("evidence") or {}).get("value"))
+    # An undetermined verdict judged nothing (the fit on a bound, no held-out residual): its
+    # contenders' evidence is no sample of what a judged null gives.
+    null_evidence = [evidence(r) for r in null
+                     if evidence(r) is not None and not r.get("undetermined")]
+    if null_evidence:
+        t = null_threshold(null_evidence)
+        used = (null[0].get("evidence") or {}).get("threshold")
+        lines += [f"- null twins' best contender evidence (nats over the base), sorted: "
+                  + ", ".join(f"{x:.2f}" for x in sorted(null_evidence)),
+                  f"- evidence threshold that at most 10% of these {len(null_evidence)} judged nulls "
+                  f"exceed: {t:.2f} nats (the requests used {used}); effect twins whose best "
+                  f"contender exceeds it: {sum(1 for r in eff if (evidence(r) or -1e300) > t)} "
+                  f"of {len(eff)}, the hidden effect among them: "
+                  f"{sum(1 for r in eff if (evidence(r) or -1e300) > t and (r.get('evidence') or {}).get('effect') == r['hidden'])}"]
     lines += detection_limits(eff)
     if failed:
         lines += [f"- twins that could not be made (left out): "

@@ -28,6 +28,11 @@ std::string diagnosis_text(const json& s) {
   const json& c = at(v, "confidence");
   out << "Verdict: " << fmt(at(v, "label"));
   if (p.is_object()) out << " (" << fmt(at(p, "name")) << " = " << fmt(at(p, "value")) << ")";
+  const json& e = at(v, "evidence");
+  if (at(v, "effect").is_string() && at(e, "value").is_number()) {
+    out << ", evidence " << fmt(at(e, "value"), "%.2f") << " nats (threshold "
+        << fmt(at(e, "threshold"), "%.2f") << ")";
+  }
   if (at(v, "gap_closure").is_number()) out << ", G = " << fmt(at(v, "gap_closure"), "%.2f");
   out << ", confidence " << fmt(at(c, "level")) << " (bootstrap "
       << fmt(at(at(c, "bootstrap"), "agreement"), "%.2f") << ", seeds "
@@ -48,8 +53,9 @@ std::string diagnosis_text(const json& s) {
   }
   const json& u = at(v, "runner_up");
   if (u.is_object()) {
-    out << "Runner-up: " << fmt(at(u, "effect")) << ", G = " << fmt(at(u, "gap_closure"), "%.2f")
-        << " (" << fmt(at(u, "basis")) << ")\n";
+    out << "Runner-up: " << fmt(at(u, "effect")) << ", evidence " << fmt(at(u, "evidence"), "%.2f")
+        << " nats, G = " << fmt(at(u, "gap_closure"), "%.2f") << " (" << fmt(at(u, "basis"))
+        << ")\n";
   }
   if (at(at(s, "screen"), "reason").is_string()) {
     out << "Screen: " << fmt(at(at(s, "screen"), "reason")) << "\n";
@@ -85,9 +91,9 @@ std::string diagnosis_text(const json& s) {
              "ratio is out of the base model's reach), or do not depend on that strength there\n";
     }
   }
-  out << "\nCandidates (ranked by held-out gap closure G):\n";
-  std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %8s %-10s %s\n", "rank", "effect",
-                "identifiable", "fits cal", "G", "basis", "fitted parameter");
+  out << "\nCandidates (ranked by held-out evidence over the base model, nats):\n";
+  std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %9s %8s %-10s %s\n", "rank", "effect",
+                "identifiable", "fits cal", "evidence", "G", "basis", "fitted parameter");
   out << line;
   const json& missing = at(at(s, "gap"), "closure_missing");
   if (missing.is_string()) out << "  No gap closure to show: " << fmt(missing) << ".\n";
@@ -105,9 +111,10 @@ std::string diagnosis_text(const json& s) {
     auto yes_no = [&](const char* key) {
       return at(k, key).is_boolean() ? (k[key].get<bool>() ? "yes" : "no") : "-";
     };
-    std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %8s %-10s %s\n",
+    std::snprintf(line, sizeof line, "  %4s %-22s %-12s %-8s %9s %8s %-10s %s\n",
                   fmt(at(k, "rank")).c_str(), k["effect"].get<std::string>().c_str(),
                   yes_no("identifiable"), yes_no("fits_calibration"),
+                  fmt(at(at(k, "evidence"), "value"), "%.2f").c_str(),
                   fmt(at(at(k, "gap_closure"), "value"), "%.3f").c_str(),
                   fmt(at(at(k, "gap_closure"), "basis")).c_str(), param.c_str());
     out << line;

@@ -189,9 +189,9 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
        [](json& r) {
          r["decision"] = {{"gap_budgets", 0}};
        }},
-      {"decision.min_gap_closure",
+      {"decision.min_evidence",
        [](json& r) {
-         r["decision"] = {{"min_gap_closure", 1}};
+         r["decision"] = {{"min_evidence", -1}};
        }},
       {"decision.g",
        [](json& r) {
@@ -240,14 +240,30 @@ TEST(DiagnosisRequest, ScreeningDefaultsOnAndIsRead) {
 TEST(DiagnosisRequest, TheDecisionRuleDefaultsAndIsRead) {
   DiagnosisCampaign c = parse_diagnosis_campaign(request());
   EXPECT_EQ(c.decision.gap_budgets, 1.0);
-  EXPECT_EQ(c.decision.min_gap_closure, 0.3);
+  EXPECT_EQ(c.decision.min_evidence, 2.0);  // nats: calibrated on null twins (evidence_twin_test)
   json r = request();
   r["decision"] = {{"gap_budgets", 2.4}};
   c = parse_diagnosis_campaign(r);
   EXPECT_EQ(c.decision.gap_budgets, 2.4);
-  EXPECT_EQ(c.decision.min_gap_closure, 0.3);
-  r["decision"]["min_gap_closure"] = 0.5;
-  EXPECT_EQ(parse_diagnosis_campaign(r).decision.min_gap_closure, 0.5);
+  EXPECT_EQ(c.decision.min_evidence, 2.0);
+  r["decision"]["min_evidence"] = 0;
+  EXPECT_EQ(parse_diagnosis_campaign(r).decision.min_evidence, 0.0);
+  r["decision"]["min_evidence"] = -0.5;
+  try {
+    parse_diagnosis_campaign(r);
+    ADD_FAILURE() << "a negative evidence threshold was accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(e.field, "decision.min_evidence");
+    EXPECT_EQ(std::string(e.what()), "decision.min_evidence: must be 0 or more (nats)");
+  }
+  // The gap-closure threshold of the earlier rule is no field any more.
+  r["decision"] = {{"min_gap_closure", 0.3}};
+  try {
+    parse_diagnosis_campaign(r);
+    ADD_FAILURE() << "decision.min_gap_closure was accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(std::string(e.what()), "decision.min_gap_closure: unknown field");
+  }
 }
 
 TEST(DiagnosisRequest, JobsAreCanonicalAndCarryTheEffectAndNumerics) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "orchestrator/diagnosis/analysis/evidence.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 
@@ -74,8 +75,9 @@ BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
     for (std::size_t i = 0; i < lab.size(); ++i) {
       lab[i] += noise_scale(targets[i], judged[i]) * normal();
     }
-    const std::vector<double> base = replicate_residuals(candidates[0], targets, budget, lab);
-    const auto base_rms = rms(base, targets, Role::held_out);
+    const HeldOutDensity base =
+        held_out_density(replicate_residuals(candidates[0], targets, budget, lab), targets, judged,
+                         surface_variance(candidates[0]));
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
@@ -83,13 +85,11 @@ BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
           !c.fits_calibration) {
         continue;
       }
-      const auto r = rms(replicate_residuals(c, targets, budget, lab), targets, Role::held_out);
-      if (const auto g = gap_closure(r, base_rms)) {
-        contenders.push_back({i, *g});
-      }
+      const HeldOutDensity d = held_out_density(replicate_residuals(c, targets, budget, lab),
+                                                targets, judged, surface_variance(c));
+      if (const auto e = evidence_over(d, base)) contenders.push_back({i, *e});
     }
-    const int chosen =
-        choose_effect(rule, rms_in_budgets(base, targets, judged, Role::held_out), contenders);
+    const int chosen = choose_effect(rule, contenders);
     ++out.winners[chosen < 0 ? "" : candidates[chosen].candidate.effect];
     ++out.replicates;
   }

@@ -1,11 +1,11 @@
 // How firm the verdict is against the noise it was judged under. Each replicate redraws every lab
 // value as ln y + N(0, sigma^2 + budget^2) (lab scatter and numerical noise), re-fits the base and
-// every fitted effect on its surfaces, and replays the verdict rule; the confidence is the share of
-// replicates that reach the nominal verdict. A confirmed candidate's prediction in a replicate is
-// its real run shifted by the surface's change between the nominal and the replicate's fit, so
-// surface error at the fitted point does not enter. `budget` weights the re-fits (as it weighted
-// the nominal ones); `judged`, the budget at the confirmed base fit, is the noise drawn and the
-// scale of the replayed gap test.
+// every fitted effect on its surfaces, and replays the verdict rule on their evidence
+// (evidence.hpp); the confidence is the share of replicates that reach the nominal verdict. A
+// confirmed candidate's prediction in a replicate is its real run shifted by the surface's change
+// between the nominal and the replicate's fit, so surface error at the fitted point does not
+// enter. `budget` weights the re-fits (as it weighted the nominal ones); `judged`, the budget at
+// the confirmed base fit, is the noise drawn and the variance of the replayed evidence.
 #pragma once
 
 #include <cstdint>

@@ -10,6 +10,7 @@
 
 #include "orchestrator/diagnosis/analysis/candidate.hpp"
 #include "orchestrator/diagnosis/analysis/evaluator.hpp"
+#include "orchestrator/diagnosis/analysis/evidence.hpp"
 #include "orchestrator/diagnosis/analysis/surface_fit.hpp"
 
 namespace rockcal::diagnosis {
@@ -60,7 +61,11 @@ struct CandidateResult {
   // The surfaces plus this offset pass through the real run; the refinement re-fits on them.
   std::vector<double> surface_offset;
   std::vector<RefineStep> refinement;  // the real runs at successive fits, first = surface fit
-  int rank = 0;                        // 1 = best effect; 0 for the base
+  // The held-out log predictive density of its real runs if confirmed, else of its surfaces with
+  // their leave-one-out error (evidence.hpp); and, for an effect, its lpd minus the base model's.
+  std::optional<HeldOutDensity> density;
+  std::optional<double> evidence;  // nats
+  int rank = 0;                    // 1 = best effect; 0 for the base
 
   std::optional<double> g() const { return confirmed ? g_confirmed : g_surface; }
   const std::vector<double>& ln_sim() const { return confirmed ? confirmed_ln : predicted; }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "orchestrator/diagnosis/analysis/evidence.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 
 namespace rockcal::diagnosis {
@@ -18,7 +19,7 @@ std::string fixed(double x, int digits = 3) {
 
 bool eligible(const CandidateResult& c) {
   return c.fitted && c.confirmed && c.identifiability && c.identifiability->identifiable &&
-         c.fits_calibration && c.g_confirmed.has_value();
+         c.fits_calibration && c.evidence.has_value();
 }
 
 // The effects that would need a calibration observation to be judged: they move held-out ones
@@ -51,14 +52,12 @@ int group(const CandidateResult& c) {
 
 }  // namespace
 
-int choose_effect(const DecisionRule& rule, std::optional<double> base_held_out_budgets,
-                  const std::vector<Contender>& contenders) {
-  if (!base_held_out_budgets || !(*base_held_out_budgets > rule.gap_budgets)) return -1;
+int choose_effect(const DecisionRule& rule, const std::vector<Contender>& contenders) {
   const Contender* best = nullptr;
   for (const Contender& c : contenders) {
-    if (!best || c.g > best->g) best = &c;
+    if (!best || c.evidence > best->evidence) best = &c;
   }
-  return best && best->g >= rule.min_gap_closure ? best->index : -1;
+  return best && best->evidence > rule.min_evidence ? best->index : -1;
 }
 
 void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration) {
@@ -75,6 +74,31 @@ void mark_calibration_fits(std::vector<CandidateResult>& candidates, double comb
   }
 }
 
+std::vector<double> surface_variance(const CandidateResult& c) {
+  if (c.confirmed) return {};
+  std::vector<double> v;
+  for (const auto& s : c.surfaces.per_target) v.push_back(s ? s->rms * s->rms : NAN);
+  return v;
+}
+
+void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<Target>& targets,
+                   const std::vector<double>& lab, const std::vector<double>& budget) {
+  for (CandidateResult& c : candidates) {
+    c.density.reset();
+    c.evidence.reset();
+    if (!c.fitted) continue;
+    HeldOutDensity d =
+        held_out_density(residuals(c.ln_sim(), lab), targets, budget, surface_variance(c));
+    if (!d.terms.empty()) c.density = std::move(d);  // none: no held-out value, or no surface error
+  }
+  const CandidateResult& base = candidates[0];
+  if (!base.confirmed || !base.density) return;
+  for (std::size_t k = 1; k < candidates.size(); ++k) {
+    CandidateResult& c = candidates[k];
+    if (c.density) c.evidence = evidence_over(*c.density, *base.density);
+  }
+}
+
 std::vector<int> rank_effects(std::vector<CandidateResult>& candidates) {
   std::vector<int> order;
   for (int i = 1; i < int(candidates.size()); ++i) order.push_back(i);
@@ -82,8 +106,9 @@ std::vector<int> rank_effects(std::vector<CandidateResult>& candidates) {
     const CandidateResult& x = candidates[a];
     const CandidateResult& y = candidates[b];
     if (group(x) != group(y)) return group(x) < group(y);
-    const double gx = x.g().value_or(-1e300), gy = y.g().value_or(-1e300);
-    return gx > gy;
+    if (x.evidence && y.evidence) return *x.evidence > *y.evidence;
+    if (x.evidence || y.evidence) return x.evidence.has_value();
+    return x.g().value_or(-1e300) > y.g().value_or(-1e300);
   });
   for (std::size_t r = 0; r < order.size(); ++r) candidates[order[r]].rank = int(r) + 1;
   return order;
@@ -98,10 +123,13 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
   Verdict v;
   std::vector<Contender> contenders;
   for (int i : order) {
-    if (eligible(candidates[i])) contenders.push_back({i, *candidates[i].g_confirmed});
+    if (eligible(candidates[i])) contenders.push_back({i, *candidates[i].evidence});
   }
   const auto base_rms = candidates[0].confirmed_rms.held_out;
-  v.candidate = choose_effect(rule, gap, contenders);
+  v.candidate = choose_effect(rule, contenders);
+  for (const Contender& c : contenders) {
+    if (v.best < 0 || c.evidence > *candidates[v.best].evidence) v.best = c.index;
+  }
   for (int i : order) {
     if (i != v.candidate) {
       v.runner_up = i;
@@ -116,26 +144,33 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
                            " budgets (rms of each over its own numerical budget and lab "
                            "uncertainty; held-out rms " +
                            fixed(*base_rms) + ", combined budget " + fixed(combined_held_out) + ")";
-  if (!(*gap > rule.gap_budgets)) {
-    v.reason = size + ": within the " + fixed(rule.gap_budgets, 2) +
-               " budgets of the decision rule, no gap to explain";
-  } else if (v.candidate >= 0) {
+  const auto evidence_text = [&](int i) {
+    return "evidence " + fixed(*candidates[i].evidence, 2) + " nats over the base (threshold " +
+           fixed(rule.min_evidence, 2) + ")";
+  };
+  const bool no_gap = !(*gap > rule.gap_budgets);
+  const std::string gap_text = no_gap ? ": within the " + fixed(rule.gap_budgets, 2) +
+                                            " budgets of the decision rule, no gap to explain; "
+                                      : ": a gap, but ";
+  if (v.candidate >= 0) {
     const CandidateResult& c = candidates[v.candidate];
-    v.reason = c.candidate.effect + " closes G = " + fixed(*c.g_confirmed, 2) +
-               " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
-               fixed(c.confirmed_rms.held_out.value_or(0)) + "); the base model's held-out " +
-               "residuals are " + fixed(*gap, 2) + " budgets (combined budget " +
-               fixed(combined_held_out) + ")";
+    v.reason = c.candidate.effect + ": " + evidence_text(v.candidate);
+    if (c.g_confirmed) {
+      v.reason += "; it closes G = " + fixed(*c.g_confirmed, 2) +
+                  " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
+                  fixed(c.confirmed_rms.held_out.value_or(0)) + ")";
+    }
+    v.reason += "; the base model's held-out residuals are " + fixed(*gap, 2) +
+                " budgets (combined budget " + fixed(combined_held_out) + ")";
   } else if (contenders.empty()) {
-    v.reason = size +
-               ": a gap, but no candidate effect is both identifiable from these observations and "
-               "able to fit the calibration observations" +
+    v.reason = size + gap_text +
+               "no candidate effect is both identifiable from these observations and able to fit "
+               "the calibration observations" +
                unfixed_note(candidates, order);
   } else {
-    const CandidateResult& c = candidates[contenders.front().index];
-    v.reason = size + ": a gap, but the best effect, " + c.candidate.effect +
-               ", closes only G = " + fixed(*c.g_confirmed, 2) + " of it (< " +
-               fixed(rule.min_gap_closure, 2) + "): none of the candidates explains the gap" +
+    v.reason = size + gap_text + "the best effect, " + candidates[v.best].candidate.effect +
+               ", has " + evidence_text(v.best) +
+               (no_gap ? "" : ": none of the candidates explains the gap") +
                unfixed_note(candidates, order);
   }
   return v;
@@ -173,18 +208,21 @@ std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
     }
     const std::vector<double> base_residuals = residuals(candidates[0].seed_ln[j], lab);
     const auto base_rms = rms(base_residuals, targets, Role::held_out);
+    const HeldOutDensity base_density = held_out_density(base_residuals, targets, budget);
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
       if (!eligible(c) || c.seed_ln.size() <= j) continue;
-      const auto g =
-          gap_closure(rms(residuals(c.seed_ln[j], lab), targets, Role::held_out), base_rms);
-      if (!g) continue;
-      check.gap_closure[c.candidate.effect] = *g;
-      contenders.push_back({i, *g});
+      const std::vector<double> r = residuals(c.seed_ln[j], lab);
+      if (const auto g = gap_closure(rms(r, targets, Role::held_out), base_rms)) {
+        check.gap_closure[c.candidate.effect] = *g;
+      }
+      const auto e = evidence_over(held_out_density(r, targets, budget), base_density);
+      if (!e) continue;
+      check.evidence[c.candidate.effect] = *e;
+      contenders.push_back({i, *e});
     }
-    const int chosen = choose_effect(
-        rule, rms_in_budgets(base_residuals, targets, budget, Role::held_out), contenders);
+    const int chosen = choose_effect(rule, contenders);
     check.verdict = chosen < 0 ? "" : candidates[chosen].candidate.effect;
     out.push_back(std::move(check));
   }

@@ -19,6 +19,7 @@ struct SeedCheck {
   std::uint64_t seed = 0;
   std::string verdict;  // effect name, or "" for no effect needed
   std::map<std::string, double> gap_closure;
+  std::map<std::string, double> evidence;  // nats over the base on this seed's runs
   // False when every re-run equals its nominal run: a regular packing with no seeded effect does
   // not depend on the seed, and the check then repeats the verdict instead of testing it.
   bool informative = true;
@@ -36,31 +37,33 @@ struct Confidence {
 
 struct Verdict {
   int candidate = -1;  // index into candidates; -1 = no effect needed
+  int best = -1;       // the contender with the most evidence, named or not; -1 = none
   int runner_up = -1;
   bool undetermined = false;  // the data cannot judge any effect (temper_verdict)
   std::string reason;
   std::optional<ModelMiss> miss;  // the miss the reason states (temper_verdict), if any
 };
 
-// The verdict rule's two thresholds (docs/diagnosis.md). The defaults are the hand-set v1 values;
-// a campaign should set gap_budgets from null twins (bench/diagnosis_confusion.py prints the
-// threshold that at most 10% of its nulls exceed), since the budget's own calibration decides
-// how often a model without a hidden effect crosses it.
+// The verdict rule (docs/diagnosis.md, "Verdict rules"). An effect is named when its evidence
+// over the base model (held-out log predictive density, evidence.hpp) exceeds min_evidence. The
+// default is calibrated on null twins of the formula engine
+// (tests/diagnosis/evidence_twin_test.cpp: at most 10% of them put a contender above it);
+// bench/diagnosis_confusion.py prints the same threshold from the null twins of a campaign's own
+// template. gap_budgets is where a residual stops being noise: the report's gap test and the miss a
+// verdict states (temper_verdict).
 struct DecisionRule {
-  double gap_budgets = 1.0;      // the base's held-out rms, in budgets, above which there is a gap
-  double min_gap_closure = 0.3;  // the least G that names an effect
+  double gap_budgets = 1.0;   // held-out rms, in noise budgets, above which the report calls a gap
+  double min_evidence = 2.0;  // nats over the base model that name an effect
 };
 
 struct Contender {
-  int index;  // into the candidates
-  double g;
+  int index;        // into the candidates
+  double evidence;  // nats over the base model
 };
 
-// docs/diagnosis.md: the contender with the largest G if the base's held-out residuals exceed
-// rule.gap_budgets (rms_in_budgets) and that G >= rule.min_gap_closure; otherwise -1 ("no effect
+// The contender with the most evidence if it exceeds rule.min_evidence; otherwise -1 ("no effect
 // needed"). Ties keep the earlier.
-int choose_effect(const DecisionRule& rule, std::optional<double> base_held_out_budgets,
-                  const std::vector<Contender>& contenders);
+int choose_effect(const DecisionRule& rule, const std::vector<Contender>& contenders);
 
 // A candidate explains the data only if it fits the calibration observations: its calibration rms
 // (real runs if confirmed, else surfaces) must lie within the combined calibration budget of the
@@ -71,20 +74,34 @@ int choose_effect(const DecisionRule& rule, std::optional<double> base_held_out_
 inline constexpr double kCalibrationFitBudgets = 4.0;
 void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration);
 
+// Every fitted candidate's held-out density from its real runs if confirmed, else from its
+// surfaces with their leave-one-out error added (none without a term); each effect's evidence
+// over the (confirmed) base.
+void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<Target>& targets,
+                   const std::vector<double>& ln_lab, const std::vector<double>& budget);
+
+// The variance a candidate's prediction adds to each held-out observation's: none from real runs
+// (confirmed; empty), the squared leave-one-out rms of each surface otherwise (NaN without one).
+std::vector<double> surface_variance(const CandidateResult& c);
+
 // Ranks the effects (candidates[1..]) and sets their `rank` (1 = best): confirmed identifiable
-// ones by their confirmed G, then the other identifiable ones by surface G, then identifiable ones
-// that do not fit the calibration observations, then the non-identifiable ones, then those that
-// could not be fitted. Returns the indices in rank order.
+// ones that fit the calibration by their evidence (real runs), then the other identifiable ones
+// that fit by their evidence on the surfaces, then identifiable ones that do not fit the
+// calibration observations, then the non-identifiable ones, then those that could not be fitted;
+// by evidence within each, those without any (surfaces too thin for a leave-one-out error, as the
+// local design's effects) after those with, by G. Returns the indices in rank order.
 std::vector<int> rank_effects(std::vector<CandidateResult>& candidates);
 
-// The verdict over the confirmed identifiable effects (real runs only) and the runner-up (the
-// best-ranked effect that is not the verdict), with a sentence saying why. `gap` is the base's
-// held-out residuals in budgets (rms_in_budgets of its real runs); the combined budget is quoted.
+// The verdict over the confirmed identifiable effects that fit the calibration (real runs only,
+// by evidence) and the runner-up (the best-ranked effect that is not the verdict), with a
+// sentence saying why. `gap` is the base's held-out residuals in budgets (rms_in_budgets of its
+// real runs), quoted with the combined budget.
 Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& candidates,
                const std::vector<int>& order, std::optional<double> gap, double combined_held_out);
 
-// The verdict rule replayed on each replicate seed's runs of the base and confirmed effects; a
-// seed is informative when some candidate's runs on it differ from its nominal runs.
+// The verdict rule replayed on each replicate seed's runs of the base and confirmed effects (their
+// evidence from those runs); a seed is informative when some candidate's runs on it differ from
+// its nominal runs.
 std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
                                    const std::vector<CandidateResult>& candidates,
                                    const std::vector<Target>& targets,

@@ -41,18 +41,16 @@ GridSpec parse_grid(orch::JsonFields& root) {
   return g;
 }
 
-// "decision": the verdict rule's thresholds, e.g. a gap threshold calibrated on null twins.
+// "decision": the verdict rule's thresholds, e.g. an evidence threshold calibrated on null twins.
 DecisionRule parse_decision(orch::JsonFields& root) {
   DecisionRule rule;
   const json* v = root.get("decision");
   if (!v) return rule;
   orch::JsonFields f(*v, "decision");
   rule.gap_budgets = f.positive("gap_budgets").value_or(rule.gap_budgets);
-  if (auto g = f.number("min_gap_closure")) {
-    if (!(*g > 0 && *g < 1)) {
-      throw orch::RequestError(f.path_of("min_gap_closure"), "must lie between 0 and 1");
-    }
-    rule.min_gap_closure = *g;
+  if (auto e = f.number("min_evidence")) {
+    if (!(*e >= 0)) throw orch::RequestError(f.path_of("min_evidence"), "must be 0 or more (nats)");
+    rule.min_evidence = *e;
   }
   f.reject_unknown();
   return rule;

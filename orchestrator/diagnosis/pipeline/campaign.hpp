@@ -48,7 +48,7 @@ struct DiagnosisCampaign {
   int refine = 2;                 // re-fits of each confirmed candidate on run-corrected surfaces
   int bootstrap = 200;            // replicates of the lab and numerical noise for the confidence
   std::uint64_t random_seed = 1;  // the bootstrap's draws
-  DecisionRule decision;          // when a gap is one, and when an effect explains it
+  DecisionRule decision;          // when a gap is one, and the evidence that names an effect
 };
 
 // Parses and validates the whole request: the dataset (through the dataset parser), the template

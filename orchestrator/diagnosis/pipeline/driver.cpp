@@ -373,9 +373,10 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   report.combined_calibration = combined_budget(c.targets, judged, Role::calibration);
   report.combined_held_out = combined_budget(c.targets, judged, Role::held_out);
 
-  // 5. G, ranking, verdict, confidence.
+  // 5. Evidence, ranking, verdict, confidence.
   phase(options, "analysis", 5, 0);
   mark_calibration_fits(report.candidates, report.combined_calibration);
+  mark_evidence(report.candidates, c.targets, lab, judged);
   const std::vector<int> order = rank_effects(report.candidates);
   report.held_out_budgets = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
                                            c.targets, judged, Role::held_out);

@@ -56,6 +56,12 @@ std::string verdict_section(const json& s) {
   }
   out += "<tr><th>F_r0, F_s0</th><td>" + show(at(v, "fr0")) + ", " + show(at(v, "fs0")) +
          " N</td></tr>";
+  const json& e = at(v, "evidence");
+  out += "<tr><th>evidence (held out)</th><td>" +
+         (at(e, "effect").is_string()
+              ? show(at(e, "effect")) + ": " + show(at(e, "value"), "%.2f") + " nats over the base"
+              : std::string("no contender")) +
+         "; threshold " + show(at(e, "threshold"), "%.2f") + " nats</td></tr>";
   out += "<tr><th>gap closure G</th><td>" + show(at(v, "gap_closure"), "%.2f") + "</td></tr>";
   const json& gap = at(v, "gap");
   for (const char* role : {"calibration", "held_out"}) {
@@ -65,9 +71,9 @@ std::string verdict_section(const json& s) {
   }
   const json& u = at(v, "runner_up");
   if (u.is_object()) {
-    out += "<tr><th>runner-up</th><td>" + show(at(u, "effect")) +
-           ", G = " + show(at(u, "gap_closure"), "%.2f") + " (" + show(at(u, "basis")) +
-           ")</td></tr>";
+    out += "<tr><th>runner-up</th><td>" + show(at(u, "effect")) + ", evidence " +
+           show(at(u, "evidence"), "%.2f") + " nats, G = " + show(at(u, "gap_closure"), "%.2f") +
+           " (" + show(at(u, "basis")) + ")</td></tr>";
   }
   const json& c = at(v, "confidence");
   out += "<tr><th>confidence</th><td>" + show(at(c, "level")) + ": bootstrap agreement " +
@@ -171,9 +177,65 @@ std::string closure_plot(const json& s) {
     hidden.values.push_back(identifiable ? NAN : g);
   }
   chart.series = {confirmed, surface, hidden};
-  const json& least = at(at(s, "decision"), "min_gap_closure");
-  if (least.is_number()) chart.lines = {{least.get<double>(), "G = " + show(least, "%.2g")}};
   return "<h2>Gap closure per effect</h2>\n" + legend_html(chart.series) + svg_bars(chart);
+}
+
+// Each effect's evidence over the base model against the rule's threshold, then each model's
+// held-out log predictive density term by term.
+std::string evidence_section(const json& s) {
+  BarChart chart;
+  chart.y_label = "evidence over the base (nats, held out)";
+  Series confirmed{"confirmed by real runs", "#1f77b4", {}};
+  Series surface{"on the surfaces (+ their error)", "#9ecae1", {}};
+  Series hidden{"not identifiable", "#ccc", {}};
+  std::vector<std::string> held_out;
+  for (const json& o : at(s, "observations")) {
+    if (at(o, "role") == "held_out") held_out.push_back(o["id"].get<std::string>());
+  }
+  std::string rows;
+  for (const json& c : at(s, "candidates")) {
+    const json& e = at(c, "evidence");
+    if (!e.is_object()) continue;
+    rows += "<tr><td>" + escape_html(effect_name(c)) + "</td><td>" + show(at(e, "lpd"), "%.2f") +
+            "</td><td>" + show(at(e, "value"), "%.2f") + "</td>";
+    for (const std::string& id : held_out) {
+      const json* term = nullptr;
+      for (const json& t : at(e, "terms")) {
+        if (t["id"] == id) term = &t;
+      }
+      rows += "<td>" + (term ? show(at(*term, "lpd"), "%.2f") : show(json(nullptr))) + "</td>";
+    }
+    rows += "<td>" + show(at(e, "basis")) + "</td></tr>\n";
+    if (!c["effect"].is_string()) continue;
+    chart.categories.push_back(effect_name(c));
+    const double x = number(at(e, "value"));
+    const bool identifiable = at(c, "identifiable") == true;
+    const bool real = at(e, "basis") == "confirmed";
+    confirmed.values.push_back(identifiable && real ? x : NAN);
+    surface.values.push_back(identifiable && !real ? x : NAN);
+    hidden.values.push_back(identifiable ? NAN : x);
+  }
+  if (rows.empty()) return "";
+  std::string out = "<h2>Evidence per effect</h2>\n";
+  const json& threshold = at(at(s, "decision"), "min_evidence");
+  if (!chart.categories.empty()) {
+    chart.series = {confirmed, surface, hidden};
+    if (threshold.is_number()) {
+      chart.lines = {{threshold.get<double>(), "threshold " + show(threshold, "%.2f")}};
+    }
+    out += legend_html(chart.series) + svg_bars(chart);
+  }
+  std::string head;
+  for (const std::string& id : held_out) head += "<th>" + escape_html(id) + "</th>";
+  return out +
+         "<p>Held-out log predictive density (nats): each held-out charged residual r as a draw "
+         "from N(0, v), v = budget&sup2; + lab uncertainty&sup2; (+ the surface's leave-one-out "
+         "rms&sup2; where the prediction is from surfaces), term -&frac12;(r&sup2;/v + ln 2&pi;v). "
+         "An effect's evidence is its density minus the base model's; it is named above " +
+         show(threshold, "%.2f") +
+         " nats.</p>\n<table><tr><th>model</th><th>lpd</th>"
+         "<th>evidence</th>" +
+         head + "<th>basis</th></tr>\n" + rows + "</table>\n";
 }
 
 std::string history_plot(const json& s) {
@@ -197,7 +259,8 @@ std::string candidates_table(const json& s) {
       (screen.is_string() ? "<p>Screen: " + show(screen) + "</p>\n" : std::string()) +
       "<table><tr><th>rank</th><th>model</th><th>identifiable</th>"
       "<th>fits calibration</th>"
-      "<th>moves</th><th>fitted parameter</th><th>F_r0</th><th>F_s0</th><th>G</th><th>basis</th>"
+      "<th>moves</th><th>fitted parameter</th><th>F_r0</th><th>F_s0</th><th>evidence (nats)</th>"
+      "<th>G</th><th>basis</th>"
       "<th>rms cal.</th><th>rms held out</th><th>surface leave-one-out rms (max)</th></tr>\n";
   // Base first (rank 0), then the effects in rank order.
   std::vector<json> ranked(at(s, "candidates").begin(), at(s, "candidates").end());
@@ -221,7 +284,8 @@ std::string candidates_table(const json& s) {
            "</td><td>" + show(at(c, "fits_calibration")) + "</td><td>" + moves + "</td><td>" +
            (p.is_object() ? show(at(p, "name")) + " = " + show(at(p, "value")) : "") + "</td><td>" +
            show(at(at(c, "fit"), "fr0")) + "</td><td>" + show(at(at(c, "fit"), "fs0")) +
-           "</td><td>" + show(at(at(c, "gap_closure"), "value"), "%.2f") + "</td><td>" +
+           "</td><td>" + show(at(at(c, "evidence"), "value"), "%.2f") + "</td><td>" +
+           show(at(at(c, "gap_closure"), "value"), "%.2f") + "</td><td>" +
            show(at(at(c, "gap_closure"), "basis")) + "</td><td>" +
            show(at(which, "calibration"), "%.4f") + "</td><td>" +
            show(at(which, "held_out"), "%.4f") + "</td><td>" + show(json(fit), "%.4f") +
@@ -349,6 +413,7 @@ std::string report_html(const json& s) {
   out += verdict_section(s);
   out += gap_section(s);
   out += residual_plot(s);
+  out += evidence_section(s);
   out += closure_plot(s);
   out += candidates_table(s);
   out += refinement_table(s);
@@ -360,8 +425,9 @@ std::string report_html(const json& s) {
       "<p class=\"note\">Method: docs/diagnosis.md. Response surfaces in (ln F_r0, ln F_s0[, s]) "
       "(a cubic radial-basis interpolant on a quadratic, smoothed by cross-validation) fitted to "
       "engine runs on a grid; every candidate calibrated on them; the "
-      "base and the best candidates confirmed by real runs; effects ranked by held-out gap "
-      "closure only.</p>\n</body></html>\n";
+      "base and the best candidates confirmed by real runs; effects ranked by their evidence "
+      "on held-out observations only (log predictive density over the base model's); G, the "
+      "held-out gap closure, shown beside it.</p>\n</body></html>\n";
   return out;
 }
 

@@ -52,6 +52,23 @@ json parameter_json(const CandidateResult& c) {
           {"s", c.point.s}};
 }
 
+// The held-out log predictive density (evidence.hpp), term by term, and an effect's evidence
+// over the base model.
+json evidence_json(const CandidateResult& c, const std::vector<Target>& targets) {
+  if (!c.density) return nullptr;
+  json terms = json::array();
+  for (const DensityTerm& t : c.density->terms) {
+    terms.push_back({{"id", targets[t.target].id},
+                     {"charged", t.residual},
+                     {"variance", t.variance},
+                     {"lpd", t.lpd}});
+  }
+  return {{"value", num(c.evidence)},
+          {"lpd", c.density->lpd},
+          {"basis", c.confirmed ? "confirmed" : "surface"},
+          {"terms", terms}};
+}
+
 json candidate_json(const CandidateResult& c, const std::vector<Target>& targets,
                     const std::vector<double>& lab) {
   json j = {{"effect", c.candidate.is_base() ? json(nullptr) : json(c.candidate.effect)},
@@ -73,6 +90,7 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
               {"confirmed", c.confirmed ? rms_json(c.confirmed_rms) : json(nullptr)}};
   j["predicted_residuals"] = by_target(targets, residuals(c.predicted, lab));
   if (c.confirmed) j["residuals"] = by_target(targets, residuals(c.confirmed_ln, lab));
+  j["evidence"] = evidence_json(c, targets);
   if (!c.candidate.is_base()) {
     j["gap_closure"] = {{"surface", num(c.g_surface)},
                         {"confirmed", num(c.g_confirmed)},
@@ -141,6 +159,7 @@ json confidence_json(const Confidence& c) {
     seeds.push_back({{"seed", s.seed},
                      {"verdict", s.verdict.empty() ? "no effect needed" : s.verdict},
                      {"gap_closure", s.gap_closure},
+                     {"evidence", s.evidence},
                      {"informative", s.informative}});
   }
   return {{"level", c.level},
@@ -178,7 +197,7 @@ json miss_json(const std::optional<ModelMiss>& m) {
           {"beyond", beyond}};
 }
 
-json verdict_json(const DiagnosisResult& r) {
+json verdict_json(const DiagnosisResult& r, const DecisionRule& rule) {
   const CandidateResult& base = r.candidates[0];
   const int v = r.verdict.candidate;
   json j = {{"effect", v >= 0 ? json(r.candidates[v].candidate.effect) : json(nullptr)},
@@ -190,6 +209,13 @@ json verdict_json(const DiagnosisResult& r) {
   j["fr0"] = after.point.fr0_n;
   j["fs0"] = after.point.fs0_n;
   j["gap_closure"] = v >= 0 ? num(after.g_confirmed) : json(nullptr);
+  // The contender with the most evidence (named or not) against the rule's threshold.
+  const int best = r.verdict.best;
+  j["evidence"] = {
+      {"effect", best >= 0 ? json(r.candidates[best].candidate.effect) : json(nullptr)},
+      {"value", best >= 0 ? num(r.candidates[best].evidence) : json(nullptr)},
+      {"threshold", rule.min_evidence},
+      {"unit", "nats"}};
   j["gap"] = {{"calibration",
                {{"before", num(base.confirmed_rms.calibration)},
                 {"after", num(after.confirmed_rms.calibration)}}},
@@ -201,6 +227,7 @@ json verdict_json(const DiagnosisResult& r) {
     j["runner_up"] = {{"effect", u.candidate.effect},
                       {"parameter", u.fitted ? parameter_json(u) : json(nullptr)},
                       {"gap_closure", num(u.g())},
+                      {"evidence", num(u.evidence)},
                       {"basis", u.confirmed ? "confirmed" : "surface"},
                       {"identifiable", u.identifiability && u.identifiability->identifiable}};
   } else {
@@ -374,34 +401,33 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
   json candidates = json::array();
   for (const CandidateResult& k : r.candidates)
     candidates.push_back(candidate_json(k, c.targets, lab));
-  return {
-      {"kind", "diagnosis"},
-      {"name", c.name},
-      {"dataset", c.dataset.name},
-      {"verdict", verdict_json(r)},
-      {"gap", gap_json(r, c.targets, lab, c.decision)},
-      {"decision",
-       {{"gap_budgets", c.decision.gap_budgets}, {"min_gap_closure", c.decision.min_gap_closure}}},
-      {"observations", observations},
-      {"budget", budget_json(r, c.targets, c.dataset.origin)},
-      {"ratio", ratio_json(r.ratio, c.targets)},
-      {"data_inconsistencies", inconsistencies_json(r.inconsistencies, c.targets)},
-      {"screen", screen_json(r.screen, c)},
-      {"candidates", candidates},
-      {"grid",
-       {{"design", c.grid.design == Design::local ? "local" : "global"},
-        {"step", c.grid.design == Design::local ? json(c.grid.step) : json(nullptr)},
-        {"fr0", c.grid.fr0},
-        {"fs0", c.grid.fs0},
-        {"s", c.grid.s},
-        {"bounds", {{"fr0", {c.fr0_n.lo, c.fr0_n.hi}}, {"fs0", {c.fs0_n.lo, c.fs0_n.hi}}}}}},
-      {"runs",
-       {{"model_points", r.model_points},
-        // One engine job per distinct test condition of a model point.
-        {"jobs", r.model_points * int(plan_runs(c.targets).runs.size())},
-        {"failed_values", r.failed_values},
-        {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
-      {"units", "model"}};
+  return {{"kind", "diagnosis"},
+          {"name", c.name},
+          {"dataset", c.dataset.name},
+          {"verdict", verdict_json(r, c.decision)},
+          {"gap", gap_json(r, c.targets, lab, c.decision)},
+          {"decision",
+           {{"gap_budgets", c.decision.gap_budgets}, {"min_evidence", c.decision.min_evidence}}},
+          {"observations", observations},
+          {"budget", budget_json(r, c.targets, c.dataset.origin)},
+          {"ratio", ratio_json(r.ratio, c.targets)},
+          {"data_inconsistencies", inconsistencies_json(r.inconsistencies, c.targets)},
+          {"screen", screen_json(r.screen, c)},
+          {"candidates", candidates},
+          {"grid",
+           {{"design", c.grid.design == Design::local ? "local" : "global"},
+            {"step", c.grid.design == Design::local ? json(c.grid.step) : json(nullptr)},
+            {"fr0", c.grid.fr0},
+            {"fs0", c.grid.fs0},
+            {"s", c.grid.s},
+            {"bounds", {{"fr0", {c.fr0_n.lo, c.fr0_n.hi}}, {"fs0", {c.fs0_n.lo, c.fs0_n.hi}}}}}},
+          {"runs",
+           {{"model_points", r.model_points},
+            // One engine job per distinct test condition of a model point.
+            {"jobs", r.model_points * int(plan_runs(c.targets).runs.size())},
+            {"failed_values", r.failed_values},
+            {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
+          {"units", "model"}};
 }
 
 }  // namespace rockcal::diagnosis

@@ -41,10 +41,13 @@ function verdictSection(s) {
   const pairs = [
     p ? ['fitted parameter', `${p.name} = ${num(p.value)} ${p.unit || ''}`] : null,
     ['F_r0, F_s0 (model)', `${num(v.fr0)} N, ${num(v.fs0)} N`],
+    v.evidence ? ['evidence (held out)', v.evidence.effect
+      ? `${v.evidence.effect}: ${num(v.evidence.value, 3)} nats over the base; threshold ${num(v.evidence.threshold, 3)} nats`
+      : `no contender; threshold ${num(v.evidence.threshold, 3)} nats`] : null,
     ['gap closure G', num(v.gap_closure, 3)],
     ['rms ln(sim/lab), calibration', rms('calibration')],
     ['rms ln(sim/lab), held out', rms('held_out')],
-    v.runner_up ? ['runner-up', `${v.runner_up.effect}, G = ${num(v.runner_up.gap_closure, 3)} (${v.runner_up.basis})`] : null,
+    v.runner_up ? ['runner-up', `${v.runner_up.effect}, evidence ${num(v.runner_up.evidence, 3)} nats, G = ${num(v.runner_up.gap_closure, 3)} (${v.runner_up.basis})`] : null,
   ].filter(Boolean);
   return section('Verdict',
     h('p', {class: 'verdict verdict-diagnosis'}, h('strong', {}, v.label), v.reason ? ` — ${v.reason}` : ''),
@@ -127,6 +130,7 @@ function candidateSection(s, width) {
   const rows = table([
     {label: 'candidate', value: (c) => effectName(c)},
     {label: 'rank', num: true, value: (c) => c.rank ?? '–'},
+    {label: 'evidence (nats)', num: true, value: (c) => (c.evidence ? num(c.evidence.value, 3) : '–')},
     {label: 'G', num: true, value: (c) => (c.gap_closure ? num(c.gap_closure.value, 3) : '–')},
     {label: 'basis', value: (c) => (c.gap_closure ? c.gap_closure.basis : '')},
     {label: 'fitted parameter', value: (c) => (c.parameter ? `${c.parameter.name} = ${num(c.parameter.value)} ${c.parameter.unit || ''}` : '')},

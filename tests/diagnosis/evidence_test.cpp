@@ -1,0 +1,154 @@
+// Focus: the held-out log predictive density and the evidence that ranks the candidates
+// (evidence.hpp), with exact numbers: which observations count, the variance each term uses (lab
+// uncertainty, budget, a surface's own error, the floor), charged residuals, and the evidence of
+// an effect as its density minus the base model's over the observations both predict, each
+// candidate's from its real runs or its surfaces, and the ranking by it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "orchestrator/diagnosis/analysis/evidence.hpp"
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/verdict.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+Target target(const char* id, Role role, double sigma, double value = 1.0) {
+  Target t;
+  t.id = id;
+  t.role = role;
+  t.sigma = sigma;
+  t.value = value;
+  t.conditions = {TestKind::uct, 10, 20, 5, 0, 0.05};
+  return t;
+}
+
+// A calibration observation, two held-out ones with v = 0.03^2 + 0.04^2 = 0.05^2 + 0^2 = 0.0025,
+// and a held-out one whose run failed.
+std::vector<Target> four() {
+  std::vector<Target> t = {
+      target("cal", Role::calibration, 0.02), target("held-1", Role::held_out, 0.03),
+      target("held-2", Role::held_out, 0.05), target("held-3", Role::held_out, 0.05)};
+  t[2].conditions.height_m = 30;  // other conditions: no pair of one specimen
+  t[3].conditions.height_m = 40;
+  return t;
+}
+const std::vector<double> kBudget = {0.01, 0.04, 0.0, 0.0};
+
+TEST(HeldOutDensity, SumsTheHeldOutTermsWithBudgetAndLabVariance) {
+  const HeldOutDensity d = held_out_density({0.5, 0.1, -0.05, kNan}, four(), kBudget);
+  ASSERT_EQ(d.terms.size(), 2u);  // the calibration observation and the failed run do not count
+  EXPECT_EQ(d.terms[0].target, 1u);
+  EXPECT_EQ(d.terms[1].target, 2u);
+  EXPECT_DOUBLE_EQ(d.terms[0].variance, 0.0025);
+  EXPECT_DOUBLE_EQ(d.terms[1].variance, 0.0025);
+  EXPECT_DOUBLE_EQ(d.terms[0].residual, 0.1);
+  // -0.5 (0.1^2 / 0.0025 + ln(2 pi 0.0025)) and -0.5 (0.05^2 / 0.0025 + ln(2 pi 0.0025)).
+  EXPECT_NEAR(d.terms[0].lpd, 0.07679374034931774, 1e-12);
+  EXPECT_NEAR(d.terms[1].lpd, 1.5767937403493182, 1e-12);
+  EXPECT_NEAR(d.lpd, 1.653587480698636, 1e-12);
+}
+
+TEST(HeldOutDensity, APredictionFromSurfacesAddsTheirErrorAndOneWithoutItIsLeftOut) {
+  // held-1: v = 0.0025 + 0.0075 = 0.01; held-2's surface has no leave-one-out error: left out.
+  const HeldOutDensity d =
+      held_out_density({0.5, 0.1, -0.05, kNan}, four(), kBudget, {0.0, 0.0075, kNan, 0.0});
+  ASSERT_EQ(d.terms.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.terms[0].variance, 0.01);
+  EXPECT_NEAR(d.lpd, 0.8836465597893729, 1e-12);  // -0.5 (1 + ln(2 pi 0.01))
+}
+
+TEST(HeldOutDensity, AnExactValueWithoutBudgetHasTheFloorVariance) {
+  std::vector<Target> t = four();
+  t[1].sigma = 0.0;
+  const HeldOutDensity d = held_out_density({0.0, 0.002, kNan, kNan}, t, {0, 0, 0, 0});
+  ASSERT_EQ(d.terms.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.terms[0].variance, kMinNoiseScale * kMinNoiseScale);
+  EXPECT_NEAR(d.lpd, 3.9888167457774646, 1e-12);  // -0.5 (4 + ln(2 pi 1e-6))
+}
+
+// Two held-out UCTs of one specimen, 1.0 and 1.5 (+-2%): a model between them is charged nothing.
+TEST(HeldOutDensity, ReadsChargedResiduals) {
+  const std::vector<Target> t = {target("a", Role::held_out, 0.02, 1.0),
+                                 target("b", Role::held_out, 0.02, 1.5)};
+  const double sim = std::log(1.2);
+  const HeldOutDensity d = held_out_density({sim - std::log(1.0), sim - std::log(1.5)}, t, {0, 0});
+  ASSERT_EQ(d.terms.size(), 2u);
+  EXPECT_EQ(d.terms[0].residual, 0.0);
+  EXPECT_EQ(d.terms[1].residual, 0.0);
+  EXPECT_NEAR(d.lpd, 2 * 2.9930844722234733, 1e-12);  // -0.5 ln(2 pi 0.0004), twice
+}
+
+// The effect brings held-1 from 0.1 to 0.02 at equal variance: 0.5 (0.1^2 - 0.02^2) / 0.0025 =
+// 1.92 nats. Only observations both models predict count: the effect's held-3 has no partner.
+TEST(Evidence, IsTheDensityOverTheBaseModelsOnTheObservationsBothPredict) {
+  const HeldOutDensity base = held_out_density({0.5, 0.1, -0.05, kNan}, four(), kBudget);
+  const HeldOutDensity effect = held_out_density({0.0, 0.02, -0.05, 0.3}, four(), kBudget);
+  ASSERT_EQ(effect.terms.size(), 3u);
+  ASSERT_TRUE(evidence_over(effect, base));
+  EXPECT_NEAR(*evidence_over(effect, base), 1.92, 1e-12);
+  EXPECT_NEAR(*evidence_over(base, effect), -1.92, 1e-12);
+  EXPECT_FALSE(evidence_over(effect, HeldOutDensity{}));
+}
+
+CandidateResult candidate(const char* effect, bool confirmed, std::vector<double> ln_sim) {
+  CandidateResult c;
+  c.candidate.effect = effect;
+  c.fitted = true;
+  c.confirmed = confirmed;
+  (confirmed ? c.confirmed_ln : c.predicted) = std::move(ln_sim);
+  if (*effect) c.identifiability = Identifiability{true, {}, {0}};
+  return c;
+}
+
+// Real runs for the base and a confirmed effect; surfaces with their leave-one-out error for the
+// others. Lab values 1 (ln 0), so ln(sim) is the residual.
+TEST(Evidence, EachCandidateFromItsRunsOrItsSurfacesRanksTheEffects) {
+  std::vector<CandidateResult> c = {
+      candidate("", true, {0.5, 0.1, -0.05, kNan}),
+      candidate("from-surfaces", false, {0.0, 0.1, -0.05, 0.0}),
+      candidate("without-error", false, {0.0, 0.0, 0.0, 0.0}),
+      candidate("confirmed", true, {0.0, 0.02, -0.05, 0.3}),
+  };
+  Surface exact, rough, thin;
+  rough.rms = std::sqrt(0.0075);
+  thin.rms = kNan;  // too few runs to leave one out
+  c[1].surfaces.per_target = {exact, rough, thin, exact};
+  c[2].surfaces.per_target = {thin, thin, thin, thin};
+  c[1].g_surface = 0.1;
+  c[2].g_surface = 0.9;  // a larger G, but no evidence to rank by
+  mark_evidence(c, four(), {0, 0, 0, 0}, kBudget);
+  ASSERT_TRUE(c[0].density && c[1].density && c[3].density);
+  EXPECT_FALSE(c[0].evidence);
+  // held-1 with v = 0.0025 + 0.0075, held-2 left out (no surface error), held-3 exact: r = 0.
+  ASSERT_EQ(c[1].density->terms.size(), 2u);
+  EXPECT_NEAR(c[1].density->lpd, 2.960440300138691, 1e-12);
+  EXPECT_NEAR(*c[1].evidence, 0.8068528194400552, 1e-12);  // on held-1, the one both predict
+  EXPECT_FALSE(c[2].density) << "no held-out observation scored: no density, not an lpd of 0";
+  EXPECT_FALSE(c[2].evidence);
+  EXPECT_NEAR(*c[3].evidence, 1.92, 1e-12);
+  EXPECT_EQ(rank_effects(c), (std::vector<int>{3, 1, 2}));
+  EXPECT_EQ(c[3].rank, 1);
+  EXPECT_EQ(c[2].rank, 3);
+}
+
+// The rule names the contender with the most evidence when it exceeds the threshold.
+TEST(Evidence, TheDecisionRuleNamesTheBestContenderAboveItsThreshold) {
+  const DecisionRule rule;  // the default threshold
+  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence + 0.5}}), 1);
+  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence}}), -1) << "exceed, not equal";
+  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence - 0.5}}), -1);
+  EXPECT_EQ(choose_effect(rule, {}), -1);
+  DecisionRule strict;
+  strict.min_evidence = 5.0;
+  EXPECT_EQ(choose_effect(strict, {{1, 4.0}}), -1);
+  EXPECT_EQ(choose_effect(strict, {{1, 4.0}, {2, 6.0}}), 2);
+  EXPECT_EQ(choose_effect(strict, {{1, 6.0}, {2, 6.0}}), 1) << "ties keep the earlier";
+}
+
+}  // namespace
+}  // namespace rockcal::diagnosis

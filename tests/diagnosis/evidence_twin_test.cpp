@@ -1,0 +1,177 @@
+// Focus: the evidence threshold (DecisionRule::min_evidence) on twins of the formula engine that
+// leave each registered effect's measured mark (synthetic_model.hpp), lab noise as large as the
+// stated 2% uncertainty. Null twins (no hidden effect) put a contender above the default
+// threshold at most 10% of the time, and twins hiding an effect at the detection limit (s = 0.2 of
+// its walk, where every nameable effect was named in 15 of 15 twins) are named, that effect
+// first. ROCKCAL_NULL_TWINS=N runs N null twins instead of 20 (docs/diagnosis-measurements.md).
+// The report's evidence (each candidate's lpd term by term, the verdict's sentence, the page and
+// the CLI) is rebuilt from its own fields.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+
+#include "api/cli/diagnosis_text.hpp"
+#include "orchestrator/diagnosis/pipeline/driver.hpp"
+#include "orchestrator/diagnosis/report/report.hpp"
+#include "synthetic_model.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kLabNoise = 0.02;  // the twins' stated uncertainty: the lab is as noisy as it says
+
+// The nominal verdict only: the bootstrap (its confidence) does not change which effect is named.
+json diagnose(const std::string& effect, double s, std::uint64_t seed) {
+  DiagnosisCampaign c = testing::registry_twin_campaign(effect, s, kLabNoise, seed);
+  c.grid.design = Design::local;
+  c.grid.fr0 = c.grid.fs0 = 3;
+  c.bootstrap = 0;
+  testing::SyntheticModel model(c.targets);
+  model.marks = testing::measured_marks();
+  return to_json(run_diagnosis(c, model), c);
+}
+
+int null_twins() {
+  const char* n = std::getenv("ROCKCAL_NULL_TWINS");
+  return n ? std::max(12, std::atoi(n)) : 20;
+}
+
+TEST(EvidenceThreshold, AtMostOneNullTwinInTenNamesAnEffect) {
+  const int twins = null_twins();
+  const double threshold = DecisionRule{}.min_evidence;
+  std::vector<double> best;  // each null's best contender's evidence
+  int named = 0;
+  for (int seed = 1; seed <= twins; ++seed) {
+    const json v = diagnose("", 0, seed)["verdict"];
+    const json& e = v["evidence"];
+    EXPECT_EQ(e["threshold"], threshold);
+    ASSERT_TRUE(e["value"].is_number()) << "seed " << seed << ": no contender\n" << v.dump(2);
+    best.push_back(e["value"].get<double>());
+    // Named exactly when the best contender's evidence exceeds the threshold, and then it is.
+    EXPECT_EQ(v["effect"].is_string(), best.back() > threshold) << v.dump(2);
+    if (v["effect"].is_string()) {
+      ++named;
+      EXPECT_EQ(v["effect"], e["effect"]);
+    } else {
+      EXPECT_EQ(v["label"], "no effect needed");
+    }
+  }
+  std::sort(best.begin(), best.end(), std::greater<>());
+  // The threshold at most 10% of these nulls exceed (bench/diagnosis_confusion.py's rule).
+  const double calibrated = best[std::size_t(0.1 * twins)];
+  std::printf(
+      "%d null twins: %d named at the default %.2f nats; best evidence %.2f, %.2f, %.2f; "
+      "the threshold at most 10%% exceed: %.2f nats\n",
+      twins, named, threshold, best[0], best[1], best[2], calibrated);
+  EXPECT_LE(10 * named, twins) << named << " of " << twins << " nulls named an effect";
+  EXPECT_GE(threshold, calibrated);
+}
+
+std::string two(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", x);
+  return buf;
+}
+
+// Each term is -0.5 (r^2 / v + ln 2 pi v) of the observation's charged residual and its budget^2 +
+// lab uncertainty^2 (real runs); an effect's evidence is its terms' sum less the base's.
+void expect_terms_from_fields(const json& summary) {
+  std::map<std::string, const json*> observation;
+  for (const json& o : summary["observations"]) observation[o["id"]] = &o;
+  std::map<std::string, double> base;
+  for (const json& c : summary["candidates"]) {
+    const json& e = c["evidence"];
+    if (e.is_null() || e["basis"] != "confirmed") continue;
+    double lpd = 0, over_base = 0;
+    for (const json& t : e["terms"]) {
+      const json& o = *observation.at(t["id"]);
+      EXPECT_EQ(o["role"], "held_out");
+      const double v =
+          std::pow(o["budget"].get<double>(), 2) + std::pow(o["lab_uncertainty"].get<double>(), 2);
+      const double r = t["charged"].get<double>();
+      EXPECT_NEAR(t["variance"].get<double>(), v, 1e-12 * v);
+      EXPECT_NEAR(t["lpd"].get<double>(), -0.5 * (r * r / v + std::log(2 * M_PI * v)), 1e-9);
+      lpd += t["lpd"].get<double>();
+      if (c["effect"].is_null()) {
+        EXPECT_EQ(r, o["base"]["charged"].get<double>());
+        base[t["id"]] = t["lpd"].get<double>();
+      } else {
+        over_base += t["lpd"].get<double>() - base.at(t["id"]);
+      }
+    }
+    EXPECT_NEAR(e["lpd"].get<double>(), lpd, 1e-9);
+    if (c["effect"].is_string()) {
+      EXPECT_NEAR(e["value"].get<double>(), over_base, 1e-9);
+    }
+  }
+}
+
+TEST(EvidenceReport, TheVerdictSentenceAndTheTermsAreTheReportsFields) {
+  const json named = diagnose("rate", 0.2, 1);
+  expect_terms_from_fields(named);
+  const json& v = named["verdict"];
+  const std::string threshold = two(v["evidence"]["threshold"].get<double>());
+  const std::string evidence = two(v["evidence"]["value"].get<double>());
+  EXPECT_EQ(threshold, "2.00");
+  EXPECT_EQ(
+      v["reason"].get<std::string>().rfind(
+          "rate: evidence " + evidence + " nats over the base (threshold 2.00); it closes G = " +
+              two(v["gap_closure"].get<double>()) + " of the held-out gap",
+          0),
+      0u)
+      << v["reason"];
+  EXPECT_EQ(named["decision"]["min_evidence"], 2.0);
+  const std::string html = report_html(named);
+  EXPECT_NE(html.find("<h2>Evidence per effect</h2>"), std::string::npos);
+  EXPECT_NE(html.find("rate: " + evidence + " nats over the base; threshold 2.00 nats"),
+            std::string::npos);
+  EXPECT_NE(api::diagnosis_text(named).find("evidence " + evidence + " nats (threshold 2.00)"),
+            std::string::npos);
+
+  // Nothing named: the sentence gives the best contender's evidence against the threshold.
+  const json null = diagnose("", 0, 1);
+  expect_terms_from_fields(null);
+  const json& n = null["verdict"];
+  const std::string best = n["evidence"]["effect"].get<std::string>();
+  EXPECT_NE(n["reason"].get<std::string>().find(
+                "no gap to explain; the best effect, " + best + ", has evidence " +
+                two(n["evidence"]["value"].get<double>()) + " nats over the base (threshold 2.00)"),
+            std::string::npos)
+      << n["reason"];
+}
+
+class EffectAtTheDetectionLimit : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EffectAtTheDetectionLimit, IsNamedFirst) {
+  const std::string effect = GetParam();
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const json summary = diagnose(effect, 0.2, seed);
+    const json& v = summary["verdict"];
+    EXPECT_EQ(v["effect"], effect) << "seed " << seed << "\n" << v.dump(2);
+    EXPECT_GT(v["evidence"]["value"].get<double>(), DecisionRule{}.min_evidence);
+    for (const json& c : summary["candidates"]) {
+      if (c["rank"] == 1) {
+        EXPECT_EQ(c["effect"], effect) << "seed " << seed;
+      }
+    }
+    std::printf("%s at s = 0.2, seed %d: %s, evidence %.2f nats, G %.2f\n", effect.c_str(),
+                int(seed), v["label"].get<std::string>().c_str(),
+                v["evidence"]["value"].get<double>(), v["gap_closure"].get<double>());
+  }
+}
+
+// The four effects whose measured mark reaches a calibration and a held-out observation
+// (candidate_twin_test.cpp); the others are never named.
+INSTANTIATE_TEST_SUITE_P(MeasuredMarks, EffectAtTheDetectionLimit,
+                         ::testing::Values("packing", "rate", "compression_coupling",
+                                           "interaction_range"),
+                         [](const auto& info) { return std::string(info.param); });
+
+}  // namespace
+}  // namespace rockcal::diagnosis
