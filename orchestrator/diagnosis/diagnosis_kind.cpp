@@ -3,6 +3,7 @@
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
+#include "orchestrator/diagnosis/pipeline/next_test_runs.hpp"
 #include "orchestrator/diagnosis/pipeline/runner_evaluator.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "orchestrator/job_service.hpp"
@@ -20,7 +21,15 @@ std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
                          int(budget_runs_per_point(c.budget, c.dataset.origin)) +
                      (c.screen ? int(c.candidates.size()) : 0);
   const int confirm = (1 + c.confirm) * (1 + c.refine + seeds);
-  return {{"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
+  std::vector<orch::BudgetPart> parts{
+      {"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
+  // The next test's batch runs on the dataset's and the menu's conditions.
+  if (c.next_test) {
+    std::vector<Target> all = c.targets;
+    for (const MenuTest& m : test_menu(c.targets)) all.push_back(m.target);
+    parts.push_back({"next_test", next_test_model_points(c) * int(plan_runs(all).runs.size())});
+  }
+  return parts;
 }
 
 std::size_t planned_jobs(const DiagnosisCampaign& c) {

@@ -1,0 +1,58 @@
+#include "orchestrator/diagnosis/analysis/next_test.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace rockcal::diagnosis {
+
+double TestNoise::total() const {
+  return std::hypot(budget, sigma);
+}
+
+TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
+                         const std::vector<double>& budget) {
+  bool same_test = false;
+  for (const Target& t : targets)
+    same_test = same_test || t.conditions.test == test.conditions.test;
+  TestNoise n;
+  n.budget = n.sigma = -1.0;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const Target& t = targets[i];
+    if (same_test && t.conditions.test != test.conditions.test) continue;
+    if (std::isfinite(budget[i]) && budget[i] > n.budget) {
+      n.budget = budget[i];
+      n.budget_from = t.id;
+    }
+    if (t.sigma > n.sigma) {
+      n.sigma = t.sigma;
+      n.sigma_from = t.id;
+    }
+  }
+  n.budget = std::max(n.budget, 0.0);
+  n.sigma = std::max(n.sigma, 0.0);
+  return n;
+}
+
+Separation separate(std::string a, std::string b, const std::vector<double>& mark_a,
+                    const std::vector<double>& mark_b, const std::vector<TestNoise>& noise) {
+  Separation s;
+  s.a = std::move(a);
+  s.b = std::move(b);
+  for (std::size_t k = 0; k < noise.size(); ++k) {
+    const double ma = mark_a.empty() ? 0.0 : mark_a[k];
+    const double mb = mark_b.empty() ? 0.0 : mark_b[k];
+    const double d = std::abs(ma - mb) / noise[k].total();
+    s.discrimination.push_back(std::isfinite(d) ? d : std::numeric_limits<double>::quiet_NaN());
+    if (!std::isfinite(d)) continue;
+    if (!s.best || d > s.discrimination[*s.best]) s.best = k;
+  }
+  if (s.best) {
+    const std::size_t k = *s.best;
+    const double ma = mark_a.empty() ? 0.0 : mark_a[k];
+    const double mb = mark_b.empty() ? 0.0 : mark_b[k];
+    s.visible = std::abs(ma - mb) > noise[k].budget + noise[k].sigma;
+  }
+  return s;
+}
+
+}  // namespace rockcal::diagnosis
