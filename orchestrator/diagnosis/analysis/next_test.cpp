@@ -38,21 +38,31 @@ Separation separate(std::string a, std::string b, const std::vector<double>& mar
   Separation s;
   s.a = std::move(a);
   s.b = std::move(b);
+  std::vector<double> apart;  // |mark_a - mark_b| per test
   for (std::size_t k = 0; k < noise.size(); ++k) {
-    const double ma = mark_a.empty() ? 0.0 : mark_a[k];
-    const double mb = mark_b.empty() ? 0.0 : mark_b[k];
-    const double d = std::abs(ma - mb) / noise[k].total();
+    apart.push_back(
+        std::abs((mark_a.empty() ? 0.0 : mark_a[k]) - (mark_b.empty() ? 0.0 : mark_b[k])));
+    const double d = apart[k] / noise[k].total();
     s.discrimination.push_back(std::isfinite(d) ? d : std::numeric_limits<double>::quiet_NaN());
-    if (!std::isfinite(d)) continue;
-    if (!s.best || d > s.discrimination[*s.best]) s.best = k;
+    if (std::isfinite(d) && (!s.best || d > s.discrimination[*s.best])) s.best = k;
   }
-  if (s.best) {
-    const std::size_t k = *s.best;
-    const double ma = mark_a.empty() ? 0.0 : mark_a[k];
-    const double mb = mark_b.empty() ? 0.0 : mark_b[k];
-    s.visible = std::abs(ma - mb) > noise[k].budget + noise[k].sigma;
-  }
+  if (s.best) s.visible = apart[*s.best] > noise[*s.best].budget + noise[*s.best].sigma;
   return s;
+}
+
+std::size_t run_of(const NextTest& next, const std::string& effect) {
+  for (std::size_t e = 0; e < next.effects.size() && !effect.empty(); ++e) {
+    if (next.effects[e] == effect) return kNextTestBaseRuns + e;
+  }
+  return 0;
+}
+
+std::vector<double> mark_of(const NextTest& next, const std::string& effect) {
+  if (effect.empty()) return std::vector<double>(next.menu.size(), 0.0);
+  for (std::size_t e = 0; e < next.effects.size(); ++e) {
+    if (next.effects[e] == effect) return next.mark[e];
+  }
+  return {};
 }
 
 }  // namespace rockcal::diagnosis

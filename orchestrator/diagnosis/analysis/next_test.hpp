@@ -44,6 +44,9 @@ struct Separation {
 Separation separate(std::string a, std::string b, const std::vector<double>& mark_a,
                     const std::vector<double>& mark_b, const std::vector<TestNoise>& noise);
 
+// The base model's runs that start the batch: at the fit, and a step along each strength.
+inline constexpr std::size_t kNextTestBaseRuns = 3;
+
 struct NextTest {
   bool enabled = false;
   std::string reason;  // why there is no next test, when there is none
@@ -60,5 +63,10 @@ struct NextTest {
   std::vector<Separation> invisible;      // effects the calibration cannot identify, vs base
   int model_points = 0;
 };
+
+// The run of a hypothesis in NextTest::runs: the base model's at the fit for "", else the effect's.
+std::size_t run_of(const NextTest& next, const std::string& effect);
+// Its mark per menu test: zeros for the base model; empty for an effect without runs.
+std::vector<double> mark_of(const NextTest& next, const std::string& effect);
 
 }  // namespace rockcal::diagnosis

@@ -40,7 +40,7 @@ std::string unidentified(const std::string& effect, const DiagnosisResult& r,
 }  // namespace
 
 int next_test_model_points(const DiagnosisCampaign& campaign) {
-  return 3 + int(campaign.candidates.size());
+  return int(kNextTestBaseRuns + campaign.candidates.size());
 }
 
 NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Evaluator& evaluator) {
@@ -117,18 +117,14 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
     weight.push_back(0.0);
   }
   for (std::size_t e = 0; e < out.effects.size(); ++e) {
-    const ScreenedEffect mark = screen_effect(out.effects[e], outcomes[0], outcomes[3 + e],
-                                              jacobian, weight, all, all_budget);
+    const ScreenedEffect mark =
+        screen_effect(out.effects[e], outcomes[0], outcomes[run_of(out, out.effects[e])], jacobian,
+                      weight, all, all_budget);
     out.mark.emplace_back(mark.change.begin() + long(n), mark.change.end());
   }
-  auto mark_of = [&](const std::string& effect) -> std::vector<double> {
-    for (std::size_t e = 0; e < out.effects.size(); ++e) {
-      if (out.effects[e] == effect) return out.mark[e];
-    }
-    return {};
-  };
   if (a > 0) {
-    out.leading = separate(name(a), name(b), mark_of(name(a)), mark_of(name(b)), out.noise);
+    out.leading =
+        separate(name(a), name(b), mark_of(out, name(a)), mark_of(out, name(b)), out.noise);
   }
   for (std::size_t e = 0; e < out.effects.size(); ++e) {
     if (why[e].empty()) continue;

@@ -58,10 +58,7 @@ json noise_json(const TestNoise& n) {
 // The run of one hypothesis behind a test: its model point and its value there.
 json run_json(const NextTest& next, const DiagnosisCampaign& c, const std::string& effect,
               std::size_t test) {
-  std::size_t run = 0;
-  for (std::size_t e = 0; e < next.effects.size(); ++e) {
-    if (next.effects[e] == effect && !effect.empty()) run = 3 + e;
-  }
+  const std::size_t run = run_of(next, effect);
   const ModelPoint& p = next.runs[run].point;
   json j = {{"hypothesis", hypothesis(effect)},
             {"fr0", p.fr0_n},
@@ -74,11 +71,8 @@ json run_json(const NextTest& next, const DiagnosisCampaign& c, const std::strin
       j["parameter"] = {{"name", k.param}, {"unit", k.unit}, {"value", k.value_at(p.s)}};
     }
   }
-  j["mark"] = nullptr;
-  for (std::size_t e = 0; e < next.effects.size(); ++e) {
-    if (next.effects[e] == effect) j["mark"] = num(next.mark[e][test]);
-  }
-  if (effect.empty()) j["mark"] = 0.0;
+  const std::vector<double> mark = mark_of(next, effect);
+  j["mark"] = mark.empty() ? json(nullptr) : num(mark[test]);
   return j;
 }
 
