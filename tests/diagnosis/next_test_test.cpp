@@ -154,6 +154,10 @@ TEST_P(NextTestTwin, NamesTheTestAndThenTheEffect) {
   EXPECT_EQ((*row)["runs"][0]["effect"], twin.effect);
   EXPECT_EQ((*row)["runs"][0]["s"], 1.0);
   EXPECT_TRUE((*row)["runs"][1]["effect"].is_null());
+  // Every model point of the batch is listed: the base's three runs first, then the effects'.
+  ASSERT_EQ(next["runs"].size(), next["model_points"].get<std::size_t>());
+  EXPECT_TRUE(next["runs"][0]["effect"].is_null());
+  EXPECT_EQ(next["runs"][0]["fr0"], next["point"]["fr0"]);
   // The user reads it in the CLI's text and on the page, with the runs behind it.
   const std::string said =
       std::string(twin.effect) + ": " + (*row)["test"]["description"].get<std::string>();

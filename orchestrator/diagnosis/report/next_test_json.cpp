@@ -140,9 +140,18 @@ json next_test_json(const NextTest& next, const DiagnosisCampaign& c) {
     if (m < next.noise.size()) row["noise"] = noise_json(next.noise[m]);
     menu.push_back(std::move(row));
   }
+  // Every model point of the batch (each one job per distinct condition of dataset and menu).
+  json runs = json::array();
+  for (const RunRequest& r : next.runs) {
+    runs.push_back({{"fr0", r.point.fr0_n},
+                    {"fs0", r.point.fs0_n},
+                    {"effect", effect_on(r.point) ? json(r.point.effect) : json(nullptr)},
+                    {"s", r.point.s}});
+  }
   json j = {{"enabled", true},
             {"menu", menu},
             {"model_points", next.model_points},
+            {"runs", runs},
             {"point", {{"fr0", next.point.fr0_n}, {"fs0", next.point.fs0_n}}}};
   if (!next.reason.empty()) {
     j["leading"] = nullptr;
