@@ -66,6 +66,17 @@ TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
   EXPECT_EQ(n.sigma_from, "tri-low");
   EXPECT_DOUBLE_EQ(n.sigma, 0.06);
   EXPECT_DOUBLE_EQ(n.total(), std::hypot(0.04, 0.06));
+  // A UCT's peak load borrows from the UCT peak loads (the 1.5x cylinder's 0.015), not from the
+  // noisier modulus (0.05) of the same run; a peak strain, which the design lacks, from any UCT.
+  Target squat = targets[0];
+  squat.conditions.height_m = squat.conditions.diameter_m;
+  EXPECT_EQ(borrowed_noise(squat, targets, budget).budget_from, "uct-large");
+  squat.observable = Observable::peak_strain;
+  EXPECT_EQ(borrowed_noise(squat, targets, budget).budget_from, "uct-modulus");
+  // Without a disc in the dataset, a disc borrows from every observation.
+  Target disc = targets[2];
+  const std::vector<Target> no_disc{targets[0], targets[3]};
+  EXPECT_EQ(borrowed_noise(disc, no_disc, {0.01, 0.03}).budget_from, "tri-low");
   // Two tests; A moves the first by 0.3 and B by 0.1 in ln, the second by 0.02 and -0.02.
   const std::vector<TestNoise> noise{{0.03, "x", 0.04, "x"}, {0.01, "y", 0.02, "y"}};
   const Separation s = separate("A", "B", {0.3, 0.02}, {0.1, -0.02}, noise);
@@ -158,14 +169,20 @@ TEST_P(NextTestTwin, NamesTheTestAndThenTheEffect) {
   ASSERT_EQ(next["runs"].size(), next["model_points"].get<std::size_t>());
   EXPECT_TRUE(next["runs"][0]["effect"].is_null());
   EXPECT_EQ(next["runs"][0]["fr0"], next["point"]["fr0"]);
-  // The user reads it in the CLI's text and on the page, with the runs behind it.
-  const std::string said =
-      std::string(twin.effect) + ": " + (*row)["test"]["description"].get<std::string>();
-  EXPECT_NE(next["reason"].get<std::string>().find(said), std::string::npos) << next["reason"];
-  EXPECT_NE(api::diagnosis_text(before.summary).find("Next test: "), std::string::npos);
+  // The user reads it in the CLI's text and on the page: the effect beside its test (or the leading
+  // pair's sentence, when that pair is the effect against the base model on the same test).
+  const std::string reason = next["reason"];
+  const std::string test = (*row)["test"]["description"];
+  const bool beside = reason.find(std::string(twin.effect) + ": " + test) != std::string::npos;
+  const bool leading =
+      reason.find(test + " (") == 0 && reason.find("would separate " + std::string(twin.effect) +
+                                                   " from the base model") != std::string::npos;
+  EXPECT_TRUE(beside || leading) << reason;
+  EXPECT_NE(api::diagnosis_text(before.summary).find("Next test: " + reason.substr(0, 40)),
+            std::string::npos);
   const std::string html = report_html(before.summary);
   EXPECT_NE(html.find("<h2>Next test</h2>"), std::string::npos);
-  EXPECT_NE(html.find(said.substr(0, said.find('\''))), std::string::npos);  // ' is escaped
+  EXPECT_NE(html.find(test.substr(0, test.find('\''))), std::string::npos);  // ' is escaped
   // And the two leading hypotheses get a test of their own.
   ASSERT_TRUE(next["leading"].is_object()) << next.dump(2);
   EXPECT_TRUE(next["leading"]["test"].is_object()) << next["leading"].dump(2);

@@ -1,5 +1,6 @@
 #include "orchestrator/diagnosis/analysis/next_test.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -11,25 +12,26 @@ double TestNoise::total() const {
 
 TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
                          const std::vector<double>& budget) {
-  bool same_test = false;
-  for (const Target& t : targets)
-    same_test = same_test || t.conditions.test == test.conditions.test;
+  // The closest kin the dataset has: 2 the same test and observable, 1 the same test, 0 any.
+  auto kinship = [&](const Target& t) {
+    if (t.conditions.test != test.conditions.test) return 0;
+    return t.observable == test.observable ? 2 : 1;
+  };
+  int closest = 0;
+  for (const Target& t : targets) closest = std::max(closest, kinship(t));
   TestNoise n;
-  n.budget = n.sigma = -1.0;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const Target& t = targets[i];
-    if (same_test && t.conditions.test != test.conditions.test) continue;
-    if (std::isfinite(budget[i]) && budget[i] > n.budget) {
+    if (kinship(t) != closest) continue;
+    if (std::isfinite(budget[i]) && (n.budget_from.empty() || budget[i] > n.budget)) {
       n.budget = budget[i];
       n.budget_from = t.id;
     }
-    if (t.sigma > n.sigma) {
+    if (n.sigma_from.empty() || t.sigma > n.sigma) {
       n.sigma = t.sigma;
       n.sigma_from = t.id;
     }
   }
-  n.budget = std::max(n.budget, 0.0);
-  n.sigma = std::max(n.sigma, 0.0);
   return n;
 }
 

@@ -8,7 +8,7 @@
 // base model with a mark of 0) is |mark_A - mark_B| / sqrt(budget^2 + sigma^2): how many noise
 // units apart the two would put its lab value. A test the dataset does not have has no measured
 // budget: it borrows the largest budget and lab uncertainty of the dataset's observations of the
-// same test (any test's when the dataset has none), and says which.
+// same test and observable (else of the same test, else of any), and says which.
 #pragma once
 
 #include <optional>

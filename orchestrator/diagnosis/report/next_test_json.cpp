@@ -174,7 +174,12 @@ json next_test_json(const NextTest& next, const DiagnosisCampaign& c) {
     json row = separation_json(s, next, c);
     row["effect"] = s.a;
     row["why"] = s.why;
-    if (row["test"].is_object() && row["visible"] == true) {
+    // An effect the leading pair already sets against the base model on the same test is said once.
+    const bool said = next.leading && next.leading->b.empty() && next.leading->a == s.a &&
+                      next.leading->best == s.best;
+    if (said) {
+      // Already in the first sentence.
+    } else if (row["test"].is_object() && row["visible"] == true) {
       std::snprintf(line, sizeof line, ", %.2f noise units", row["discrimination"].get<double>());
       append(shown, "; ",
              s.a + ": " + row["test"]["description"].get<std::string>() + " (" +
