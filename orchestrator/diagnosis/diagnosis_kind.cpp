@@ -48,7 +48,8 @@ orch::CampaignKind diagnosis_kind() {
           "grid", "the diagnosis may need " + std::to_string(planned_jobs(c)) +
                       " jobs, above the server's cap of " +
                       std::to_string(limits.max_jobs_per_campaign) +
-                      " per campaign: a smaller grid, grid.design \"local\" or fewer effects");
+                      " per campaign: a smaller grid, grid.design \"local\", fewer effects or "
+                      "\"next_test\": false");
     }
     return orch::CampaignPlan{c.name, {}};
   };

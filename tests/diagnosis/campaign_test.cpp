@@ -248,6 +248,27 @@ TEST(DiagnosisRequest, TheNextTestDefaultsOnAndIsRead) {
   }
 }
 
+// A request that may need more jobs than the server's cap is refused naming grid, with what to
+// change; without the next test's batch the same request fits a cap that much lower.
+TEST(DiagnosisRequest, TheJobCapCountsTheNextTest) {
+  const std::size_t planned = planned_jobs(parse_diagnosis_campaign(request()));
+  const orch::CampaignKind kind = diagnosis_kind();
+  try {
+    kind.plan(request(), orch::Limits{planned - 1});
+    FAIL() << "accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(e.field, "grid");
+    EXPECT_EQ(std::string(e.what()),
+              "grid: the diagnosis may need " + std::to_string(planned) +
+                  " jobs, above the server's cap of " + std::to_string(planned - 1) +
+                  " per campaign: a smaller grid, grid.design \"local\", fewer effects or "
+                  "\"next_test\": false");
+  }
+  json off = request();
+  off["next_test"] = false;
+  EXPECT_EQ(kind.plan(off, orch::Limits{planned - 1}).name, "validation");
+}
+
 // Screening is on unless the request turns it off; anything but true or false is refused.
 TEST(DiagnosisRequest, ScreeningDefaultsOnAndIsRead) {
   EXPECT_TRUE(parse_diagnosis_campaign(request()).screen);
