@@ -24,10 +24,11 @@ std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
   std::vector<orch::BudgetPart> parts{
       {"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
   // The next test's batch runs on the dataset's and the menu's conditions.
-  if (c.next_test) {
+  const int next_test = c.next_test ? next_test_model_points(c) : 0;
+  if (next_test > 0) {
     std::vector<Target> all = c.targets;
     for (const MenuTest& m : test_menu(c.targets)) all.push_back(m.target);
-    parts.push_back({"next_test", next_test_model_points(c) * int(plan_runs(all).runs.size())});
+    parts.push_back({"next_test", next_test * int(plan_runs(all).runs.size())});
   }
   return parts;
 }

@@ -347,6 +347,10 @@ TEST(DiagnosisRequest, CalibrationOnlyDatasetNeedsNoEffects) {
   const DiagnosisCampaign c = parse_diagnosis_campaign(r);
   EXPECT_TRUE(c.candidates.empty());
   EXPECT_EQ(count_role(c.targets, Role::held_out), 0u);
+  // Nothing to tell apart: no next test's batch is planned.
+  const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
+  ASSERT_EQ(parts.size(), 3u);
+  EXPECT_EQ(parts.back().name, "confirm");
 }
 
 // The example request, with its dataset_file inlined the way `rockcal diagnose` does.

@@ -40,6 +40,7 @@ std::string unidentified(const std::string& effect, const DiagnosisResult& r,
 }  // namespace
 
 int next_test_model_points(const DiagnosisCampaign& campaign) {
+  if (campaign.candidates.empty()) return 0;  // nothing to tell apart
   return int(kNextTestBaseRuns + campaign.candidates.size());
 }
 

@@ -18,7 +18,8 @@ namespace rockcal::diagnosis {
 NextTest run_next_test(const DiagnosisCampaign& campaign, const DiagnosisResult& report,
                        Evaluator& evaluator);
 
-// Model points of the batch at most (the base's three, every effect), for the job plan.
+// Model points of the batch at most (the base's three, every effect; none without effects), for
+// the job plan.
 int next_test_model_points(const DiagnosisCampaign& campaign);
 
 }  // namespace rockcal::diagnosis
