@@ -60,6 +60,9 @@ std::string diagnosis_text(const json& s) {
   if (at(at(s, "screen"), "reason").is_string()) {
     out << "Screen: " << fmt(at(at(s, "screen"), "reason")) << "\n";
   }
+  if (at(at(s, "next_test"), "reason").is_string()) {
+    out << "Next test: " << fmt(at(at(s, "next_test"), "reason")) << "\n";
+  }
   out << "\nWhere the gap lies (base model; * = beyond budget + lab uncertainty):\n";
   std::snprintf(line, sizeof line, "  %-14s %-9s %-15s %-11s %12s %12s %9s %8s %8s %9s\n",
                 "observation", "test", "observable", "role", "lab", "base sim", "ln ratio",

@@ -3,6 +3,7 @@
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
+#include "orchestrator/diagnosis/pipeline/next_test_runs.hpp"
 #include "orchestrator/diagnosis/pipeline/runner_evaluator.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "orchestrator/job_service.hpp"
@@ -20,7 +21,16 @@ std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
                          int(budget_runs_per_point(c.budget, c.dataset.origin)) +
                      (c.screen ? int(c.candidates.size()) : 0);
   const int confirm = (1 + c.confirm) * (1 + c.refine + seeds);
-  return {{"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
+  std::vector<orch::BudgetPart> parts{
+      {"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
+  // The next test's batch runs on the dataset's and the menu's conditions.
+  const int next_test = c.next_test ? next_test_model_points(c) : 0;
+  if (next_test > 0) {
+    std::vector<Target> all = c.targets;
+    for (const MenuTest& m : test_menu(c.targets)) all.push_back(m.target);
+    parts.push_back({"next_test", next_test * int(plan_runs(all).runs.size())});
+  }
+  return parts;
 }
 
 std::size_t planned_jobs(const DiagnosisCampaign& c) {
@@ -39,7 +49,8 @@ orch::CampaignKind diagnosis_kind() {
           "grid", "the diagnosis may need " + std::to_string(planned_jobs(c)) +
                       " jobs, above the server's cap of " +
                       std::to_string(limits.max_jobs_per_campaign) +
-                      " per campaign: a smaller grid, grid.design \"local\" or fewer effects");
+                      " per campaign: a smaller grid, grid.design \"local\", fewer effects or "
+                      "\"next_test\": false");
     }
     return orch::CampaignPlan{c.name, {}};
   };

@@ -12,8 +12,9 @@ namespace rockcal::diagnosis {
 
 orch::CampaignKind diagnosis_kind();
 
-// The most jobs a diagnosis can create, by phase ("grid", "budget", "confirm"): every model point
-// it may run times the distinct runs (test and conditions) of its dataset. The budget of its
+// The most jobs a diagnosis can create, by phase ("grid", "budget", "confirm", and "next_test"
+// unless turned off): every model point it may run times the distinct runs (test and conditions)
+// of its dataset (the next test's: of its dataset and menu). The budget of its
 // progress model (orchestrator/progress_model.hpp, unit "jobs").
 std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c);
 

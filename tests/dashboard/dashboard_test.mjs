@@ -516,7 +516,10 @@ test('a diagnosis: verdict and confidence, residuals before and after, candidate
   assert.equal(m.done, c.progress.total);
   assert.ok(m.done <= m.budget, JSON.stringify(m));
   const parts = m.parts.map((p) => `${p.name} ${p.budget}`).join(', ');
-  assert.deepEqual(m.parts.map((p) => p.name), ['grid', 'budget', 'confirm']);
+  assert.deepEqual(m.parts.map((p) => p.name), ['grid', 'budget', 'confirm', 'next_test']);
+  // The next test, as the report states it, beside the verdict.
+  assert.equal(typeof s.next_test.reason, 'string');
+  assert.equal(await page.locator('.next-test').innerText(), `Next test: ${s.next_test.reason}`);
   assert.ok((await page.locator('.campaign-head .progress-text').innerText()).includes(`${m.done} of ${m.budget} jobs (${parts})`));
   const cli = spawnSync(rockcal, ['status', String(ids.diagnosis)], {encoding: 'utf8',
     env: {...process.env, ROCKCAL_SERVER: base, ROCKCAL_TOKEN: TOKEN}});

@@ -71,24 +71,29 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3}));
   // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points at most twice (the first and
   // the confirmed fit) and the screen's point per effect, 3 confirmed candidates x (3 refinement
-  // runs + 2 seeds).
-  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + 2 + 3 * 5) * 4u);
+  // runs + 2 seeds); and the next test's base at its fit and two steps and both effects on the
+  // dataset's 4 runs and the menu's 7 more (squat and slender UCT, two discs, three triaxials;
+  // the UCT's modulus and peak strain are read off the dataset's UCT run).
+  constexpr int kNextTest = (3 + 2) * (4 + 7);
+  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + 2 + 3 * 5) * 4u + kNextTest);
   // The progress model's budget names them by phase.
   const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
-  ASSERT_EQ(parts.size(), 3u);
+  ASSERT_EQ(parts.size(), 4u);
   EXPECT_EQ(parts[0].name, "grid");
   EXPECT_EQ(parts[0].budget, (9 + 2 * 18) * 4);
   EXPECT_EQ(parts[1].name, "budget");
   EXPECT_EQ(parts[1].budget, (2 * 5 * 5 + 2) * 4);
   EXPECT_EQ(parts[2].name, "confirm");
   EXPECT_EQ(parts[2].budget, 3 * 5 * 4);
+  EXPECT_EQ(parts[3].name, "next_test");
+  EXPECT_EQ(parts[3].budget, kNextTest);
   EXPECT_EQ(c.budget.resolutions, std::vector<double>{1.25});
   // Two resolutions: one more run at each budget point.
   json two = request();
   two["budget"] = {{"resolution", {1.25, 1.5}}};
   const DiagnosisCampaign c2 = parse_diagnosis_campaign(two);
   EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
-  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + 2 + 3 * 5) * 4u);
+  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + 2 + 3 * 5) * 4u + kNextTest);
   EXPECT_EQ(budget_runs_per_point(c2.budget), 6u);  // reference, 2 seeds, speed, 2 resolutions
   // The local design: the 3 x 3 base grid, its star, 4 points per effect (both continuous at
   // neutral); the step is read.
@@ -97,7 +102,12 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   const DiagnosisCampaign c3 = parse_diagnosis_campaign(local);
   EXPECT_EQ(c3.grid.design, Design::local);
   EXPECT_EQ(c3.grid.step, 0.15);
-  EXPECT_EQ(planned_jobs(c3), (9 + 5 + 2 * 4 + 2 * 5 * 5 + 2 + 3 * 5) * 4u);
+  EXPECT_EQ(planned_jobs(c3), (9 + 5 + 2 * 4 + 2 * 5 * 5 + 2 + 3 * 5) * 4u + kNextTest);
+  // Without the next test, its part is not planned.
+  json off = request();
+  off["next_test"] = false;
+  EXPECT_EQ(planned_job_parts(parse_diagnosis_campaign(off)).size(), 3u);
+  EXPECT_EQ(planned_jobs(parse_diagnosis_campaign(off)), planned_jobs(c) - kNextTest);
   EXPECT_EQ(c.grid.design, Design::global);
   // Without "effects", every registered effect is a candidate.
   json all = request();
@@ -222,6 +232,43 @@ TEST(DiagnosisRequest, AutoPlatenSpeedIsRefused) {
   }
 }
 
+// The next test is on unless the request turns it off; anything but true or false is refused.
+TEST(DiagnosisRequest, TheNextTestDefaultsOnAndIsRead) {
+  EXPECT_TRUE(parse_diagnosis_campaign(request()).next_test);
+  json r = request();
+  r["next_test"] = false;
+  EXPECT_FALSE(parse_diagnosis_campaign(r).next_test);
+  r["next_test"] = "no";
+  try {
+    parse_diagnosis_campaign(r);
+    FAIL() << "accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(e.field, "next_test");
+    EXPECT_EQ(std::string(e.what()), "next_test: must be true or false");
+  }
+}
+
+// A request that may need more jobs than the server's cap is refused naming grid, with what to
+// change; without the next test's batch the same request fits a cap that much lower.
+TEST(DiagnosisRequest, TheJobCapCountsTheNextTest) {
+  const std::size_t planned = planned_jobs(parse_diagnosis_campaign(request()));
+  const orch::CampaignKind kind = diagnosis_kind();
+  try {
+    kind.plan(request(), orch::Limits{planned - 1});
+    FAIL() << "accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(e.field, "grid");
+    EXPECT_EQ(std::string(e.what()),
+              "grid: the diagnosis may need " + std::to_string(planned) +
+                  " jobs, above the server's cap of " + std::to_string(planned - 1) +
+                  " per campaign: a smaller grid, grid.design \"local\", fewer effects or "
+                  "\"next_test\": false");
+  }
+  json off = request();
+  off["next_test"] = false;
+  EXPECT_EQ(kind.plan(off, orch::Limits{planned - 1}).name, "validation");
+}
+
 // Screening is on unless the request turns it off; anything but true or false is refused.
 TEST(DiagnosisRequest, ScreeningDefaultsOnAndIsRead) {
   EXPECT_TRUE(parse_diagnosis_campaign(request()).screen);
@@ -316,6 +363,10 @@ TEST(DiagnosisRequest, CalibrationOnlyDatasetNeedsNoEffects) {
   const DiagnosisCampaign c = parse_diagnosis_campaign(r);
   EXPECT_TRUE(c.candidates.empty());
   EXPECT_EQ(count_role(c.targets, Role::held_out), 0u);
+  // Nothing to tell apart: no next test's batch is planned.
+  const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
+  ASSERT_EQ(parts.size(), 3u);
+  EXPECT_EQ(parts.back().name, "confirm");
 }
 
 // The example request, with its dataset_file inlined the way `rockcal diagnose` does.
@@ -340,11 +391,13 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   // own 25 x 5), twice
   // 5 points x 8 budget runs
   // (reference, 2 seeds, half speed, 4 resolutions), the screen's 10 effects, every confirmed:
-  // 8 x (3 + 2).
+  // 8 x (3 + 2); the next test's base at its fit and two steps and the 10 effects on the 7 runs
+  // and the menu's 7 more.
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
-  EXPECT_EQ(planned_jobs(c), (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 10 + 8 * 5) * 7u);
+  EXPECT_EQ(planned_jobs(c),
+            (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 10 + 8 * 5) * 7u + (3 + 10) * (7 + 7));
 }
 
 TEST(DiagnosisRuns, ARunWithoutAPeakHasNoValueAtAll) {

@@ -122,6 +122,19 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   }
   const std::string html = report_html(s);
   EXPECT_NE(html.find("<svg"), std::string::npos);
+  // The next test on the real engine: the menu's tests the twin design lacks, each with the noise
+  // it borrows from an observation of the same test; the runs behind it are the base at its fit,
+  // a step along each strength and each effect that needs a mark.
+  const json& next = s["next_test"];
+  ASSERT_TRUE(next["enabled"].get<bool>()) << next.dump(2);
+  ASSERT_FALSE(next["menu"].empty());
+  for (const json& m : next["menu"]) {
+    EXPECT_TRUE(m["noise"]["budget_from"].is_string()) << m.dump();
+    EXPECT_EQ(m["conditions"]["units"], "model") << m.dump();
+  }
+  EXPECT_GE(next["model_points"].get<int>(), 3);
+  EXPECT_NE(html.find("<h2>Next test</h2>"), std::string::npos);
+  std::printf("next test: %s\n", next["reason"].get<std::string>().c_str());
 
   // The same diagnosis again: the job store answers every run.
   const json again = run_to_summary(request, 60s);

@@ -13,8 +13,9 @@
 //   modulus     only the UCT's Young's modulus moves, as under size: it fits the calibration
 //               observations as well as size does and predicts nothing held out
 // Besides these, `marks` can hold the engine's registered effects as they were measured
-// (measured_marks): per target, the change of ln(value) at s = 1 with the strengths re-fitted,
-// applied as s x mark.
+// (measured_marks): per observation of the real twin design, the change of ln(value) at s = 1 with
+// the strengths re-fitted, applied as s x mark to every run under that observation's conditions
+// (mark_of: a test the design does not have takes the mark of the one it was measured as).
 #pragma once
 
 #include <map>
@@ -49,8 +50,11 @@ struct SyntheticModel : Evaluator {
   Marks marks;                     // effects beyond the formula ones (measured_marks)
 
   explicit SyntheticModel(std::vector<Target> t) : targets(std::move(t)) {}
-  std::vector<double> values(const RunRequest& r) const;
+  std::vector<double> values(const RunRequest& r) const;  // on `targets`
+  std::vector<double> values(const RunRequest& r, const std::vector<Target>& on) const;
   std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override;
+  std::vector<RunOutcome> run_on(std::span<const RunRequest> requests,
+                                 const std::vector<Target>& on) override;
 };
 
 // A campaign whose lab values are the model's at (fr0, fs0) = (60, 120) with `effect` at `s`

@@ -1,5 +1,6 @@
 // The diagnosis's only view of the engine: "run the conditions of every target at this model point
-// (bond strengths, optionally one effect at fraction s of its range), with these numerics".
+// (bond strengths, optionally one effect at fraction s of its range), with these numerics"; the
+// targets are the dataset's, or others (the next test's menu, next_test.hpp).
 // The service implements it over the one job runner (the pipeline's RunnerEvaluator, on the
 // pool); the unit tests with formulas in which each hidden effect leaves its own signature.
 #pragma once
@@ -10,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "orchestrator/diagnosis/analysis/observations.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -56,6 +59,10 @@ class Evaluator {
   // Asking again for a request already run must give the same outcome (the job cache does), which
   // is what makes a restarted diagnosis replay instead of recompute. May throw DiagnosisCancelled.
   virtual std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) = 0;
+  // The same on the conditions of `targets` instead of the evaluator's own (tests the dataset does
+  // not have): each outcome has one value per given target, in their order.
+  virtual std::vector<RunOutcome> run_on(std::span<const RunRequest> requests,
+                                         const std::vector<Target>& targets) = 0;
 };
 
 // An effect is "on" in a job only above this s: s = 0 must give the base model's very job, so the

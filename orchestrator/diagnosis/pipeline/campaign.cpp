@@ -262,6 +262,7 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
   }
   c.grid = parse_grid(root);
   c.screen = root.boolean("screen").value_or(c.screen);
+  c.next_test = root.boolean("next_test").value_or(c.next_test);
   c.budget = parse_budget(root, c.sample_seed);
   c.confirm = int(root.integer("confirm", 1, 16).value_or(c.confirm));
   c.refine = int(root.integer("refine", 0, 5).value_or(c.refine));

@@ -42,7 +42,8 @@ struct DiagnosisCampaign {
   calibration::Range fr0_n{16, 256};
   calibration::Range fs0_n{16, 256};
   GridSpec grid;
-  bool screen = true;  // each effect run once at s = 1 first; those that move nothing dropped
+  bool screen = true;     // each effect run once at s = 1 first; those that move nothing dropped
+  bool next_test = true;  // after the verdict: the lab test that would tell the leading apart
   BudgetSpec budget;
   int confirm = 2;                // top candidates confirmed by real runs (besides the base)
   int refine = 2;                 // re-fits of each confirmed candidate on run-corrected surfaces

@@ -15,15 +15,21 @@
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/pipeline/local_design.hpp"
+#include "orchestrator/diagnosis/pipeline/next_test_runs.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
 
 using nlohmann::json;
 
-void phase(const DiagnosisOptions& o, const std::string& name, int step, int runs) {
+// Five phases, and the next test's sixth when the campaign asks for it.
+void phase(const DiagnosisOptions& o, const DiagnosisCampaign& c, const std::string& name, int step,
+           int runs) {
   if (o.stop.stop_requested()) throw DiagnosisCancelled();
-  if (o.on_progress) o.on_progress({{"phase", name}, {"step", step}, {"steps", 5}, {"runs", runs}});
+  if (o.on_progress) {
+    o.on_progress(
+        {{"phase", name}, {"step", step}, {"steps", c.next_test ? 6 : 5}, {"runs", runs}});
+  }
 }
 
 bool has_weight(const Objective& o) {
@@ -292,7 +298,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
 
   // 1. The base model's response-surface runs: its grid (and, local design, a star at its fit).
   const bool local = campaign.grid.design == Design::local;
-  phase(options, "grid", 1, base_grid_points(campaign));
+  phase(options, campaign, "grid", 1, base_grid_points(campaign));
   std::vector<Samples> samples{local ? run_local_base(campaign, evaluator)
                                      : run_base_grid(campaign, evaluator)};
   report.candidates.resize(1);
@@ -313,7 +319,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   const SurfaceCalibration& base_first = *fitted_first;
   report.weight_budget_point = model_point(campaign, report.candidates[0].candidate, base_first.z);
   const int runs_per_point = int(budget_runs_per_point(campaign.budget, campaign.dataset.origin));
-  phase(options, "budget", 2,
+  phase(options, campaign, "budget", 2,
         int(budget_offsets(campaign.budget.points).size()) * runs_per_point +
             (campaign.screen ? int(campaign.candidates.size()) : 0));
   report.weight_budget =
@@ -323,7 +329,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
 
   // 3. The surfaces' runs of every effect the screen kept; from here on the campaign is theirs.
   const DiagnosisCampaign c = kept_effects(campaign, report.screen);
-  phase(options, "surfaces", 3, grid_points(c) - base_grid_points(c));
+  phase(options, campaign, "surfaces", 3, grid_points(c) - base_grid_points(c));
   if (local) {
     run_local_effects(c, evaluator, samples);
   } else {
@@ -352,7 +358,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   // 4. The base and the best candidates by real runs, with the replicate seeds.
   mark_calibration_fits(report.candidates, report.combined_calibration);
   const std::vector<int> chosen = to_confirm(report.candidates, c.confirm);
-  phase(options, "confirm", 4,
+  phase(options, campaign, "confirm", 4,
         int(chosen.size() * (1 + c.refine + c.budget.seeds.size())) +
             int(budget_offsets(c.budget.points).size()) * runs_per_point);
   confirm_candidates(report.candidates, c, chosen, evaluator, lab, budget);
@@ -374,7 +380,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   report.combined_held_out = combined_budget(c.targets, judged, Role::held_out);
 
   // 5. Evidence, ranking, verdict, confidence.
-  phase(options, "analysis", 5, 0);
+  phase(options, campaign, "analysis", 5, 0);
   mark_calibration_fits(report.candidates, report.combined_calibration);
   mark_evidence(report.candidates, c.targets, lab, judged);
   const std::vector<int> order = rank_effects(report.candidates);
@@ -440,6 +446,13 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
                              inconsistency_text(report.inconsistencies, c.targets) +
                              ": no model meets both, so only a residual beyond the span of their "
                              "values is charged to the model";
+  }
+
+  // 6. The next test: the lab test that would best tell the leading hypotheses apart, and the one
+  // that would make each effect the calibration cannot identify visible.
+  if (campaign.next_test) {
+    phase(options, campaign, "next_test", 6, next_test_model_points(campaign));
+    report.next_test = run_next_test(campaign, report, evaluator);
   }
   return report;
 }

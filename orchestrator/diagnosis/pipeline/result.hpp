@@ -10,6 +10,7 @@
 #include "orchestrator/diagnosis/analysis/candidate_result.hpp"
 #include "orchestrator/diagnosis/analysis/consistency.hpp"
 #include "orchestrator/diagnosis/analysis/evaluator.hpp"
+#include "orchestrator/diagnosis/analysis/next_test.hpp"
 #include "orchestrator/diagnosis/analysis/ratio.hpp"
 #include "orchestrator/diagnosis/analysis/screen.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
@@ -55,6 +56,9 @@ struct DiagnosisResult {
   // uncertainties: the data's own, named in the verdict and not charged to the model
   // (consistency.hpp).
   std::vector<Inconsistency> inconsistencies;
+  // The lab test that would best tell the leading hypotheses apart, and the one that would make
+  // each effect the calibration cannot identify visible (next_test_runs.hpp).
+  NextTest next_test;
 };
 
 }  // namespace rockcal::diagnosis

@@ -22,13 +22,14 @@ class RunnerEvaluator : public Evaluator {
 
   // Throws DiagnosisCancelled when the runner is cancelled (the campaign, or the server stops).
   std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override;
+  std::vector<RunOutcome> run_on(std::span<const RunRequest> requests,
+                                 const std::vector<Target>& targets) override;
 
  private:
   orch::JobRunner& runner_;
   nlohmann::json job_template_;
   JobSpec model_;
   std::vector<Target> targets_;
-  RunPlan plan_;
 };
 
 }  // namespace rockcal::diagnosis

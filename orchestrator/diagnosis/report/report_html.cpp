@@ -252,6 +252,35 @@ std::string history_plot(const json& s) {
   return "<h2>Calibration history</h2>\n" + legend_html(chart.series) + svg_lines(chart);
 }
 
+// The next test's sentence, and per menu test its borrowed noise and how far apart it would put
+// the leading pair and each effect the calibration cannot identify (noise units).
+std::string next_test_section(const json& s) {
+  const json& n = at(s, "next_test");
+  if (!n.is_object()) return "";
+  std::string out = "<h2>Next test</h2>\n<p>" + show(at(n, "reason")) + "</p>\n";
+  if (n["enabled"] != true || !at(n, "menu").is_array() || at(n, "menu").empty()) return out;
+  std::vector<const json*> columns;
+  if (at(n, "leading").is_object()) columns.push_back(&n["leading"]);
+  for (const json& row : at(n, "invisible")) columns.push_back(&row);
+  out += "<table><tr><th>test</th><th>noise (budget, lab)</th>";
+  for (const json* c : columns) {
+    out += "<th>" + show(at(*c, "separates")[0]) + " vs " + show(at(*c, "separates")[1]) + "</th>";
+  }
+  out += "</tr>\n";
+  for (const json& m : at(n, "menu")) {
+    const json& noise = at(m, "noise");
+    out += "<tr><td>" + show(at(m, "description")) + "</td><td>" +
+           show(at(noise, "noise"), "%.3f") + " (" + show(at(noise, "budget_from")) + ", " +
+           show(at(noise, "lab_uncertainty_from")) + ")</td>";
+    const std::string id = at(m, "id").is_string() ? m["id"].get<std::string>() : "";
+    for (const json* c : columns) {
+      out += "<td>" + show(at(at(*c, "by_test"), id.c_str()), "%.2f") + "</td>";
+    }
+    out += "</tr>\n";
+  }
+  return out + "</table>\n";
+}
+
 std::string candidates_table(const json& s) {
   const json& screen = at(at(s, "screen"), "reason");
   std::string out =
@@ -416,6 +445,7 @@ std::string report_html(const json& s) {
   out += evidence_section(s);
   out += closure_plot(s);
   out += candidates_table(s);
+  out += next_test_section(s);
   out += refinement_table(s);
   out += figures_section(s);
   out += history_plot(s);

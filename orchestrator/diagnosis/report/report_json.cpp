@@ -6,6 +6,7 @@
 #include "orchestrator/diagnosis/analysis/identifiability.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
+#include "orchestrator/diagnosis/report/next_test_json.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 
 namespace rockcal::diagnosis {
@@ -413,6 +414,7 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
           {"ratio", ratio_json(r.ratio, c.targets)},
           {"data_inconsistencies", inconsistencies_json(r.inconsistencies, c.targets)},
           {"screen", screen_json(r.screen, c)},
+          {"next_test", next_test_json(r.next_test, c)},
           {"candidates", candidates},
           {"grid",
            {{"design", c.grid.design == Design::local ? "local" : "global"},

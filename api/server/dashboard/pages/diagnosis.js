@@ -56,6 +56,8 @@ function verdictSection(s) {
       `${conf.seeds_agreeing ?? 0} of ${conf.seeds_informative ?? 0} replicate seeds agree`,
       conf.seeds_identical ? ` (${conf.seeds_identical} more re-ran identically and are not counted)` : '', '.'),
     h('dl', {class: 'facts'}, pairs.map(([a, b]) => [h('dt', {}, a), h('dd', {}, b)])),
+    // The lab test that would tell the leading hypotheses apart (next_test.reason).
+    s.next_test && s.next_test.reason ? h('p', {class: 'next-test'}, h('strong', {}, 'Next test: '), s.next_test.reason) : null,
     conf.method ? h('details', {}, h('summary', {}, 'How the confidence is measured'), note(conf.method)) : null);
 }
 

@@ -1,0 +1,70 @@
+#include "orchestrator/diagnosis/analysis/next_test.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rockcal::diagnosis {
+
+double TestNoise::total() const {
+  return std::hypot(budget, sigma);
+}
+
+TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
+                         const std::vector<double>& budget) {
+  // The closest kin the dataset has: 2 the same test and observable, 1 the same test, 0 any.
+  auto kinship = [&](const Target& t) {
+    if (t.conditions.test != test.conditions.test) return 0;
+    return t.observable == test.observable ? 2 : 1;
+  };
+  int closest = 0;
+  for (const Target& t : targets) closest = std::max(closest, kinship(t));
+  TestNoise n;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const Target& t = targets[i];
+    if (kinship(t) != closest) continue;
+    if (std::isfinite(budget[i]) && (n.budget_from.empty() || budget[i] > n.budget)) {
+      n.budget = budget[i];
+      n.budget_from = t.id;
+    }
+    if (n.sigma_from.empty() || t.sigma > n.sigma) {
+      n.sigma = t.sigma;
+      n.sigma_from = t.id;
+    }
+  }
+  return n;
+}
+
+Separation separate(std::string a, std::string b, const std::vector<double>& mark_a,
+                    const std::vector<double>& mark_b, const std::vector<TestNoise>& noise) {
+  Separation s;
+  s.a = std::move(a);
+  s.b = std::move(b);
+  std::vector<double> apart;  // |mark_a - mark_b| per test
+  for (std::size_t k = 0; k < noise.size(); ++k) {
+    apart.push_back(
+        std::abs((mark_a.empty() ? 0.0 : mark_a[k]) - (mark_b.empty() ? 0.0 : mark_b[k])));
+    const double d = apart[k] / noise[k].total();
+    s.discrimination.push_back(std::isfinite(d) ? d : std::numeric_limits<double>::quiet_NaN());
+    if (std::isfinite(d) && (!s.best || d > s.discrimination[*s.best])) s.best = k;
+  }
+  if (s.best) s.visible = apart[*s.best] > noise[*s.best].budget + noise[*s.best].sigma;
+  return s;
+}
+
+std::size_t run_of(const NextTest& next, const std::string& effect) {
+  for (std::size_t e = 0; e < next.effects.size() && !effect.empty(); ++e) {
+    if (next.effects[e] == effect) return kNextTestBaseRuns + e;
+  }
+  return 0;
+}
+
+std::vector<double> mark_of(const NextTest& next, const std::string& effect) {
+  if (effect.empty()) return std::vector<double>(next.menu.size(), 0.0);
+  for (std::size_t e = 0; e < next.effects.size(); ++e) {
+    if (next.effects[e] == effect) return next.mark[e];
+  }
+  return {};
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,72 @@
+// The next test: which lab test from the menu (test_menu.hpp) would best tell two hypotheses apart,
+// and which one would make an effect visible that the calibration observations cannot identify.
+//
+// Each effect runs at its strong value (s = 1) at the base model's fit, as the screen does, on the
+// dataset's and the menu's conditions; its ln change from the base model's run there, less the
+// strengths' linear re-fit to the calibration observations (change_after_refit), is its mark on
+// each test. The expected discrimination of a test between hypotheses A and B (an effect, or the
+// base model with a mark of 0) is |mark_A - mark_B| / sqrt(budget^2 + sigma^2): how many noise
+// units apart the two would put its lab value. A test the dataset does not have has no measured
+// budget: it borrows the largest budget and lab uncertainty of the dataset's observations of the
+// same test and observable (else of the same test, else of any), and says which.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "orchestrator/diagnosis/analysis/evaluator.hpp"
+#include "orchestrator/diagnosis/analysis/test_menu.hpp"
+
+namespace rockcal::diagnosis {
+
+struct TestNoise {
+  double budget = 0.0;      // numerical, in ln
+  std::string budget_from;  // the observation it is borrowed from
+  double sigma = 0.0;       // lab uncertainty, relative
+  std::string sigma_from;
+  double total() const;  // sqrt(budget^2 + sigma^2)
+};
+TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
+                         const std::vector<double>& budget);
+
+// Two hypotheses on every menu test. `a` and `b` are effect names ("" = the base model).
+struct Separation {
+  std::string a, b;
+  std::vector<double> discrimination;  // per menu test; NaN where a run gave no value
+  std::optional<std::size_t> best;     // the menu test with the largest
+  // An effect against the base model: its mark at `best` exceeds budget + lab uncertainty (the
+  // bar identifiability sets), so that test would see it.
+  bool visible = false;
+  std::string why;  // for an effect the calibration cannot identify: why not
+};
+// mark_a, mark_b: per menu test, as above (empty = the base model's zeros).
+Separation separate(std::string a, std::string b, const std::vector<double>& mark_a,
+                    const std::vector<double>& mark_b, const std::vector<TestNoise>& noise);
+
+// The base model's runs that start the batch: at the fit, and a step along each strength.
+inline constexpr std::size_t kNextTestBaseRuns = 3;
+
+struct NextTest {
+  bool enabled = false;
+  std::string reason;  // why there is no next test, when there is none
+  ModelPoint point;    // the base model's fit, where every run is
+  std::vector<MenuTest> menu;
+  std::vector<TestNoise> noise;  // per menu test
+  // The runs behind it: the base model at the fit and at a step along each strength (the menu
+  // tests' strength response), then each effect at s = 1; ln[run][menu test].
+  std::vector<RunRequest> runs;
+  std::vector<std::vector<double>> ln;
+  std::vector<std::string> effects;       // the effects with a mark
+  std::vector<std::vector<double>> mark;  // [effect][menu test]
+  std::optional<Separation> leading;      // the two leading hypotheses
+  std::vector<Separation> invisible;      // effects the calibration cannot identify, vs base
+  int model_points = 0;
+};
+
+// The run of a hypothesis in NextTest::runs: the base model's at the fit for "", else the effect's.
+std::size_t run_of(const NextTest& next, const std::string& effect);
+// Its mark per menu test: zeros for the base model; empty for an effect without runs.
+std::vector<double> mark_of(const NextTest& next, const std::string& effect);
+
+}  // namespace rockcal::diagnosis

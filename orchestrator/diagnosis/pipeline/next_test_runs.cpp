@@ -1,0 +1,139 @@
+#include "orchestrator/diagnosis/pipeline/next_test_runs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/identifiability.hpp"
+#include "orchestrator/diagnosis/analysis/screen.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+const Candidate* find_candidate(const DiagnosisCampaign& c, const std::string& effect) {
+  for (const Candidate& k : c.candidates) {
+    if (k.effect == effect) return &k;
+  }
+  return nullptr;
+}
+
+// Why the calibration observations cannot identify an effect; "" when they can (or it was never
+// judged: a kept effect that could not be fitted).
+std::string unidentified(const std::string& effect, const DiagnosisResult& r,
+                         const std::vector<Target>& targets) {
+  for (const ScreenedEffect& e : r.screen.effects) {
+    if (e.effect == effect && !e.visible) {
+      return "invisible to the dataset's tests (screen): it moves no observation beyond its noise";
+    }
+  }
+  for (const CandidateResult& k : r.candidates) {
+    if (k.candidate.effect != effect || !k.identifiability || k.identifiability->identifiable) {
+      continue;
+    }
+    return identifiability_reason(*k.identifiability, targets);
+  }
+  return "";
+}
+
+}  // namespace
+
+int next_test_model_points(const DiagnosisCampaign& campaign) {
+  if (campaign.candidates.empty()) return 0;  // nothing to tell apart
+  return int(kNextTestBaseRuns + campaign.candidates.size());
+}
+
+NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Evaluator& evaluator) {
+  NextTest out;
+  out.enabled = true;
+  out.menu = test_menu(c.targets);
+  if (out.menu.empty()) {
+    out.reason = "the dataset already has every test on the menu";
+    return out;
+  }
+  const std::vector<double>& budget = r.budget.per_target;
+  std::vector<Target> all = c.targets;
+  std::vector<double> all_budget = budget;
+  for (MenuTest& m : out.menu) {
+    out.noise.push_back(borrowed_noise(m.target, c.targets, budget));
+    m.target.sigma = out.noise.back().sigma;
+    all.push_back(m.target);
+    all_budget.push_back(out.noise.back().budget);
+  }
+
+  // The two leading hypotheses: the verdict and the runner-up, or without a verdict the runner-up
+  // (the best-ranked effect) and the base model.
+  const int a = r.verdict.candidate >= 0 ? r.verdict.candidate : r.verdict.runner_up;
+  const int b = r.verdict.candidate >= 0 ? r.verdict.runner_up : -1;
+  auto name = [&](int k) { return k > 0 ? r.candidates[k].candidate.effect : std::string(); };
+  std::vector<std::string> why;
+  for (const Candidate& k : c.candidates) {
+    const std::string reason = unidentified(k.effect, r, c.targets);
+    const bool leading = (a > 0 && k.effect == name(a)) || (b > 0 && k.effect == name(b));
+    if (!leading && reason.empty()) continue;
+    out.effects.push_back(k.effect);
+    why.push_back(reason);
+  }
+  if (a <= 0 && out.effects.empty()) {
+    out.reason = "no effect to tell apart: none was tried";
+    return out;
+  }
+
+  // The base at its fit and one step along each strength (backwards at the box's upper face).
+  const Candidate base;
+  const std::vector<double>& z = r.candidates[0].calibration.z;
+  std::vector<double> step(2);
+  const Numerics nominal{c.sample_seed, 1.0, 1.0};
+  out.point = model_point(c, base, z);
+  out.runs.push_back({out.point, nominal});
+  for (int d = 0; d < 2; ++d) {
+    std::vector<double> at = z;
+    step[d] = at[d] + kBudgetStep <= 1.0 ? kBudgetStep : -kBudgetStep;
+    at[d] += step[d];
+    out.runs.push_back({model_point(c, base, at), nominal});
+  }
+  for (const std::string& effect : out.effects) {
+    out.runs.push_back(
+        {model_point(c, *find_candidate(c, effect), std::vector<double>{z[0], z[1], 1.0}),
+         nominal});
+  }
+  const std::vector<RunOutcome> outcomes = evaluator.run_on(out.runs, all);
+  out.model_points = int(out.runs.size());
+  const std::size_t n = c.targets.size();
+  for (const RunOutcome& o : outcomes) {
+    const std::vector<double> ln = ln_values(o);
+    out.ln.emplace_back(ln.begin() + long(n), ln.end());
+  }
+
+  // How each test follows the strengths: the dataset's on the base surfaces (as the screen), the
+  // menu's from the two steps.
+  StrengthResponse response = strength_response(r.candidates[0].surfaces, c.targets, {z});
+  std::vector<std::array<double, 2>> jacobian = response.jacobian[0];
+  std::vector<double> weight = response.weight;
+  for (std::size_t m = 0; m < out.menu.size(); ++m) {
+    std::array<double, 2> slope{};
+    for (int d = 0; d < 2; ++d) slope[d] = (out.ln[1 + d][m] - out.ln[0][m]) / step[d];
+    jacobian.push_back(slope);
+    weight.push_back(0.0);
+  }
+  for (std::size_t e = 0; e < out.effects.size(); ++e) {
+    const ScreenedEffect mark =
+        screen_effect(out.effects[e], outcomes[0], outcomes[run_of(out, out.effects[e])], jacobian,
+                      weight, all, all_budget);
+    out.mark.emplace_back(mark.change.begin() + long(n), mark.change.end());
+  }
+  if (a > 0) {
+    out.leading =
+        separate(name(a), name(b), mark_of(out, name(a)), mark_of(out, name(b)), out.noise);
+  }
+  for (std::size_t e = 0; e < out.effects.size(); ++e) {
+    if (why[e].empty()) continue;
+    Separation s = separate(out.effects[e], "", out.mark[e], {}, out.noise);
+    s.why = why[e];
+    out.invisible.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace rockcal::diagnosis

@@ -1,0 +1,221 @@
+// Focus: the next test (orchestrator/diagnosis/analysis/next_test.hpp). The menu holds the tests
+// the dataset does not have, each with the noise it borrows; the expected discrimination is the
+// two hypotheses' marks apart in noise units. On twins of the formula engine whose calibration
+// observations cannot identify the hidden effect, the diagnosis names a test that would show it;
+// with that test's value from the twin's truth added as a calibration observation, the diagnosis
+// names the hidden effect.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "api/cli/diagnosis_text.hpp"
+#include "orchestrator/diagnosis/analysis/next_test.hpp"
+#include "orchestrator/diagnosis/pipeline/driver.hpp"
+#include "orchestrator/diagnosis/report/report.hpp"
+#include "synthetic_model.hpp"
+
+namespace rockcal::diagnosis {
+namespace {
+
+using nlohmann::json;
+
+std::vector<std::string> ids(const std::vector<MenuTest>& menu) {
+  std::vector<std::string> out;
+  for (const MenuTest& m : menu) out.push_back(m.target.id);
+  return out;
+}
+
+TEST(TestMenu, HoldsTheTestsTheDatasetDoesNotHave) {
+  // The formula design has the UCT's modulus, a triaxial at 40 and 120 Pa, a 1.5x cylinder and
+  // disc and a fast UCT; its UCS (lab UCT 30 kN over the D = 10 section) is 382 Pa.
+  std::vector<Target> targets = testing::twin_targets();
+  for (Target& t : targets) t.value = 30e3;
+  const std::vector<MenuTest> menu = test_menu(targets);
+  // The modulus is there; 0.1 x UCS (38 Pa) is within 10% of 40 and 0.3 x UCS (115) of 120.
+  EXPECT_EQ(ids(menu),
+            (std::vector<std::string>{"menu-uct-hd1", "menu-uct-hd3", "menu-uct-peak-strain",
+                                      "menu-btt-t0.5", "menu-btt-t2", "menu-tri-0.6ucs"}));
+  const Target& squat = menu[0].target;
+  EXPECT_EQ(squat.conditions.test, TestKind::uct);
+  EXPECT_EQ(squat.conditions.diameter_m, 10);
+  EXPECT_EQ(squat.conditions.height_m, 10);
+  EXPECT_EQ(squat.conditions.platen_velocity_m_s, 0.05);  // the specimen's, not the fast UCT's
+  EXPECT_EQ(menu[0].description, "the peak load of a squat UCT (H/D = 1)");
+  EXPECT_EQ(menu[3].target.conditions.thickness_m, 2.5);  // half the disc's 5
+  EXPECT_EQ(menu[3].target.conditions.diameter_m, 10);
+  EXPECT_NEAR(menu[5].target.conditions.confining_pressure_pa, 0.6 * 30e3 / (M_PI * 25), 1e-9);
+  EXPECT_EQ(menu[5].target.observable, Observable::peak_load);
+  // Without a UCT there is no UCS to scale a confinement to: no triaxial on the menu.
+  std::vector<Target> discs{targets[2]};
+  EXPECT_EQ(ids(test_menu(discs)),
+            (std::vector<std::string>{"menu-uct-hd1", "menu-uct-hd3", "menu-uct-modulus",
+                                      "menu-uct-peak-strain", "menu-btt-t0.5", "menu-btt-t2"}));
+}
+
+TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
+  std::vector<Target> targets = testing::twin_targets();
+  // Budgets per target: the triaxial at 120 Pa has the largest of the triaxials.
+  const std::vector<double> budget{0.01, 0.05, 0.02, 0.03, 0.04, 0.015, 0.025, 0.012};
+  targets[3].sigma = 0.06;
+  Target tri = targets[3];
+  tri.conditions.confining_pressure_pa = 200;
+  const TestNoise n = borrowed_noise(tri, targets, budget);
+  EXPECT_EQ(n.budget_from, "tri-high");
+  EXPECT_DOUBLE_EQ(n.budget, 0.04);
+  EXPECT_EQ(n.sigma_from, "tri-low");
+  EXPECT_DOUBLE_EQ(n.sigma, 0.06);
+  EXPECT_DOUBLE_EQ(n.total(), std::hypot(0.04, 0.06));
+  // A UCT's peak load borrows from the UCT peak loads (the 1.5x cylinder's 0.015), not from the
+  // noisier modulus (0.05) of the same run; a peak strain, which the design lacks, from any UCT.
+  Target squat = targets[0];
+  squat.conditions.height_m = squat.conditions.diameter_m;
+  EXPECT_EQ(borrowed_noise(squat, targets, budget).budget_from, "uct-large");
+  squat.observable = Observable::peak_strain;
+  EXPECT_EQ(borrowed_noise(squat, targets, budget).budget_from, "uct-modulus");
+  // Without a disc in the dataset, a disc borrows from every observation.
+  Target disc = targets[2];
+  const std::vector<Target> no_disc{targets[0], targets[3]};
+  EXPECT_EQ(borrowed_noise(disc, no_disc, {0.01, 0.03}).budget_from, "tri-low");
+  // Two tests; A moves the first by 0.3 and B by 0.1 in ln, the second by 0.02 and -0.02.
+  const std::vector<TestNoise> noise{{0.03, "x", 0.04, "x"}, {0.01, "y", 0.02, "y"}};
+  const Separation s = separate("A", "B", {0.3, 0.02}, {0.1, -0.02}, noise);
+  ASSERT_TRUE(s.best);
+  EXPECT_EQ(*s.best, 0u);
+  EXPECT_DOUBLE_EQ(s.discrimination[0], 0.2 / 0.05);
+  EXPECT_NEAR(s.discrimination[1], 0.04 / std::hypot(0.01, 0.02), 1e-12);
+  EXPECT_TRUE(s.visible);  // 0.2 beyond budget + lab uncertainty, 0.07
+  // Against the base model (no mark): 0.05 at the second test is beyond budget + lab uncertainty
+  // (0.03); 0.02 is not.
+  const Separation v = separate("C", "", {std::nan(""), 0.05}, {}, noise);
+  ASSERT_TRUE(v.best);
+  EXPECT_EQ(*v.best, 1u);
+  EXPECT_TRUE(std::isnan(v.discrimination[0]));
+  EXPECT_TRUE(v.visible);
+  EXPECT_FALSE(separate("C", "", {0.0, 0.02}, {}, noise).visible);
+}
+
+// "next_test": false runs no batch and says so.
+TEST(NextTest, TurnedOffRunsNothingAndSaysSo) {
+  DiagnosisCampaign c = testing::twin_campaign("rate", 0.7);
+  testing::SyntheticModel on(c.targets);
+  const DiagnosisResult with = run_diagnosis(c, on);
+  c.next_test = false;
+  testing::SyntheticModel off(c.targets);
+  const DiagnosisResult without = run_diagnosis(c, off);
+  EXPECT_EQ(on.runs - off.runs, with.next_test.model_points);
+  EXPECT_EQ(with.next_test.model_points, 3 + int(with.next_test.effects.size()));
+  const json j = to_json(without, c)["next_test"];
+  EXPECT_EQ(j, json({{"enabled", false}, {"reason", "not asked for (\"next_test\": false)"}}));
+}
+
+// The real twin design's observations without those in `drop`, the hidden effect leaving its
+// measured marks (synthetic_model.hpp).
+DiagnosisCampaign twin_without(const std::string& effect, const std::vector<std::string>& drop) {
+  DiagnosisCampaign c = testing::registry_twin_campaign(effect, 0.75);
+  std::erase_if(c.targets, [&](const Target& t) {
+    return std::find(drop.begin(), drop.end(), t.id) != drop.end();
+  });
+  c.grid.design = Design::local;
+  c.grid.fr0 = c.grid.fs0 = 3;
+  return c;
+}
+
+struct Diagnosed {
+  DiagnosisResult report;
+  json summary;
+};
+
+Diagnosed diagnose(const DiagnosisCampaign& c) {
+  testing::SyntheticModel model(c.targets);
+  model.marks = testing::measured_marks();
+  Diagnosed d;
+  d.report = run_diagnosis(c, model, {});
+  d.summary = to_json(d.report, c);
+  return d;
+}
+
+struct HiddenTwin {
+  const char* effect;
+  std::vector<std::string> drop;  // observations the twin's dataset lacks
+  const char* test;               // the menu test that shows it
+};
+
+class NextTestTwin : public ::testing::TestWithParam<HiddenTwin> {};
+
+TEST_P(NextTestTwin, NamesTheTestAndThenTheEffect) {
+  const HiddenTwin twin = GetParam();
+  const DiagnosisCampaign c = twin_without(twin.effect, twin.drop);
+  const Diagnosed before = diagnose(c);
+  const json& next = before.summary["next_test"];
+  std::printf("%s\n", api::diagnosis_text(before.summary).c_str());
+  // The calibration observations cannot identify it: not the verdict.
+  EXPECT_NE(before.summary["verdict"]["effect"], twin.effect) << before.summary["verdict"].dump(2);
+  const json* row = nullptr;
+  for (const json& r : next["invisible"]) {
+    if (r["effect"] == twin.effect) row = &r;
+  }
+  ASSERT_NE(row, nullptr) << next.dump(2);
+  ASSERT_TRUE((*row)["test"].is_object()) << row->dump(2);
+  EXPECT_EQ((*row)["test"]["id"], twin.test) << row->dump(2);
+  EXPECT_TRUE((*row)["visible"].get<bool>());
+  EXPECT_GT((*row)["discrimination"].get<double>(), 1.0);
+  EXPECT_EQ((*row)["separates"], json::array({twin.effect, "the base model"}));
+  ASSERT_EQ((*row)["runs"].size(), 2u);
+  EXPECT_EQ((*row)["runs"][0]["effect"], twin.effect);
+  EXPECT_EQ((*row)["runs"][0]["s"], 1.0);
+  EXPECT_TRUE((*row)["runs"][1]["effect"].is_null());
+  // Every model point of the batch is listed: the base's three runs first, then the effects'.
+  ASSERT_EQ(next["runs"].size(), next["model_points"].get<std::size_t>());
+  EXPECT_TRUE(next["runs"][0]["effect"].is_null());
+  EXPECT_EQ(next["runs"][0]["fr0"], next["point"]["fr0"]);
+  // The user reads it in the CLI's text and on the page: the effect beside its test (or the leading
+  // pair's sentence, when that pair is the effect against the base model on the same test).
+  const std::string reason = next["reason"];
+  const std::string test = (*row)["test"]["description"];
+  const bool beside = reason.find(std::string(twin.effect) + ": " + test) != std::string::npos;
+  const bool leading =
+      reason.find(test + " (") == 0 && reason.find("would separate " + std::string(twin.effect) +
+                                                   " from the base model") != std::string::npos;
+  EXPECT_TRUE(beside || leading) << reason;
+  EXPECT_NE(api::diagnosis_text(before.summary).find("Next test: " + reason.substr(0, 40)),
+            std::string::npos);
+  const std::string html = report_html(before.summary);
+  EXPECT_NE(html.find("<h2>Next test</h2>"), std::string::npos);
+  EXPECT_NE(html.find(test.substr(0, test.find('\''))), std::string::npos);  // ' is escaped
+  // And the two leading hypotheses get a test of their own.
+  ASSERT_TRUE(next["leading"].is_object()) << next.dump(2);
+  EXPECT_TRUE(next["leading"]["test"].is_object()) << next["leading"].dump(2);
+
+  // The lab does that test: its value is the twin's truth there (noise-free), known to 2%.
+  DiagnosisCampaign after = c;
+  const NextTest& n = before.report.next_test;
+  const auto m = std::find_if(n.menu.begin(), n.menu.end(),
+                              [&](const MenuTest& t) { return t.target.id == twin.test; });
+  ASSERT_NE(m, n.menu.end());
+  Target measured = m->target;
+  testing::SyntheticModel truth({measured});
+  truth.numerical_noise = 0;
+  truth.marks = testing::measured_marks();
+  measured.value = truth.values({{60.0, 120.0, twin.effect, 0.75}, {1, 1.0, 1.0}})[0];
+  measured.sigma = 0.02;
+  measured.role = Role::calibration;
+  after.targets.push_back(measured);
+  const Diagnosed named = diagnose(after);
+  std::printf("%s\n", api::diagnosis_text(named.summary).c_str());
+  EXPECT_EQ(named.summary["verdict"]["effect"], twin.effect) << named.summary["verdict"].dump(2);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    MeasuredMarks, NextTestTwin,
+    ::testing::Values(
+        // A calibration on the UCT and BTT peaks alone (as the seed lab's): the strengths absorb
+        // every mark there.
+        HiddenTwin{"interaction_range", {"uct-modulus", "tri-low"}, "menu-uct-modulus"},
+        HiddenTwin{"compression_coupling", {"uct-modulus", "tri-low"}, "menu-tri-0.1ucs"},
+        // Without the squat UCT, heterogeneity moves only the held-out peak strain.
+        HiddenTwin{"heterogeneity", {"uct-squat"}, "menu-uct-hd1"}),
+    [](const auto& info) { return std::string(info.param.effect); });
+
+}  // namespace
+}  // namespace rockcal::diagnosis
