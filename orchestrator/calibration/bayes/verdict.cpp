@@ -24,14 +24,18 @@ std::string region_text(const PosteriorSummary& p) {
          sentence(" and of F_s0 [%.4g, %.4g]", p.fs0.lo, p.fs0.hi);
 }
 
-// The loads whose check runs fall outside what the prediction allows, as "UCT -20.1% (z -3.1)".
-std::string disagreeing_checks(const PosteriorSummary& p) {
+// The loads whose check runs fall outside what the prediction allows, as "UCT -20.1% (z -3.1)":
+// those whose check mean misses the target beyond the tolerance (`missing` true), which the
+// prediction alone cannot call met, or those whose check mean meets it all the same.
+std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool missing) {
   std::string out;
   for (const auto& [name, load] : {std::pair{"UCT", &p.uct}, std::pair{"BTT", &p.btt}}) {
     if (!load->check || load->check->agrees) continue;
+    if ((std::abs(load->check->relative_to_target) > tolerance) != missing) continue;
     out +=
         (out.empty() ? "" : ", ") + std::string(name) +
-        sentence(" %+.3g%% (z %+.2g)", 100 * load->check->relative_to_prediction, load->check->z);
+        sentence(" %+.3g%% (z %+.2g)", 100 * load->check->relative_to_prediction, load->check->z) +
+        (missing ? "" : sentence(", itself %+.3g%% of the target", 100 * load->check->relative_to_target));
   }
   return out;
 }
@@ -67,7 +71,8 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
        {no_peak_text(r.history), not_quasi_static_text(r.history, platen_velocity_of(c))}) {
     if (!f.empty()) faults += "; " + f;
   }
-  const std::string disagree = disagreeing_checks(p);
+  const std::string disagree = disagreeing_checks(p, c.tolerance, true);
+  const std::string differ = disagreeing_checks(p, c.tolerance, false);
   if (met && !disagree.empty()) {
     // The prediction meets the targets, the real runs at the estimate do not bear it out.
     r.verdict = Verdict::compromise;
@@ -88,7 +93,12 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
         sentence("the predicted loads at the estimate are within %.3g%% of both targets (",
                  100 * c.tolerance) +
         loads_text(p, c) + ")" + runs + "; " + region_text(p) +
-        (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why + faults;
+        (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why +
+        (differ.empty() ? ""
+                        : "; the check runs at the estimate differ from the prediction beyond its " +
+                              sentence("%.0f%% interval (", 100 * kCheckLevel) + differ +
+                              ") but meet the targets themselves") +
+        faults;
     return;
   }
   if (r.stop_reason == StopReason::cancelled) {
