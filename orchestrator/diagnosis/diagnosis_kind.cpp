@@ -20,9 +20,12 @@ std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
   const int budget = 2 * int(budget_offsets(c.budget.points).size()) *
                          int(budget_runs_per_point(c.budget, c.dataset.origin)) +
                      (c.screen ? int(c.candidates.size()) : 0);
-  const int confirm = (1 + c.confirm) * (1 + c.refine + seeds);
+  // Effects are designed and confirmed only when held-out observations can judge them.
+  const bool judged = judges_effects(c);
+  const int confirm = (1 + (judged ? c.confirm : 0)) * (1 + c.refine + seeds);
+  const int grid = judged ? grid_points(c) : base_grid_points(c);
   std::vector<orch::BudgetPart> parts{
-      {"grid", grid_points(c) * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
+      {"grid", grid * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};
   // The next test's batch runs on the dataset's and the menu's conditions.
   const int next_test = c.next_test ? next_test_model_points(c) : 0;
   if (next_test > 0) {

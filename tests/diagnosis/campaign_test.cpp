@@ -160,6 +160,7 @@ TEST(DiagnosisRequest, BadRequestsNameTheField) {
       {"dataset.observations",
        [](json& r) {
          for (json& o : r["dataset"]["observations"]) o["role"] = "calibration";
+         r["next_test"] = false;
        }},
       {"budget.resolution",
        [](json& r) {
@@ -353,18 +354,39 @@ TEST(DiagnosisRequest, JobsAreCanonicalAndCarryTheEffectAndNumerics) {
   EXPECT_EQ(het5["sample"]["seed"], 5);
 }
 
-// Without held-out observations effects cannot be ranked; with "effects": [] the request is a
-// gap location and is accepted.
-TEST(DiagnosisRequest, CalibrationOnlyDatasetNeedsNoEffects) {
+// Without held-out observations no effect can be judged: effects are accepted for their next test
+// (the plan runs the base model's grid and confirmation only, no effect's surfaces), and refused,
+// with what to ask instead, when the next test is turned off; with "effects": [] the request is a
+// gap location.
+TEST(DiagnosisRequest, CalibrationOnlyDatasetTakesEffectsOnlyForTheirNextTest) {
   json r = request();
   for (json& o : r["dataset"]["observations"]) o["role"] = "calibration";
-  EXPECT_THROW(parse_diagnosis_campaign(r), orch::RequestError);
+  const DiagnosisCampaign with = parse_diagnosis_campaign(r);
+  EXPECT_FALSE(judges_effects(with));
+  EXPECT_EQ(with.candidates.size(), 2u);
+  std::vector<orch::BudgetPart> parts = planned_job_parts(with);
+  ASSERT_EQ(parts.size(), 4u);
+  EXPECT_EQ(parts[0].budget, 9 * 4);                // the base grid alone
+  EXPECT_EQ(parts[2].budget, 1 * (1 + 2 + 2) * 4);  // the base model confirmed alone
+  EXPECT_EQ(parts[3].name, "next_test");
+  r["next_test"] = false;
+  try {
+    parse_diagnosis_campaign(r);
+    FAIL() << "accepted";
+  } catch (const orch::RequestError& e) {
+    EXPECT_EQ(e.field, "dataset.observations");
+    EXPECT_EQ(std::string(e.what()),
+              "dataset.observations: has no held_out observation, so no effect can be judged (a "
+              "better calibration fit proves nothing) and with \"next_test\": false none gets the "
+              "test that would show it; ask for \"next_test\": true, or \"effects\": [] to only "
+              "locate the gap");
+  }
   r["effects"] = json::array();
   const DiagnosisCampaign c = parse_diagnosis_campaign(r);
   EXPECT_TRUE(c.candidates.empty());
   EXPECT_EQ(count_role(c.targets, Role::held_out), 0u);
   // Nothing to tell apart: no next test's batch is planned.
-  const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
+  parts = planned_job_parts(c);
   ASSERT_EQ(parts.size(), 3u);
   EXPECT_EQ(parts.back().name, "confirm");
 }

@@ -8,10 +8,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "api/cli/diagnosis_text.hpp"
 #include "orchestrator/diagnosis/analysis/next_test.hpp"
+#include "orchestrator/diagnosis/diagnosis_kind.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "synthetic_model.hpp"
 
@@ -216,6 +219,80 @@ INSTANTIATE_TEST_SUITE_P(
         // Without the squat UCT, heterogeneity moves only the held-out peak strain.
         HiddenTwin{"heterogeneity", {"uct-squat"}, "menu-uct-hd1"}),
     [](const auto& info) { return std::string(info.param.effect); });
+
+// With nothing held out (as in the seed lab's case: the UCT and BTT peaks, here with the UCT's
+// modulus, all calibration) no effect can be judged: the diagnosis screens, fits the base model and
+// measures its budget, answers "undetermined" with the miss stated, designs no effect, and names
+// for every requested effect the menu test that would show it against the base model, so the user
+// knows what to measure.
+TEST(NextTest, WithNothingHeldOutEveryEffectGetsTheTestThatWouldShowIt) {
+  DiagnosisCampaign c = testing::registry_twin_campaign("compression_coupling", 0.75);
+  std::erase_if(c.targets, [](const Target& t) {
+    return t.id != "uct-peak" && t.id != "uct-modulus" && t.id != "btt-peak";
+  });
+  ASSERT_EQ(c.targets.size(), 3u);
+  c.grid.design = Design::local;
+  c.grid.fr0 = c.grid.fs0 = 3;
+  testing::SyntheticModel model(c.targets);
+  model.marks = testing::measured_marks();
+  const DiagnosisResult r = run_diagnosis(c, model, {});
+  const json s = to_json(r, c);
+  std::printf("%s\n", api::diagnosis_text(s).c_str());
+
+  const json& v = s["verdict"];
+  EXPECT_EQ(v["label"], "undetermined");
+  EXPECT_TRUE(v["effect"].is_null());
+  EXPECT_EQ(v["confidence"]["level"], "none");
+  const std::string reason = v["reason"];
+  const std::string cause = "undetermined: no held-out observations, so no effect can be judged; ";
+  EXPECT_EQ(reason.substr(0, cause.size()), cause) << reason;
+  EXPECT_NE(reason.find("the base model "), std::string::npos) << reason;  // its miss, stated
+  // Nothing is designed or confirmed beyond the base model: no evidence could judge an effect.
+  EXPECT_EQ(s["candidates"].size(), 1u);
+  EXPECT_EQ(s["gap"]["closure_missing"],
+            "G is measured on held-out observations, and the dataset has none; so no effect was "
+            "designed (next_test names the test that would show each)");
+  EXPECT_EQ(planned_job_parts(c)[0].budget, base_grid_points(c) * 2);  // a UCT and a BTT each
+
+  // The next test: every requested effect with its test against the base model, and why the data
+  // could not judge it (the screen's reason for one it dropped).
+  const json& next = s["next_test"];
+  EXPECT_TRUE(next["leading"].is_null());
+  ASSERT_EQ(next["invisible"].size(), c.candidates.size()) << next.dump(2);
+  std::set<bool> screened;  // both kinds of effect are here: the screen drops some, keeps some
+  for (std::size_t k = 0; k < c.candidates.size(); ++k) {
+    const json& row = next["invisible"][k];
+    EXPECT_EQ(row["effect"], c.candidates[k].effect);
+    EXPECT_EQ(row["separates"], json::array({c.candidates[k].effect, "the base model"}));
+    const bool screened_out = !r.screen.effects[k].visible;
+    screened.insert(screened_out);
+    EXPECT_EQ(row["why"], screened_out ? "invisible to the dataset's tests (screen): it moves no "
+                                         "observation beyond its noise"
+                                       : "not judged: the dataset has no held-out observation, so "
+                                         "no evidence can tell it from the base model")
+        << row.dump(2);
+  }
+  EXPECT_EQ(screened.size(), 2u);
+  const json* coupling = nullptr;
+  for (const json& row : next["invisible"]) {
+    if (row["effect"] == "compression_coupling") coupling = &row;
+  }
+  ASSERT_NE(coupling, nullptr);
+  ASSERT_TRUE((*coupling)["test"].is_object()) << coupling->dump(2);
+  EXPECT_EQ((*coupling)["test"]["test"], "triaxial") << coupling->dump(2);
+  EXPECT_TRUE((*coupling)["visible"].get<bool>());
+  const std::string said =
+      "With nothing held out no effect can be judged "
+      "(next_test.invisible[].why); for each, the test that would show it "
+      "against the base model: ";
+  const std::string text = next["reason"];
+  EXPECT_NE(text.find(said), std::string::npos) << text;
+  EXPECT_NE(
+      text.find("compression_coupling: " + (*coupling)["test"]["description"].get<std::string>()),
+      std::string::npos)
+      << text;
+  EXPECT_NE(api::diagnosis_text(s).find("Next test: " + text.substr(0, 40)), std::string::npos);
+}
 
 }  // namespace
 }  // namespace rockcal::diagnosis

@@ -278,16 +278,21 @@ DiagnosisCampaign parse_diagnosis_campaign(const json& request) {
   } catch (const orch::RequestError& e) {
     throw orch::under("dataset", e);
   }
-  // Effects are ranked on held-out data only (a better calibration fit proves nothing). Without
-  // any, the diagnosis can still locate the gap, but only when asked for no effects.
-  if (count_role(c.targets, Role::held_out) == 0 && !c.candidates.empty()) {
+  // Without held-out observations the effects only get their next test: without it they would
+  // have nothing to answer.
+  if (!judges_effects(c) && !c.candidates.empty() && !c.next_test) {
     throw orch::RequestError("dataset.observations",
-                             "needs at least one held_out observation to rank effects (a better "
-                             "calibration fit proves nothing); with \"effects\": [] the diagnosis "
-                             "only locates the gap");
+                             "has no held_out observation, so no effect can be judged (a better "
+                             "calibration fit proves nothing) and with \"next_test\": false none "
+                             "gets the test that would show it; ask for \"next_test\": true, or "
+                             "\"effects\": [] to only locate the gap");
   }
   validate_runs(c, model);
   return c;
+}
+
+bool judges_effects(const DiagnosisCampaign& c) {
+  return count_role(c.targets, Role::held_out) > 0;
 }
 
 }  // namespace rockcal::diagnosis

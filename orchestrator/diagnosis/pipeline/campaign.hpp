@@ -59,6 +59,11 @@ struct DiagnosisCampaign {
 // "effects[1]", "grid.s").
 DiagnosisCampaign parse_diagnosis_campaign(const nlohmann::json& request);
 
+// Effects are judged on held-out observations only (a better calibration fit proves nothing):
+// without any, the effects are screened and each given the lab test that would show it (the next
+// test), but not designed, confirmed or ranked.
+bool judges_effects(const DiagnosisCampaign& c);
+
 // Every effect the engine registers, in registration order, as candidates; a parameter's neutral
 // value may depend on the job (post_break_friction: its contact.friction), hence `model`.
 std::vector<Candidate> registry_candidates(const JobSpec& model);

@@ -248,7 +248,7 @@ Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base
     screen.effects.push_back(screen_effect(c.candidates[k].effect, outcomes[0], outcomes[k + 1],
                                            response.jacobian[0], response.weight, c.targets,
                                            budget.per_target));
-    if (!screen.effects.back().visible) {
+    if (!screen.effects.back().visible && judges_effects(c)) {
       screen.skipped_model_points += effect_grid_points(c, c.candidates[k]);
     }
   }
@@ -256,11 +256,13 @@ Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base
   return budget;
 }
 
-// The campaign with only the effects the screen kept.
+// The campaign with only the effects it designs: those the screen kept, none when nothing is held
+// out (no evidence could judge them; the next test names what would).
 DiagnosisCampaign kept_effects(const DiagnosisCampaign& c, const ScreenResult& screen) {
   DiagnosisCampaign kept = c;
-  if (!screen.enabled) return kept;
+  if (!screen.enabled && judges_effects(c)) return kept;
   kept.candidates.clear();
+  if (!judges_effects(c)) return kept;
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
     if (screen.effects[k].visible) kept.candidates.push_back(c.candidates[k]);
   }

@@ -22,12 +22,17 @@ const Candidate* find_candidate(const DiagnosisCampaign& c, const std::string& e
 // Why the calibration observations cannot identify an effect; "" when they can (or it was never
 // judged: a kept effect that could not be fitted).
 std::string unidentified(const std::string& effect, const DiagnosisResult& r,
-                         const std::vector<Target>& targets) {
+                         const DiagnosisCampaign& c) {
   for (const ScreenedEffect& e : r.screen.effects) {
     if (e.effect == effect && !e.visible) {
       return "invisible to the dataset's tests (screen): it moves no observation beyond its noise";
     }
   }
+  if (!judges_effects(c)) {
+    return "not judged: the dataset has no held-out observation, so no evidence can tell it from "
+           "the base model";
+  }
+  const std::vector<Target>& targets = c.targets;
   for (const CandidateResult& k : r.candidates) {
     if (k.candidate.effect != effect || !k.identifiability || k.identifiability->identifiable) {
       continue;
@@ -69,7 +74,7 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
   auto name = [&](int k) { return k > 0 ? r.candidates[k].candidate.effect : std::string(); };
   std::vector<std::string> why;
   for (const Candidate& k : c.candidates) {
-    const std::string reason = unidentified(k.effect, r, c.targets);
+    const std::string reason = unidentified(k.effect, r, c);
     const bool leading = (a > 0 && k.effect == name(a)) || (b > 0 && k.effect == name(b));
     if (!leading && reason.empty()) continue;
     out.effects.push_back(k.effect);

@@ -191,9 +191,11 @@ json next_test_json(const NextTest& next, const DiagnosisCampaign& c) {
   }
   if (!shown.empty()) {
     append(reason, " ",
-           "For the effects the calibration observations cannot identify "
-           "(next_test.invisible[].why), the test that would show each: " +
-               shown + ".");
+           std::string(judges_effects(c) ? "For the effects the calibration observations cannot "
+                                           "identify (next_test.invisible[].why)"
+                                         : "With nothing held out no effect can be judged "
+                                           "(next_test.invisible[].why); for each") +
+               ", the test that would show it against the base model: " + shown + ".");
   }
   if (!unseen.empty()) {
     append(reason, " ",

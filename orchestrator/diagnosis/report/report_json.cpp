@@ -268,15 +268,17 @@ json budget_json(const DiagnosisResult& r, const std::vector<Target>& targets, O
 }
 
 // Why no effect has a gap closure G (null when one has): a chart of G left empty says so.
-json closure_missing(const DiagnosisResult& r, const std::vector<Target>& targets) {
+json closure_missing(const DiagnosisResult& r, const DiagnosisCampaign& campaign) {
   const auto& c = r.candidates;
   const std::string untried =
-      r.screen.effects.empty()
+      campaign.candidates.empty()
           ? "no candidate effects were tried (the request's \"effects\" is empty)"
           : "the screen found every candidate effect invisible to these tests (screen.reason)";
-  if (count_role(targets, Role::held_out) == 0) {
-    return "G is measured on held-out observations, and the dataset has none" +
-           (c.size() < 2 ? "; " + untried : "");
+  if (!judges_effects(campaign)) {
+    return "G is measured on held-out observations, and the dataset has none; " +
+           (campaign.candidates.empty()
+                ? untried
+                : "so no effect was designed (next_test names the test that would show each)");
   }
   if (c.size() < 2) return untried + ": the diagnosis only locates the gap";
   for (std::size_t k = 1; k < c.size(); ++k) {
@@ -297,8 +299,10 @@ json closure_missing(const DiagnosisResult& r, const std::vector<Target>& target
   return "no candidate effect could be fitted (candidates[].error says why)";
 }
 
-json gap_json(const DiagnosisResult& r, const std::vector<Target>& targets,
-              const std::vector<double>& lab, const DecisionRule& rule) {
+json gap_json(const DiagnosisResult& r, const DiagnosisCampaign& c,
+              const std::vector<double>& lab) {
+  const std::vector<Target>& targets = c.targets;
+  const DecisionRule& rule = c.decision;
   const CandidateResult& base = r.candidates[0];
   const std::vector<double> res = charged_residuals(residuals(base.confirmed_ln, lab), targets);
   json significant = json::array();
@@ -314,7 +318,7 @@ json gap_json(const DiagnosisResult& r, const std::vector<Target>& targets,
           {"threshold_budgets", rule.gap_budgets},
           {"exceeds_budget", r.held_out_budgets.value_or(0) > rule.gap_budgets},
           {"significant", significant},
-          {"closure_missing", closure_missing(r, targets)}};
+          {"closure_missing", closure_missing(r, c)}};
 }
 
 json ratio_json(const std::optional<LabRatio>& r, const std::vector<Target>& targets) {
@@ -377,9 +381,16 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
   } else {
     reason = "invisible to these tests: " + named +
              ": at its strong value (s = 1), with the strengths re-fitted, each moves no "
-             "observation beyond its noise (budget + lab uncertainty), so it was not designed "
-             "further (" +
-             std::to_string(screen.skipped_model_points) + " model points of surfaces not run)";
+             "observation beyond its noise (budget + lab uncertainty)";
+    if (judges_effects(c)) {
+      reason += ", so it was not designed further (" + std::to_string(screen.skipped_model_points) +
+                " model points of surfaces not run)";
+    }
+  }
+  if (screen.enabled && !judges_effects(c)) {
+    reason +=
+        "; with nothing held out no effect is designed (next_test names the test that "
+        "would show each)";
   }
   return {{"enabled", screen.enabled},
           {"point", screen.enabled ? json{{"fr0", screen.point.fr0_n}, {"fs0", screen.point.fs0_n}}
@@ -406,7 +417,7 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
           {"name", c.name},
           {"dataset", c.dataset.name},
           {"verdict", verdict_json(r, c.decision)},
-          {"gap", gap_json(r, c.targets, lab, c.decision)},
+          {"gap", gap_json(r, c, lab)},
           {"decision",
            {{"gap_budgets", c.decision.gap_budgets}, {"min_evidence", c.decision.min_evidence}}},
           {"observations", observations},
