@@ -29,7 +29,7 @@ inline double lateral_component(const Mat3& strain) {
 // The interior a lab's gauges cover: the central half of the specimen in radius and in height
 // (the specimen centred at the origin, loaded along z), by reference position.
 struct CentralHalf {
-  double r_in, z_in;
+  double r_in = 0.0, z_in = 0.0;
   bool operator()(const Vec3& x) const {
     return x.x() * x.x() + x.y() * x.y() <= r_in * r_in && std::abs(x.z()) <= z_in;
   }
