@@ -34,6 +34,7 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
            {"confining_pressure", r.confining_pressure_pa},
            {"youngs_modulus", opt(r.youngs_modulus_pa)},
            {"poisson_ratio", opt(r.poisson_ratio)},
+           {"gauge_modulus", opt(r.gauge_modulus_pa)},
            {"peak_displacement", r.peak_displacement_m},
            {"peak_strain", opt(r.peak_strain)},
            {"particles", r.particles},

@@ -192,6 +192,10 @@ std::string rock_text(const json& r) {
              (lab ? " GPa" : " Pa") + ")";
   } else if (e.is_object() && e["runs"].is_number()) {
     out += " from " + e["runs"].dump() + " check runs";
+    // A run that measured E without nu (a result from an engine before the UCT's gauges).
+    if (nu.is_object() && nu["value"].is_number() && nu["runs"].is_number() &&
+        nu["runs"] != e["runs"])
+      out += " (nu from " + nu["runs"].dump() + ")";
   }
   return out + "\n";
 }

@@ -8,6 +8,7 @@
 #include "engine/confinement.hpp"
 #include "engine/effects/effect.hpp"
 #include "engine/loadtests/driver.hpp"
+#include "engine/loadtests/gauges.hpp"
 #include "engine/loadtests/loading_speed.hpp"
 #include "engine/loadtests/modulus.hpp"
 #include "engine/loadtests/peak.hpp"
@@ -256,8 +257,17 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     const double strain = radial_strain(sim, band);
     return strain == 0.0 ? 0.0 : -strain;  // 0, not -0, at the start
   };
+  // Strain gauges over the interior (UCT, triaxial), read at every curve row from the seated
+  // state on: the row count is bounded by the closure spacing, so their buffer is reserved once.
+  Gauges gauges;
+  if (lateral)
+    gauges = place_gauges(sim, spec, static_cast<std::size_t>(spec.output.curve_points) + 2);
+  auto add_row = [&] {
+    r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total, lateral_strain()});
+    if (lateral) read_gauges(sim, gauges, r.curve.size() - 1);
+  };
   if (r.stop_reason.empty()) {
-    r.curve.push_back({sim.step, sim.time, 0.0, load, sim.broken_total, lateral_strain()});
+    add_row();
     next_curve = curve_spacing;
   }
 
@@ -285,7 +295,7 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     const bool failed =
         peak.update(load, closure, sim.step, sim.broken_total) && !schedule.changing(t);
     if (closure >= next_curve) {
-      r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total, lateral_strain()});
+      add_row();
       next_curve = closure + curve_spacing;
       sample_energy();
     }
@@ -309,8 +319,7 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
     if (!r.stop_reason.empty()) break;
     sim.stop_local = clock.stop_requested();  // decided together after the next step
   }
-  if (r.curve.empty() || r.curve.back().step != sim.step)
-    r.curve.push_back({sim.step, sim.time, closure, load, sim.broken_total, lateral_strain()});
+  if (r.curve.empty() || r.curve.back().step != sim.step) add_row();
   if (hooks.on_frame) snapshot();
   clock.maybe_report(progress, true);
 
@@ -333,6 +342,9 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   if (spec.test != TestKind::btt && r.peak_reached) {
     const double area = axial_area_m2(spec.sample.diameter_m);  // the strength's cross-section
     r.youngs_modulus_pa = prepeak_modulus(r.curve, base_load, r.peak_load_n, area, length);
+    const GaugeFit gauge = gauge_fit(gauges.readings, r.curve, base_load, r.peak_load_n, area);
+    r.poisson_ratio = gauge.poisson_ratio;
+    r.gauge_modulus_pa = gauge.youngs_modulus_pa;
     r.peak_strain = r.peak_displacement_m / length;
   }
   r.steps = sim.step;

@@ -97,7 +97,6 @@ TestResult run_elastic_test(const JobSpec& job, const RunHooks& hooks) {
 
   // Interior: the central half of the specimen in radius and in height. A lattice's volume per
   // particle is exact; a random packing's is counted in the core (2 radii clear of every surface).
-  const double r_in = 0.25 * diameter, z_in = 0.25 * length;
   double volume_per_particle = particle_volume(spec);
   if (spec.sample.packing != "fcc") {
     const double clear = 2.0 * spec.sample.radius_m * spec.sample.radius_ratio;
@@ -108,13 +107,9 @@ TestResult run_elastic_test(const JobSpec& job, const RunHooks& hooks) {
     reduce_sum(sim.domain, &count, 1);
     if (count > 0) volume_per_particle = M_PI * rc * rc * 2.0 * zc / count;
   }
+  InteriorScratch scratch;
   auto measure = [&] {
-    return measure_interior(
-        sim, reference,
-        [&](const Vec3& x) {
-          return x.x() * x.x() + x.y() * x.y() <= r_in * r_in && std::abs(x.z()) <= z_in;
-        },
-        volume_per_particle);
+    return measure_interior(sim, reference, central_half(spec), volume_per_particle, scratch);
   };
 
   // A random packing's ends are rough by about a grain: at the elastic strain the platens would
@@ -154,8 +149,8 @@ TestResult run_elastic_test(const JobSpec& job, const RunHooks& hooks) {
   if (ok) {
     const InteriorState second = measure();
     const Mat3 d_strain = second.strain - first.strain, d_stress = second.stress - first.stress;
-    const double eps_axial = d_strain(2, 2);
-    const double eps_lateral = 0.5 * (d_strain(0, 0) + d_strain(1, 1));
+    const double eps_axial = axial_component(d_strain);
+    const double eps_lateral = lateral_component(d_strain);
     if (second.particles >= 4 && eps_axial != 0) {
       r.youngs_modulus_pa = d_stress(2, 2) / eps_axial;
       r.poisson_ratio = -eps_lateral / eps_axial;

@@ -70,8 +70,13 @@ struct TestResult {
   double strength_pa = 0.0;                 // loadtests/strength.hpp; elastic: 0
   double confining_pressure_pa = 0.0;       // triaxial: the lateral pressure; others 0
   std::optional<double> youngs_modulus_pa;  // UCT pre-peak slope, or elastic test
-  std::optional<double> poisson_ratio;      // elastic test
-  double peak_displacement_m = 0.0;         // platen closure from the seated state
+  // Elastic test, or UCT / triaxial with a peak: the interior's, over the modulus's window from
+  // strain gauges (loadtests/gauges.hpp).
+  std::optional<double> poisson_ratio;
+  // UCT / triaxial with a peak: the platen stress over the interior's axial strain (the gauges'),
+  // over the same window: E as a lab's gauges measure it, without the specimen's ends.
+  std::optional<double> gauge_modulus_pa;
+  double peak_displacement_m = 0.0;  // platen closure from the seated state
   // UCT / triaxial with a peak: the axial strain at peak, closure over the loaded length. Moves
   // with packing, rate, compression coupling and interaction range where the peak load barely
   // does once the strengths are re-fitted (docs/effects.md, "Signatures").

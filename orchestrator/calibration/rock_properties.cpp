@@ -12,7 +12,8 @@ using nlohmann::json;
 
 // A modulus or ratio: the stiffness stage's elastic test where it ran (the interior's, as a lab's
 // gauges measure it), else the mean over the estimate's UCT check runs that have it; the UCT's
-// mean (for E its pre-peak slope, platen to platen) is stated beside either way.
+// mean (for E its pre-peak slope, platen to platen; for nu its interior gauges') is stated beside
+// either way.
 json measured(const std::optional<EvaluationRecord>& best, bool modulus, double scale,
               std::optional<double> lab, std::optional<double> elastic, int elastic_runs) {
   std::vector<double> values;

@@ -50,6 +50,8 @@ struct ScatteringEvaluator : Evaluator {
   std::function<bool(const BondPoint&)> quasi_static;
   // Where both tests end without a peak (set: the strengths the predicate holds for).
   std::function<bool(const BondPoint&)> no_peak;
+  // Set: what each UCT's gauges measured (its E and nu), else none.
+  std::function<void(orch::Realisation&)> uct_gauges;
 
   explicit ScatteringEvaluator(testing::Model m) : model(std::move(m)) {}
 
@@ -93,6 +95,7 @@ struct ScatteringEvaluator : Evaluator {
                         {},
                         ""};
     if (quasi_static) u.quasi_static = b.quasi_static = quasi_static(r.point);
+    if (uct_gauges) uct_gauges(u);
     return outcome_of(orch::make_ensemble({u}), orch::make_ensemble({b}));
   }
 
@@ -241,6 +244,34 @@ TEST(BayesCalibration, TheReportStatesTheRocksPropertiesAtTheEstimate) {
                    btt_strength_pa(r.posterior->btt.hi_n, c.model_specimen));
   EXPECT_EQ(j["youngs_modulus_pa"]["value"], nullptr);  // the formula engine measures none
   EXPECT_EQ(j["youngs_modulus_pa"]["runs"], 0);
+}
+
+// Without a stiffness stage the rock's E and nu are the check runs' UCT means, over the same
+// runs: each packing's nu reaches the report as its E does.
+TEST(BayesCalibration, TheRocksNuIsTheCheckRunsMeanAsItsEIs) {
+  const CalibrationCampaign c = testing::campaign(testing::power_law({60, 120}), bayes(30, 0.05));
+  ScatteringEvaluator e(testing::power_law);
+  e.uct_gauges = [](orch::Realisation& u) {
+    u.youngs_modulus_pa = 4000.0 + 100.0 * double(u.seed % 3);
+    u.poisson_ratio = 0.2 + 0.05 * double(u.seed % 3);
+  };
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior && r.best && r.best->uct);
+  double e_sum = 0, nu_sum = 0;
+  std::size_t n = 0;
+  for (const orch::Realisation& x : r.best->uct->realisations) {
+    if (!x.poisson_ratio) continue;
+    e_sum += *x.youngs_modulus_pa;
+    nu_sum += *x.poisson_ratio;
+    ++n;
+  }
+  ASSERT_GE(n, 2u);
+  const nlohmann::json j = to_json(r, c)["rock_properties"];
+  EXPECT_EQ(j["poisson_ratio"]["measure"], "uct");
+  EXPECT_EQ(j["poisson_ratio"]["runs"], n);
+  EXPECT_EQ(j["youngs_modulus_pa"]["runs"], n);
+  EXPECT_NEAR(j["poisson_ratio"]["value"].get<double>(), nu_sum / double(n), 1e-12);
+  EXPECT_NEAR(j["youngs_modulus_pa"]["value"].get<double>(), e_sum / double(n), 1e-9);
 }
 
 // The model's UCT/BTT ratio stays within [6.0, 23.8] (smooth_min); a lab ratio of 3 is out of

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/loadtests/driver.hpp"
+#include "engine/loadtests/gauges.hpp"
 #include "engine/loadtests/modulus.hpp"
 
 using namespace rockcal;
@@ -67,6 +68,31 @@ TEST(Modulus, AnEarlyFailureEndsTheBranchTheSlopeIsFittedOn) {
   const auto e = prepeak_modulus(c, 0.0, 3000.0, 1.0, 1.0);
   ASSERT_TRUE(e.has_value());
   EXPECT_NEAR(*e, 5000.0, 1e-6);
+}
+
+TEST(Modulus, TheGaugesAreFittedOverTheSameIntactBranch) {
+  // Gauges read at every other row: the interior strains 1.25 times the platens' strain with
+  // a lateral strain of -0.25 times its own on the intact branch; past the early failure the
+  // specimen dilates (lateral -2 times the axial increment). Over the intact branch's window the
+  // ratio is 0.25 and the modulus the stress over the gauges' strain, 5000 / 1.25; the band of
+  // the final peak would have mixed in the dilation.
+  const auto c = curve_with_early_failure(5000.0, 1000.0, 0.2, 1600.0, 3000.0);
+  std::vector<GaugeReading> readings;
+  double axial_at_failure = -1.0;
+  for (std::size_t i = 0; i < c.size(); i += 2) {
+    const double axial = 1.25 * c[i].displacement_m;
+    if (c[i].broken_bonds >= 20 && axial_at_failure < 0) axial_at_failure = axial;
+    const double lateral = axial_at_failure < 0
+                               ? -0.25 * axial
+                               : -0.25 * axial_at_failure - 2.0 * (axial - axial_at_failure);
+    readings.push_back({i, axial, lateral});
+  }
+  const GaugeFit fit = gauge_fit(readings, c, 0.0, 3000.0, 1.0);
+  ASSERT_TRUE(fit.poisson_ratio && fit.youngs_modulus_pa);
+  EXPECT_NEAR(*fit.poisson_ratio, 0.25, 1e-9);
+  EXPECT_NEAR(*fit.youngs_modulus_pa, 4000.0, 1e-6);
+  // Without readings in the window there is nothing to fit.
+  EXPECT_FALSE(gauge_fit({}, c, 0.0, 3000.0, 1.0).poisson_ratio);
 }
 
 TEST(Modulus, ASmallWobbleWithBrokenBondsIsNotAFailure) {

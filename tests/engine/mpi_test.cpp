@@ -87,6 +87,10 @@ TEST(Mpi, TwoRanksAgreeWithOne) {
   EXPECT_EQ(one["bonds"], two["bonds"]);
   const double p1 = one["peak_load"], p2 = two["peak_load"];
   EXPECT_NEAR(p2 / p1, 1.0, 0.005);
+  // The interior's gauges are read by both ranks together (its particles lie on both): the same
+  // Poisson's ratio, fitted before any bond broke.
+  ASSERT_TRUE(one["poisson_ratio"].is_number() && two["poisson_ratio"].is_number());
+  EXPECT_NEAR(two["poisson_ratio"].get<double>(), one["poisson_ratio"].get<double>(), 1e-6);
   const double b1 = one["broken_bonds_at_peak"], b2 = two["broken_bonds_at_peak"];
   EXPECT_GT(b1, 0);
   EXPECT_NEAR(b2 / b1, 1.0, 0.01);

@@ -276,6 +276,31 @@ TEST(CalibrationSummary, APosteriorShowsItsIntervalsAndFurtherTargets) {
       << text;
 }
 
+// Without the stiffness stage E and nu are the check runs' UCT means; nu measured on fewer of
+// them (a run answered from a store made before the UCT measured nu) says on how many.
+TEST(CalibrationSummary, TheRocksNuFromTheCheckRunsSaysHowManyMeasuredIt) {
+  json summary = bayes_summary();
+  auto rock = [](int nu_runs) {
+    return json{
+        {"units", "lab"},
+        {"ucs_pa", {{"value", 133.5e6}, {"interval", {129.3e6, 137.9e6}}}},
+        {"bts_pa", {{"value", 22.28e6}, {"interval", {21.7e6, 22.87e6}}}},
+        {"youngs_modulus_pa",
+         {{"value", 1.3e9}, {"runs", 2}, {"measure", "uct"}, {"lab", 12.33e9}}},
+        {"poisson_ratio", {{"value", 0.6}, {"runs", nu_runs}, {"measure", "uct"}, {"lab", 0.2}}}};
+  };
+  summary["rock_properties"] = rock(2);
+  std::string text = calibration_text(summary);
+  EXPECT_NE(text.find("; E 1.3 GPa (lab 12.3) and nu 0.6 (lab 0.2) from 2 check runs\n"),
+            std::string::npos)
+      << text;
+  summary["rock_properties"] = rock(1);
+  text = calibration_text(summary);
+  EXPECT_NE(text.find("; E 1.3 GPa (lab 12.3) and nu 0.6 (lab 0.2) from 2 check runs (nu from 1)"),
+            std::string::npos)
+      << text;
+}
+
 // E and nu as targets: the stiffness stage's line in lab units (E and its target in GPa, nu and
 // its target, the stiffnesses and the stage's reason), and the rock's E and nu from the elastic
 // test with the UCT's slope beside it.
