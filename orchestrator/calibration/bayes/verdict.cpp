@@ -35,7 +35,9 @@ std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool
     out +=
         (out.empty() ? "" : ", ") + std::string(name) +
         sentence(" %+.3g%% (z %+.2g)", 100 * load->check->relative_to_prediction, load->check->z) +
-        (missing ? "" : sentence(", itself %+.3g%% of the target", 100 * load->check->relative_to_target));
+        (missing
+             ? ""
+             : sentence(", itself %+.3g%% of the target", 100 * load->check->relative_to_target));
   }
   return out;
 }
@@ -94,10 +96,11 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
                  100 * c.tolerance) +
         loads_text(p, c) + ")" + runs + "; " + region_text(p) +
         (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why +
-        (differ.empty() ? ""
-                        : "; the check runs at the estimate differ from the prediction beyond its " +
-                              sentence("%.0f%% interval (", 100 * kCheckLevel) + differ +
-                              ") but meet the targets themselves") +
+        (differ.empty()
+             ? ""
+             : "; the check runs at the estimate differ from the prediction beyond its " +
+                   sentence("%.0f%% interval (", 100 * kCheckLevel) + differ +
+                   ") but meet the targets themselves") +
         faults;
     return;
   }
