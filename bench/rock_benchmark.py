@@ -76,6 +76,9 @@ def disagreement(row, request):
         ("targets.lab.material.youngs_modulus", material["youngs_modulus"],
          number("youngs_modulus_gpa", 1e9)),
         ("targets.lab.material.nu", material["nu"], number("poisson_ratio")),
+        ("targets.youngs_modulus", request["targets"].get("youngs_modulus"),
+         number("youngs_modulus_gpa", 1e9)),
+        ("targets.poisson_ratio", request["targets"].get("poisson_ratio"), number("poisson_ratio")),
         ("job.material.nu", request["job"]["material"]["nu"], number("poisson_ratio")),
         ("targets.lab.material.density", material["density"], number("density_kg_m3")),
         ("targets.lab.specimen.diameter", specimen["diameter"], number("core_diameter_mm", 1e-3)),
@@ -84,7 +87,7 @@ def disagreement(row, request):
         ("targets.lab.specimen.thickness", specimen["thickness"],
          number("disc_thickness_mm", 1e-3))]
     for field, value, expected in pairs:
-        if not close(value, expected):
+        if (value is None) != (expected is None) or (value is not None and not close(value, expected)):
             return field, value, expected
     for test, mean, sd in (("uct", "ucs_mpa", "ucs_sd_mpa"), ("btt", "bts_mpa", "bts_sd_mpa")):
         value, expected = inference.get(test), number(sd) / number(mean) if row[sd] else None

@@ -231,10 +231,6 @@ void judge(CalibrationReport& r, const CalibrationCampaign& c) {
   if (!fast.empty()) r.verdict_reason += "; " + fast;
 }
 
-// Whether the runs at a range send the calibration on to the next one (reach.hpp): from the
-// ratios they reached and how many they were.
-using LeaveRange = std::function<bool(const std::optional<RatioRange>& ratio, int runs)>;
-
 // One calibration at the evaluator's template as it stands: the stiffness stage, the strategy's
 // search and what follows it. Returns true, with report.history and report.ratio filled, when
 // `leave` says the search's runs send the calibration on to another range: before the steps after
@@ -252,7 +248,7 @@ bool calibrate_at(const CalibrationCampaign& campaign, Evaluator& evaluator,
     return false;
   }
   if (campaign.strategy == Strategy::bayes) {
-    bayes_calibration(campaign, evaluator, options, report);
+    bayes_calibration(campaign, evaluator, options, report, leave);
     if (report.stop_reason != StopReason::cancelled &&
         leave(report.ratio, int(report.history.size())))
       return true;

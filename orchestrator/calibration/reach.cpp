@@ -1,5 +1,7 @@
 #include "orchestrator/calibration/reach.hpp"
 
+#include <algorithm>
+
 #include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 
@@ -22,6 +24,10 @@ std::string attempt_text(const ReachAttempt& a) {
 
 nlohmann::json interaction_range_patch(double factor) {
   return {{"effects", {{"interaction_range", {{"factor", factor}}}}}};
+}
+
+int reach_probe_runs(int max_evaluations) {
+  return std::max(8, max_evaluations / 4);
 }
 
 bool leave_range(const std::optional<orch::RatioRange>& ratio, bool another_listed, int left) {

@@ -6,6 +6,7 @@
 // multiplies E). docs/reach.md maps which ratios each range reaches.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,16 @@ struct ReachResult {
   bool cancelled = false;           // the calibration was cancelled at the last range
   std::string why;                  // a sentence from the fields above
 };
+
+// Whether the runs so far at a range send the calibration on to the next, from the ratios they
+// reached and how many they were (the driver's leave_range with its budget).
+using LeaveRange = std::function<bool(const std::optional<orch::RatioRange>& ratio, int runs)>;
+
+// The runs a search that would otherwise spend the whole budget (the "bayes" strategy) makes at a
+// range before the ratios they reached may send it on: a quarter of the budget, at least the
+// start batch's 8. The ratios reached only widen with more runs, so after that the question is
+// asked after every batch.
+int reach_probe_runs(int max_evaluations);
 
 // The patch of "job" that runs a range: {"effects": {"interaction_range": {"factor": x}}}.
 nlohmann::json interaction_range_patch(double factor);

@@ -145,7 +145,7 @@ double lab_load(const json& target, const json& specimen, bool uct) {
 // Every rock of the benchmark (a row of examples/rocks/rocks.csv) has a request the service
 // accepts, and its model targets keep the rock's lab UCT/BTT load ratio: the ratio the reach of
 // the specimen is judged by.
-TEST(Campaign, EveryBenchmarkRockRequestIsValidAndKeepsItsLabRatio) {
+TEST(Campaign, EveryBenchmarkRockRequestIsValidKeepsItsLabRatioAndAsksForEAndNu) {
   std::ifstream csv(ROCKCAL_SOURCE_DIR "/examples/rocks/rocks.csv");
   ASSERT_TRUE(csv.good());
   std::string line;
@@ -164,6 +164,13 @@ TEST(Campaign, EveryBenchmarkRockRequestIsValidAndKeepsItsLabRatio) {
     EXPECT_NEAR(c.targets.model_loads_n.uct_n / c.targets.model_loads_n.btt_n, lab_ratio,
                 1e-9 * lab_ratio)
         << rock;
+    // The field's four targets: E and nu as the lab's, and a further interaction range for a
+    // UCS/BTS beyond touching bonds' reach.
+    EXPECT_EQ(c.targets.elastic.youngs_modulus_pa,
+              t["lab"]["material"]["youngs_modulus"].get<double>())
+        << rock;
+    EXPECT_EQ(c.targets.elastic.poisson_ratio, t["lab"]["material"]["nu"].get<double>()) << rock;
+    EXPECT_EQ(c.interaction_ranges, (std::vector<double>{1.0, 1.5})) << rock;
     ++rocks;
   }
   EXPECT_GE(rocks, 6) << "the benchmark's six public rocks";

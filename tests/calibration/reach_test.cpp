@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/reach.hpp"
 #include "orchestrator/calibration/report.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 #include "orchestrator/calibration/stiffness.hpp"
@@ -218,15 +219,29 @@ TEST(Reach, WithAnETargetTheStiffnessStageIsRedoneAtTheNewRange) {
   EXPECT_EQ(e.template_patch["material"]["kr"], 10000);
 }
 
-// The bayes strategy at a range ends by its own stop rule; here it leaves budget for the next.
-TEST(Reach, TheBayesStrategyMovesOnWhenItsRunsLeaveBudget) {
+// The bayes strategy, which would spend the whole budget at a range, leaves it once a quarter of
+// the budget (reach_probe_runs) has shown the ratio out of reach: the runs then in flight (two
+// batches of the two workers) are all it adds, and the rest goes to the next range.
+TEST(Reach, TheBayesStrategyLeavesARangeOnceItsRunsShowTheRatioOutOfReach) {
+  const json noisy_bayes = {{"strategy", "bayes"}, {"max_evaluations", 100}};
+  // Range 1 alone: the noisy runs keep the search going past a quarter of the budget.
+  RangedEvaluator alone;
+  alone.noise = 0.1;
+  json only_1 = noisy_bayes;
+  only_1["reach"] = {{"interaction_range", {1}}};
+  const CalibrationReport control = run_calibration(beyond_range_1(only_1), alone);
+  ASSERT_GT(control.history.size(), 25u + 4u);
   RangedEvaluator e;
-  const CalibrationReport r = run_calibration(beyond_range_1({{"strategy", "bayes"}}), e);
+  e.noise = 0.1;
+  const CalibrationReport r = run_calibration(beyond_range_1(noisy_bayes), e);
   ASSERT_EQ(r.reach ? r.reach->tried.size() : 0u, 2u);
   const ReachAttempt& first = r.reach->tried[0];
+  EXPECT_EQ(reach_probe_runs(100), 25);
+  EXPECT_GE(first.history.size(), 25u);
+  EXPECT_LE(first.history.size(), 25u + 4u);
   EXPECT_FALSE(first.ratio->target_inside());
   EXPECT_TRUE(r.reach->tried[1].ratio->target_inside());
-  EXPECT_LE(first.history.size() + r.history.size(), 40u);
+  EXPECT_LE(first.history.size() + r.history.size(), 100u);
   EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
   EXPECT_NE(r.verdict_reason.find(". Reach: interaction range 1.5: "), std::string::npos)
       << r.verdict_reason;

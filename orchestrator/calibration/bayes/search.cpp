@@ -49,8 +49,8 @@ struct Flight {
 
 class Search {
  public:
-  Search(const CalibrationCampaign& c, Evaluator& e, const RunOptions& o)
-      : c_(c), evaluator_(e), options_(o), has_fine_(!c.fine_patch.is_null()) {
+  Search(const CalibrationCampaign& c, Evaluator& e, const RunOptions& o, const LeaveRange& leave)
+      : c_(c), evaluator_(e), options_(o), leave_(leave), has_fine_(!c.fine_patch.is_null()) {
     batch_ = c.inference.batch > 0 ? c.inference.batch : std::max(2, o.workers);
     if (has_fine_) fine_c_ = fine_campaign(c);
   }
@@ -72,6 +72,11 @@ class Search {
         break;
       }
       take(f.runs, outcomes);
+      if (leaving_) continue;  // the runs in flight count against the budget; nothing more
+      leaving_ = leave_ && !fine_phase_ &&
+                 int(history_.size()) >= reach_probe_runs(c_.max_evaluations) &&
+                 leave_(ratio_range(history_, c_.targets.model_loads_n), int(history_.size()));
+      if (leaving_) continue;
       refit();
       const Emulators* current =
           fine_phase_ ? (fine_model_ ? &*fine_model_ : nullptr) : (model_ ? &*model_ : nullptr);
@@ -84,6 +89,10 @@ class Search {
       while (flights_.size() < 2 && can_plan()) plan_next();
     }
     report.history = history_;
+    if (leaving_ && !cancelled_) {
+      report.stop_reason = StopReason::converged;
+      return;
+    }
     report.stop_reason = cancelled_   ? StopReason::cancelled
                          : answered_  ? StopReason::answered
                          : converged_ ? StopReason::converged
@@ -254,7 +263,7 @@ class Search {
   }
 
   bool can_plan() const {
-    if (checked_) return false;
+    if (checked_ || leaving_) return false;
     if (fine_phase_) return fine_launched_ < c_.fine_runs;
     return launched_ < c_.max_evaluations || (has_fine_ && model_);
   }
@@ -415,6 +424,8 @@ class Search {
   const CalibrationCampaign& c_;
   Evaluator& evaluator_;
   const RunOptions& options_;
+  const LeaveRange& leave_;
+  bool leaving_ = false;  // the runs so far send the calibration on to the next range
   const bool has_fine_;
   CalibrationCampaign fine_c_;  // the fine specimen's view (fine_campaign), when there is one
   bool fine_phase_ = false;
@@ -437,10 +448,14 @@ class Search {
 }  // namespace
 
 void bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
-                       const RunOptions& options, CalibrationReport& report) {
+                       const RunOptions& options, CalibrationReport& report,
+                       const LeaveRange& leave) {
   report.strategy_used = "bayes";
-  Search(campaign, evaluator, options).run(report);
+  Search(campaign, evaluator, options, leave).run(report);
   report.ratio = ratio_range(report.history, campaign.targets.model_loads_n);
+  if (leave && report.stop_reason != StopReason::cancelled &&
+      leave(report.ratio, int(report.history.size())))
+    return;  // the driver moves on to the next range
   judge_posterior(report, campaign);
 }
 

@@ -16,13 +16,18 @@
 #pragma once
 
 #include "orchestrator/calibration/driver.hpp"
+#include "orchestrator/calibration/reach.hpp"
 
 namespace rockcal::calibration {
 
 // Fills report.history, best (the check batch at the estimate, as one ensemble), posterior,
 // stop_reason, verdict and verdict_reason. Throws what the evaluator throws, but for
 // EvaluationCancelled, which ends the search with what it has.
+// With `leave` (a reach's range that is not the last), the search stops once its runs, at least
+// reach_probe_runs of them, send the calibration on: report.history and ratio are filled, and no
+// check batch, posterior or verdict is made for a range the answer will not be at.
 void bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
-                       const RunOptions& options, CalibrationReport& report);
+                       const RunOptions& options, CalibrationReport& report,
+                       const LeaveRange& leave = {});
 
 }  // namespace rockcal::calibration
