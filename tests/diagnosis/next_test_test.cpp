@@ -294,5 +294,32 @@ TEST(NextTest, WithNothingHeldOutEveryEffectGetsTheTestThatWouldShowIt) {
   EXPECT_NE(api::diagnosis_text(s).find("Next test: " + text.substr(0, 40)), std::string::npos);
 }
 
+// A fit on the search box: the marks are measured at the bound and the strengths' re-fit
+// extrapolates past it, so the next test's figures may overstate the separation; the block says
+// where the fit sits and the sentence says what that means for its figures.
+TEST(NextTest, AFitOnTheSearchBoxIsSaidBesideTheNextTestsFigures) {
+  DiagnosisCampaign c = testing::registry_twin_campaign("compression_coupling", 0.75);
+  std::erase_if(c.targets, [](const Target& t) {
+    return t.id != "uct-peak" && t.id != "uct-modulus" && t.id != "btt-peak";
+  });
+  c.grid.design = Design::local;
+  c.grid.fr0 = c.grid.fs0 = 3;
+  c.fs0_n = {16, 20};  // far below the twin's strengths: the fit presses on F_s0's upper bound
+  testing::SyntheticModel model(c.targets);
+  model.marks = testing::measured_marks();
+  const DiagnosisResult r = run_diagnosis(c, model, {});
+  const json s = to_json(r, c);
+  const json& next = s["next_test"];
+  EXPECT_EQ(next["fit_on_bounds"], json::array({"fs0 upper"})) << next.dump(2);
+  const std::string text = next["reason"];
+  EXPECT_NE(text.find("The base model's fit lies on the search box (fs0 upper): the marks are "
+                      "measured there and the strengths' re-fit extrapolates past the bound, so "
+                      "these figures rank the tests but may overstate how far apart they put the "
+                      "hypotheses; widen the bounds and diagnose again for their size."),
+            std::string::npos)
+      << text;
+  EXPECT_NE(s["verdict"]["reason"].get<std::string>().find("fs0 upper"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rockcal::diagnosis

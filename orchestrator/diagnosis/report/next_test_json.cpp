@@ -125,7 +125,8 @@ std::string pair_sentence(const json& s) {
 
 }  // namespace
 
-json next_test_json(const NextTest& next, const DiagnosisCampaign& c) {
+json next_test_json(const NextTest& next, const DiagnosisCampaign& c,
+                    const std::vector<std::string>& fit_on_bounds) {
   if (!next.enabled) {
     return {{"enabled", false}, {"reason", "not asked for (\"next_test\": false)"}};
   }
@@ -202,6 +203,16 @@ json next_test_json(const NextTest& next, const DiagnosisCampaign& c) {
            "No test on the menu shows " + unseen + " beyond budget + lab uncertainty.");
   }
   j["invisible"] = invisible;
+  j["fit_on_bounds"] = fit_on_bounds;
+  if (!fit_on_bounds.empty() && !reason.empty()) {
+    std::string where;
+    for (const std::string& b : fit_on_bounds) append(where, ", ", b);
+    append(reason, " ",
+           "The base model's fit lies on the search box (" + where +
+               "): the marks are measured there and the strengths' re-fit extrapolates past the "
+               "bound, so these figures rank the tests but may overstate how far apart they put "
+               "the hypotheses; widen the bounds and diagnose again for their size.");
+  }
   j["reason"] = reason;
   return j;
 }

@@ -425,7 +425,10 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
           {"ratio", ratio_json(r.ratio, c.targets)},
           {"data_inconsistencies", inconsistencies_json(r.inconsistencies, c.targets)},
           {"screen", screen_json(r.screen, c)},
-          {"next_test", next_test_json(r.next_test, c)},
+          {"next_test",
+           next_test_json(r.next_test, c,
+                          r.candidates.empty() ? std::vector<std::string>()
+                                               : on_bounds(r.candidates.front().calibration.z))},
           {"candidates", candidates},
           {"grid",
            {{"design", c.grid.design == Design::local ? "local" : "global"},
