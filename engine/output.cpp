@@ -72,7 +72,11 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
         {"quasi_static_transits", q.min_transits},
         {"quasi_static", r.peak_reached ? json(q.quasi_static()) : json()},
         {"late_velocity", q.late_velocity_m_s > 0 ? json(q.late_velocity_m_s) : json()},
-        {"late_peak", r.peak_reached ? json(q.late_peak) : json()}};
+        {"late_peak", r.peak_reached ? json(q.late_peak) : json()},
+        {"rerun", q.rerun ? json{{"first_peak_transits", q.rerun->first_peak_transits},
+                                 {"first_peak_load", q.rerun->first_peak_load_n},
+                                 {"auto_transits", q.rerun->auto_transits}}
+                          : json()}};
   }
   out["seating"] = {{"load", r.seating.load_n},
                     {"closure", r.seating.closure_m},

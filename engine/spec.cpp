@@ -317,6 +317,11 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
       throw SpecError("loading.past_window", "must be \"stop\" or \"speed_up\"");
     l.speed_up_past_window = mode == "speed_up";
   }
+  if (const std::optional<bool> rerun = r.boolean("quasi_static_rerun")) {
+    if (l.platen_velocity_m_s)
+      throw SpecError("loading.quasi_static_rerun", "applies to platen_velocity \"auto\" only");
+    l.quasi_static_rerun = *rerun;  // the elastic test, loaded at its own pace, ignores it
+  }
   if (const json* dt = r.find("dt")) {
     if (dt->is_string()) {
       if (dt->get<std::string>() != "auto")
@@ -357,6 +362,9 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
       r.in_range("slow_trigger_broken_fraction", l.slow_trigger_broken_fraction, 0.0, 1.0, false);
   l.rate_study = r.boolean("rate_study").value_or(l.rate_study);
   l.rate_study_runs = r.integer("rate_study_runs", 3, 6).value_or(l.rate_study_runs);
+  if (l.rate_study && l.quasi_static_rerun)
+    throw SpecError("loading.quasi_static_rerun",
+                    "not with loading.rate_study (the study runs slower on its own)");
   r.reject_unknown();
   return l;
 }
@@ -580,6 +588,8 @@ nlohmann::json to_json(const JobSpec& s) {
     l["platen_velocity"] = "auto";
     l["auto_transits"] = s.loading.auto_transits;
     l["past_window"] = s.loading.speed_up_past_window ? "speed_up" : "stop";
+    // Absent when off, so that the identities of jobs from before it stay.
+    if (s.loading.quasi_static_rerun) l["quasi_static_rerun"] = true;
   }
   if (s.loading.dt_s)
     l["dt"] = *s.loading.dt_s;

@@ -94,6 +94,11 @@ struct LoadingSpec {
   // still rises is a crushed specimen's, not a strength. false ("stop"): the run ends there without
   // a peak; true ("speed_up"): the platens speed up and a later maximum is reported as a late peak.
   bool speed_up_past_window = false;
+  // "auto" speed only: a UCT, BTT or triaxial (the elastic test ignores it; a calibration's
+  // template serves both) whose peak came in fewer wave transits than the
+  // quasi-static threshold runs again once, with auto_transits raised so that the same peak
+  // would come at kRerunMargin times the threshold (loadtests/quasi_static_rerun.hpp).
+  bool quasi_static_rerun = false;
   std::optional<double> dt_s;   // nullopt = "auto"
   double dt_safety = 0.5;       // fraction of the critical step used by "auto"
   double ramp_fraction = 0.01;  // speed ramps over this fraction of the run (>= 2 wave transits)

@@ -12,6 +12,7 @@
 #include "engine/loadtests/loading_speed.hpp"
 #include "engine/loadtests/modulus.hpp"
 #include "engine/loadtests/peak.hpp"
+#include "engine/loadtests/quasi_static_rerun.hpp"
 #include "engine/loadtests/run_clock.hpp"
 #include "engine/loadtests/seating.hpp"
 #include "engine/loadtests/specimen.hpp"
@@ -336,7 +337,8 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
                                energy_ratio_at_peak,
                                kQuasiStaticTransits,
                                late_step >= 0 ? schedule.late_m_s : 0.0,
-                               late_step >= 0 && r.peak_step >= late_step};
+                               late_step >= 0 && r.peak_step >= late_step,
+                               std::nullopt};
   if (!r.peak_reached) r.no_peak_reason = peak.no_peak_reason(r.stop_reason);
   r.strength_pa = strength_pa(spec, r.peak_load_n);
   if (spec.test != TestKind::btt && r.peak_reached) {
@@ -357,7 +359,8 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
 
 TestResult run_test(const JobSpec& spec, const RunHooks& hooks) {
   if (spec.test == TestKind::elastic) return run_elastic_test(spec, hooks);
-  return spec.loading.rate_study ? run_rate_study(spec, hooks) : run_compression_test(spec, hooks);
+  return spec.loading.rate_study ? run_rate_study(spec, hooks)
+                                 : run_with_quasi_static_rerun(spec, hooks);
 }
 
 }  // namespace rockcal

@@ -38,6 +38,13 @@ struct RateStudy {
   bool converged = false;   // peaks converged geometrically; otherwise the error is a bound guess
 };
 
+// The first run of a test that ran again slower (loadtests/quasi_static_rerun.hpp).
+struct QuasiStaticRerun {
+  double first_peak_transits = 0.0;
+  double first_peak_load_n = 0.0;
+  double auto_transits = 0.0;  // the rerun's
+};
+
 // How fast the test loaded and how quasi-static its peak was (loadtests/loading_speed.hpp).
 struct LoadingRate {
   double platen_velocity_m_s = 0.0;  // the speed used (each platen)
@@ -49,6 +56,7 @@ struct LoadingRate {
   double min_transits = 0.0;          // quasi-static when peak_transits >= min_transits
   double late_velocity_m_s = 0.0;     // auto: the speed past the bond-controlled window, if reached
   bool late_peak = false;             // the peak came after that window (and at the faster speed)
+  std::optional<QuasiStaticRerun> rerun;  // this run followed one that came too fast
   bool quasi_static() const { return peak_transits >= min_transits; }
 };
 

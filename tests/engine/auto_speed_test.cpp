@@ -6,6 +6,7 @@
 
 #include "engine/loadtests/driver.hpp"
 #include "engine/loadtests/loading_speed.hpp"
+#include "engine/loadtests/quasi_static_rerun.hpp"
 #include "engine/loadtests/specimen.hpp"
 
 using namespace rockcal;
@@ -170,4 +171,57 @@ TEST(AutoSpeed, ByDefaultARunStillRisingPastTheWindowEndsThereWithoutAPeak) {
   EXPECT_LT(stopped.curve.back().displacement_m, 1.1 * window);
   RecordProperty("steps_stopped", std::to_string(stopped.steps));
   RecordProperty("steps_speeded_up", std::to_string(late.steps));
+}
+
+// Where F_s0 is well below F_r0 the specimen fails after a few bond failures: at auto_transits 10
+// this one's peak comes 24 transits after seating (at 40, 93). With loading.quasi_static_rerun the
+// run goes again, slower by the factor that brings that peak past the threshold, and the result is
+// the slower run's, quasi-static by its own measure, with the first run's peak and transits beside
+// it.
+TEST(AutoSpeed, ARunThatCameTooFastRunsAgainSlowerWithTheRerun) {
+  JobSpec s = tiny(TestKind::uct, 40, 12);
+  s.loading.auto_transits = 10;
+  const TestResult once = run_test(s);
+  ASSERT_TRUE(once.peak_reached && once.loading_rate);
+  ASSERT_FALSE(once.loading_rate->quasi_static()) << once.loading_rate->peak_transits;
+  EXPECT_FALSE(once.loading_rate->rerun);
+  s.loading.quasi_static_rerun = true;
+  const TestResult twice = run_test(s);
+  ASSERT_TRUE(twice.peak_reached && twice.loading_rate);
+  ASSERT_TRUE(twice.loading_rate->rerun);
+  const QuasiStaticRerun& r = *twice.loading_rate->rerun;
+  EXPECT_DOUBLE_EQ(r.first_peak_transits, once.loading_rate->peak_transits);
+  EXPECT_DOUBLE_EQ(r.first_peak_load_n, once.peak_load_n);
+  EXPECT_DOUBLE_EQ(r.auto_transits,
+                   10 * std::min(kMaxRerunFactor, kRerunMargin * kQuasiStaticTransits /
+                                                      once.loading_rate->peak_transits));
+  EXPECT_TRUE(twice.loading_rate->quasi_static()) << twice.loading_rate->peak_transits;
+  EXPECT_GT(twice.wall_seconds, once.wall_seconds);
+  // A quasi-static run is not repeated.
+  JobSpec slow = s;
+  slow.loading.auto_transits = 40;
+  const TestResult calm = run_test(slow);
+  ASSERT_TRUE(calm.loading_rate);
+  EXPECT_TRUE(calm.loading_rate->quasi_static());
+  EXPECT_FALSE(calm.loading_rate->rerun);
+  // The field: "auto" only, not with a rate study; absent from the canonical
+  // form when off, so that earlier jobs keep their identities.
+  EXPECT_EQ(refusal({{"platen_velocity", 0.05}, {"quasi_static_rerun", true}}),
+            "loading.quasi_static_rerun: applies to platen_velocity \"auto\" only");
+  EXPECT_EQ(refusal({{"platen_velocity", "auto"}, {"quasi_static_rerun", 1}}),
+            "loading.quasi_static_rerun: must be true or false");
+  EXPECT_EQ(
+      refusal({{"platen_velocity", "auto"}, {"quasi_static_rerun", true}, {"rate_study", true}}),
+      "loading.quasi_static_rerun: not with loading.rate_study (the study runs slower on its "
+      "own)");
+  // The elastic test takes the field (a calibration's template serves every test) and ignores it.
+  json elastic = {{"test", "elastic"},
+                  {"material", {{"kr", 8000}}},
+                  {"bond", {{"fr0", 64}, {"fs0", 64}}},
+                  {"loading", {{"platen_velocity", "auto"}, {"quasi_static_rerun", true}}}};
+  EXPECT_TRUE(parse_job(elastic).loading.quasi_static_rerun);
+  EXPECT_EQ(to_json(s)["loading"]["quasi_static_rerun"], true);
+  EXPECT_EQ(parse_job(to_json(s)), s);
+  slow.loading.quasi_static_rerun = false;
+  EXPECT_FALSE(to_json(slow)["loading"].contains("quasi_static_rerun"));
 }
