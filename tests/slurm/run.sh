@@ -64,7 +64,7 @@ free_port() {
 ctld_port=$(free_port 26817)
 slurmd_port=$(free_port $((ctld_port + 1)))
 host=$(hostname -s)
-mkdir -p "$dir/munge" "$dir/state" "$dir/spool"
+mkdir -p "$dir/munge" "$dir/state" "$dir/spool" "$dir/tmp" "$dir/pmix"
 chmod 700 "$dir/munge"
 if command -v mungekey >/dev/null; then
   mungekey --create --keyfile="$dir/munge/munge.key"
@@ -91,6 +91,10 @@ CredType=cred/munge
 AuthInfo=socket=$socket
 StateSaveLocation=$dir/state
 SlurmdSpoolDir=$dir/spool
+# Job and PMIx client directories inside this cluster's own directory: job ids restart at 1 in
+# every new cluster, so /tmp/spmix_appdir_0_<job>.<step> left by an earlier one (a step killed
+# before its clean-up) would make this cluster's step of the same id fail to launch.
+TmpFS=$dir/tmp
 SlurmctldPidFile=$dir/slurmctld.pid
 SlurmdPidFile=$dir/slurmd.pid
 SlurmctldLogFile=$dir/slurmctld.log
@@ -113,6 +117,7 @@ InactiveLimit=0
 NodeName=rockcal-node NodeHostname=$host NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN
 PartitionName=debug Nodes=rockcal-node Default=YES MaxTime=INFINITE State=UP
 CONF
+printf 'PMIxCliTmpDirBase=%s\n' "$dir/pmix" > "$dir/mpi.conf"
 export SLURM_CONF="$dir/slurm.conf"
 for _ in $(seq 50); do [ -S "$socket" ] && break; sleep 0.1; done
 slurmctld -D -f "$SLURM_CONF" > "$dir/slurmctld.out" 2>&1 &
