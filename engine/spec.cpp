@@ -622,8 +622,9 @@ nlohmann::json to_json(const JobSpec& s) {
   return j;
 }
 
+// Part of every job's identity in the job cache: it changes whenever a spec's results could.
 const char* engine_version() {
-  return "rockcal-dem 0.2.0";
+  return "rockcal-dem 0.2.1";
 }
 
 }  // namespace rockcal

@@ -9,13 +9,6 @@ namespace rockcal {
 using Vec3 = Eigen::Vector3d;
 using Quat = Eigen::Quaterniond;  // unit quaternion: body frame -> world frame
 
-// Rotation by the vector `theta` (axis * angle), exact for any angle.
-inline Quat rotation_from_vector(const Vec3& theta) {
-  const double angle = theta.norm();
-  if (angle < 1e-300) return Quat::Identity();
-  return Quat(Eigen::AngleAxisd(angle, theta / angle));
-}
-
 // Rotation vector (axis * angle, angle in [0, pi]) of a unit quaternion.
 inline Vec3 rotation_vector(Quat q) {
   if (q.w() < 0) q.coeffs() = -q.coeffs();  // q and -q are the same rotation
