@@ -9,15 +9,17 @@ D/R --size with the auto platen speed, at the bond strengths F_r0 = F / sqrt(s),
 degree 1 in the strengths (docs/loading-rate.md), so the load ratio depends on s and the factor
 only, and UCS/E scales with F: the map at one F gives the reach at every F. A peak that came after
 the bond-controlled window (loading_rate.late_peak) is counted and marked, as is a run without a
-peak.
+peak. Per range, an elastic test of the same cylinder (bonds unbroken) gives the specimen's E and
+nu at the material's K_s/K_r (--nu sets it by eq. 3, as a calibration's start does).
 
   bench/reach_map.py [--build build] [--out runs/reach] [--size 20] [--strength 20]
       [--ratios 0.25,0.5,1,2,4,8] [--factors 1,1.5,1.8] [--seeds 1] [--jobs 1]
+      [--packing fcc|random] [--radius-ratio 1.5] [--nu 0.2]
       [--auto-transits 10] [--slow-factor 0.25] [--log FILE]
 
 Prints a markdown table (means over the seeds with a peak): UCT and BTT peak loads, the load
-ratio, UCS/BTS, E, UCS/E, bonds per particle and the count of late or missing peaks. --log
-appends one JSON line per finished run.
+ratio, UCS/BTS, E, UCS/E, bonds per particle and the count of late or missing peaks; then per
+range the elastic test's E and nu. --log appends one JSON line per finished run.
 """
 import argparse
 import math
@@ -31,11 +33,13 @@ from engine_runs import add_run_options, run_all  # noqa: E402
 
 
 def job(test, a, s, factor, seed):
-    sample = {"diameter": a.size, "radius": 1.0, "packing": "fcc", "seed": seed}
-    if test == "uct":
+    sample = {"diameter": a.size, "radius": 1.0, "packing": a.packing, "seed": seed}
+    if a.packing == "random":
+        sample["radius_ratio"] = a.radius_ratio
+    if test in ("uct", "elastic"):
         sample["height"] = 2 * a.size
     spec = {"test": test, "sample": sample,
-            "material": {"density": 1.0, "kr": 8000, "nu": 0.2},
+            "material": {"density": 1.0, "kr": 8000, "nu": a.nu},
             "bond": {"fr0": a.strength / math.sqrt(s), "fs0": a.strength * math.sqrt(s)},
             "contact": {"friction": 0.6},
             "loading": {"platen_velocity": "auto", "auto_transits": a.auto_transits,
@@ -51,6 +55,7 @@ def line_of(name, r):
     q = r.get("loading_rate") or {}
     return {"run": name, "peak_reached": r.get("peak_reached"), "peak_load": r.get("peak_load"),
             "strength": r.get("strength"), "youngs_modulus": r.get("youngs_modulus"),
+            "poisson_ratio": r.get("poisson_ratio"),
             "late_peak": q.get("late_peak"), "peak_transits": q.get("peak_transits"),
             "particles": r.get("particles"), "bonds": r.get("bonds"), "steps": r.get("steps"),
             "wall_seconds": r.get("wall_seconds")}
@@ -62,6 +67,9 @@ def main():
     ap.add_argument("--strength", type=float, default=20)
     ap.add_argument("--ratios", default="0.25,0.5,1,2,4,8")
     ap.add_argument("--factors", default="1,1.5,1.8")
+    ap.add_argument("--packing", choices=["fcc", "random"], default="fcc")
+    ap.add_argument("--radius-ratio", type=float, default=1.5)
+    ap.add_argument("--nu", type=float, default=0.2)
     a = ap.parse_args()
     ratios = [float(x) for x in a.ratios.split(",")]
     factors = [float(x) for x in a.factors.split(",")]
@@ -72,6 +80,13 @@ def main():
                 for seed in range(1, a.seeds + 1):
                     name = "%s_d%g_F%g_s%g_range%g_seed%d" % (test, a.size, a.strength, s, f, seed)
                     runs.append(((f, s, test, seed), name, job(test, a, s, f, seed)))
+        for seed in range(1, a.seeds + 1):
+            name = "elastic_d%g_range%g_seed%d" % (a.size, f, seed)
+            runs.append(((f, None, "elastic", seed), name, job("elastic", a, 1.0, f, seed)))
+    if a.packing != "fcc" or a.nu != 0.2:  # the FCC map's run names stay those of its cache
+        tag = "_%s%s_nu%g" % (a.packing, "_rr%g" % a.radius_ratio if a.packing == "random" else "",
+                              a.nu)
+        runs = [(key, name + tag, spec) for key, name, spec in runs]
     results = run_all(a, runs, line_of)
 
     def mean_of(f, s, test, field):
@@ -104,6 +119,15 @@ def main():
             lb, mb = unusual(f, s, "btt")
             print("| %g | %g | %.4g | %.4g | %.3g | %.3g | %.4g | %.3g | %.2f | %d, %d | %d, %d |" % (
                 f, s, uct, btt, uct / btt, ucs / bts, e, ucs / e, per, lu, lb, mu, mb))
+    print()
+    print("| range factor | elastic E | elastic nu (material nu %g) |" % a.nu)
+    print("| --- | --- | --- |")
+    for f in factors:
+        es = [results[(f, None, "elastic", seed)] for seed in range(1, a.seeds + 1)]
+        e = [r["youngs_modulus"] for r in es if r.get("youngs_modulus") is not None]
+        nu = [r["poisson_ratio"] for r in es if r.get("poisson_ratio") is not None]
+        print("| %g | %.4g | %.3f |" % (f, statistics.mean(e) if e else float("nan"),
+                                         statistics.mean(nu) if nu else float("nan")))
 
 
 if __name__ == "__main__":
