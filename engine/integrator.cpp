@@ -14,8 +14,8 @@ void kick(Particles& p, double h) {
 namespace {
 // cos(a / 2) and sin(a / 2) / a from a^2, for a^2 < 1e-4: the series to the a^8 term, whose first
 // omitted term is below 1e-21 there (a rounding of the result is 1e-16). A step turns a particle by
-// far less than that (omega dt is of order 1e-6 in quasi-static runs), so libm's sincos, which was
-// a quarter of the drift's time, runs only for a fast spinner.
+// far less than that (omega dt is of order 1e-6 in quasi-static runs), so libm's sincos, dear per
+// particle per step, runs only for a fast spinner.
 constexpr double kSeriesAngleSq = 1e-4;
 inline void half_angle_series(double a2, double& c, double& s_over_a) {
   const double h2 = 0.25 * a2;

@@ -11,8 +11,10 @@ Gauges place_gauges(const Simulation& sim, const JobSpec& spec, std::size_t max_
     if (g.region(sim.particles.pos[k]))
       g.reference.emplace(sim.particles.id[k], sim.particles.pos[k]);
   }
-  g.scratch.in.reserve(sim.particles.size());
-  g.scratch.ref.reserve(sim.particles.n_owned);
+  // With headroom: on more than one rank the owned and ghost counts move as particles migrate,
+  // and the curve rows that read the gauges run in the time-step loop, which must not allocate.
+  g.scratch.in.reserve(2 * sim.particles.size() + 64);
+  g.scratch.ref.reserve(2 * sim.particles.n_owned + 64);
   g.readings.reserve(max_readings);
   return g;
 }

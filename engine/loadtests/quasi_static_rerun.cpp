@@ -21,6 +21,11 @@ TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hook
   slower.loading.auto_transits = spec.loading.auto_transits * factor;
   if (estimated_steps(effective_spec(slower)) > static_cast<double>(kMaxSteps)) return first;
   TestResult second = run_compression_test(slower, hooks);
+  // A slower run that found no peak (stopped at max_steps or max_strain) does not replace a peak.
+  if (!second.peak_reached && second.stop_reason != "cancelled") {
+    first.wall_seconds += second.wall_seconds;
+    return first;
+  }
   second.wall_seconds += first.wall_seconds;
   if (second.loading_rate) {
     second.loading_rate->rerun =

@@ -2,10 +2,9 @@
 //
 // Why: the auto speed closes the bonds' failure strain in auto_transits wave transits, but how many
 // failure strains a specimen takes to its peak depends on the strengths. Where F_s0 is well below
-// F_r0 it fails after a few bond failures: in the main job (auto_transits 10, two-rate 0.25) the 12
-// runs whose peaks were not quasi-static came at 31-78 transits, at F_s0 / F_r0 from 0.1 to 0.44
-// (and two near 1.4-1.9), against the 80 the measure asks (loading_speed.hpp). Loading every run
-// slower costs every run; running again the few that came too fast costs those.
+// F_r0 it fails after a few bond failures, so its peak comes in fewer transits than the
+// quasi-static measure asks (loading_speed.hpp). Loading every run slower costs every run; running
+// again the few that came too fast costs those.
 #pragma once
 
 #include "engine/loadtests/result.hpp"
@@ -21,8 +20,8 @@ inline constexpr double kMaxRerunFactor = 8.0;
 // The UCT, BTT or triaxial as run_compression_test; with loading.quasi_static_rerun, a peak that
 // was not quasi-static is followed by one run at auto_transits x min(kMaxRerunFactor,
 // kRerunMargin x threshold / peak transits), whose result is returned with the first's peak and
-// transits in loading_rate.rerun and both runs' wall time. No rerun when the slower run would
-// exceed the step limit (the first is returned, not quasi-static, as it is).
+// transits in loading_rate.rerun and both runs' wall time. The first is returned, not
+// quasi-static, as it is when the slower run would exceed the step limit or ended without a peak.
 TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hooks);
 
 }  // namespace rockcal
