@@ -248,10 +248,7 @@ bool calibrate_at(const CalibrationCampaign& campaign, Evaluator& evaluator,
     return false;
   }
   if (campaign.strategy == Strategy::bayes) {
-    bayes_calibration(campaign, evaluator, options, report, leave);
-    if (report.stop_reason != StopReason::cancelled &&
-        leave(report.ratio, int(report.history.size())))
-      return true;
+    if (bayes_calibration(campaign, evaluator, options, report, leave)) return true;
     judge_stiffness(report);
     return false;
   }

@@ -248,6 +248,7 @@ json predicted_json(const PredictedLoad& l, const CalibrationCampaign& c) {
     const CheckAgreement& a = *l.check;
     j["check"] = {{"runs", a.n},
                   {"mean", a.mean_n},
+                  {"predicted", a.predicted_n},
                   {"relative_to_prediction", a.relative_to_prediction},
                   {"relative_error", a.relative_to_target},
                   {"sd", a.sd},

@@ -23,6 +23,7 @@ std::optional<CheckAgreement> check_agreement(const PredictedLoad& predicted,
   CheckAgreement a;
   a.n = n;
   a.mean_n = std::exp(sum / n);
+  a.predicted_n = predicted.mean_n;
   const double d = sum / n - std::log(predicted.mean_n);
   a.relative_to_prediction = std::expm1(d);
   a.relative_to_target = a.mean_n / predicted.target_n - 1.0;

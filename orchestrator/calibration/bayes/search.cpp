@@ -55,6 +55,8 @@ class Search {
     if (has_fine_) fine_c_ = fine_campaign(c);
   }
 
+  bool left() const { return leaving_ && !cancelled_; }
+
   void run(CalibrationReport& report) {
     launch(start());
     while (!flights_.empty()) {
@@ -105,9 +107,11 @@ class Search {
     }
     if (!check_.empty()) {
       report.best = check_record();
-      if (report.posterior && report.best->uct && report.best->btt) {
-        report.posterior->uct.check = check_agreement(report.posterior->uct, *report.best->uct);
-        report.posterior->btt.check = check_agreement(report.posterior->btt, *report.best->btt);
+      // Against the prediction made before they ran: the posterior above has been fitted on them
+      // too, which would pull its prediction toward them.
+      if (report.posterior && before_check_ && report.best->uct && report.best->btt) {
+        report.posterior->uct.check = check_agreement(before_check_->uct, *report.best->uct);
+        report.posterior->btt.check = check_agreement(before_check_->btt, *report.best->btt);
       }
     }
     // A region too wide to call unique: which further test would cut it most (on the specimen
@@ -280,7 +284,8 @@ class Search {
         return plan_fine();
       }
       // The check batch: the estimate on `batch` packings (fewer when seeds do not matter).
-      const BondPoint estimate = posterior_estimate(*model_, c_);
+      before_check_ = summarise(*model_, c_, rounds_);
+      const BondPoint estimate = before_check_->estimate;
       std::vector<Run> runs;
       const int n = c_.seed_matters ? std::min(batch_, left) : 1;
       for (int k = 0; k < n; ++k) runs.push_back(run_at(estimate, "check"));
@@ -299,7 +304,8 @@ class Search {
     const int left = c_.fine_runs - fine_launched_;
     if (left <= 0) return;
     if (fine_model_ && (converged_ || left <= batch_)) {
-      const BondPoint estimate = posterior_estimate(*fine_model_, fine_c_);
+      before_check_ = summarise(*fine_model_, fine_c_, rounds_);
+      const BondPoint estimate = before_check_->estimate;
       std::vector<Run> runs;
       const int n = c_.seed_matters ? std::min(batch_, left) : 1;
       for (int k = 0; k < n; ++k) runs.push_back(run_at(estimate, "fine check", true));
@@ -442,21 +448,22 @@ class Search {
   std::vector<EvaluationRecord> history_;  // every run, in the order taken (the report's)
   std::vector<EvaluationRecord> coarse_history_, fine_history_;
   std::vector<EvaluationRecord> check_;
+  std::optional<PosteriorSummary> before_check_;  // when the check batch was planned
   std::optional<Emulators> model_, fine_model_;
 };
 
 }  // namespace
 
-void bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
+bool bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
                        const RunOptions& options, CalibrationReport& report,
                        const LeaveRange& leave) {
   report.strategy_used = "bayes";
-  Search(campaign, evaluator, options, leave).run(report);
+  Search search(campaign, evaluator, options, leave);
+  search.run(report);
   report.ratio = ratio_range(report.history, campaign.targets.model_loads_n);
-  if (leave && report.stop_reason != StopReason::cancelled &&
-      leave(report.ratio, int(report.history.size())))
-    return;  // the driver moves on to the next range
+  if (search.left()) return true;  // the driver moves on to the next range
   judge_posterior(report, campaign);
+  return false;
 }
 
 }  // namespace rockcal::calibration

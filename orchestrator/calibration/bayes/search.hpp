@@ -25,8 +25,10 @@ namespace rockcal::calibration {
 // EvaluationCancelled, which ends the search with what it has.
 // With `leave` (a reach's range that is not the last), the search stops once its runs, at least
 // reach_probe_runs of them, send the calibration on: report.history and ratio are filled, and no
-// check batch, posterior or verdict is made for a range the answer will not be at.
-void bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
+// check batch, posterior or verdict is made for a range the answer will not be at. Returns whether
+// it left (decided once, on the runs the search had then: the runs still in flight, taken after,
+// do not undo it).
+bool bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator,
                        const RunOptions& options, CalibrationReport& report,
                        const LeaveRange& leave = {});
 

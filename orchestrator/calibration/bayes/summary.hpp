@@ -15,7 +15,8 @@ namespace rockcal::calibration {
 struct CheckAgreement {
   int n = 0;                            // successful check runs
   double mean_n = 0.0;                  // their geometric mean
-  double relative_to_prediction = 0.0;  // mean_n / the predicted mean - 1
+  double predicted_n = 0.0;             // the predicted mean they are judged against
+  double relative_to_prediction = 0.0;  // mean_n / predicted_n - 1
   double relative_to_target = 0.0;      // mean_n / target - 1
   double sd = 0.0;                      // the sd of ln(mean_n) the prediction allows
   double z = 0.0;                       // ln(mean_n / predicted mean) / sd

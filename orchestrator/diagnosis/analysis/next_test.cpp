@@ -40,15 +40,22 @@ Separation separate(std::string a, std::string b, const std::vector<double>& mar
   Separation s;
   s.a = std::move(a);
   s.b = std::move(b);
-  std::vector<double> apart;  // |mark_a - mark_b| per test
+  // The best test: the most discriminating of those whose marks part beyond budget + lab
+  // uncertainty (visible), else the most discriminating, not visible; so "no test shows it" is
+  // said only when none does.
   for (std::size_t k = 0; k < noise.size(); ++k) {
-    apart.push_back(
-        std::abs((mark_a.empty() ? 0.0 : mark_a[k]) - (mark_b.empty() ? 0.0 : mark_b[k])));
-    const double d = apart[k] / noise[k].total();
+    const double apart =
+        std::abs((mark_a.empty() ? 0.0 : mark_a[k]) - (mark_b.empty() ? 0.0 : mark_b[k]));
+    const double d = apart / noise[k].total();
     s.discrimination.push_back(std::isfinite(d) ? d : std::numeric_limits<double>::quiet_NaN());
-    if (std::isfinite(d) && (!s.best || d > s.discrimination[*s.best])) s.best = k;
+    if (!std::isfinite(d)) continue;
+    const bool visible = apart > noise[k].budget + noise[k].sigma;
+    if (!s.best || (visible && !s.visible) ||
+        (visible == s.visible && d > s.discrimination[*s.best])) {
+      s.best = k;
+      s.visible = visible;
+    }
   }
-  if (s.best) s.visible = apart[*s.best] > noise[*s.best].budget + noise[*s.best].sigma;
   return s;
 }
 

@@ -34,11 +34,11 @@ TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
 struct Separation {
   std::string a, b;
   std::vector<double> discrimination;  // per menu test; NaN where a run gave no value
-  std::optional<std::size_t> best;     // the menu test with the largest
-  // An effect against the base model: its mark at `best` exceeds budget + lab uncertainty (the
-  // bar identifiability sets), so that test would see it.
-  bool visible = false;
-  std::string why;  // for an effect the calibration cannot identify: why not
+  // The menu test with the largest discrimination among those where the marks part beyond budget +
+  // lab uncertainty (the bar identifiability sets), else the largest of all.
+  std::optional<std::size_t> best;
+  bool visible = false;  // `best` clears that bar, so that test would see an effect against base
+  std::string why;       // for an effect the calibration cannot identify: why not
 };
 // mark_a, mark_b: per menu test, as above (empty = the base model's zeros).
 Separation separate(std::string a, std::string b, const std::vector<double>& mark_a,

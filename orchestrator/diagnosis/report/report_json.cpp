@@ -402,6 +402,11 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
           {"reason", reason}};
 }
 
+std::vector<Target> with_menu(std::vector<Target> targets, const NextTest& next) {
+  for (const MenuTest& m : next.menu) targets.push_back(m.target);
+  return targets;
+}
+
 }  // namespace
 
 json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
@@ -438,9 +443,12 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
             {"s", c.grid.s},
             {"bounds", {{"fr0", {c.fr0_n.lo, c.fr0_n.hi}}, {"fs0", {c.fs0_n.lo, c.fs0_n.hi}}}}}},
           {"runs",
-           {{"model_points", r.model_points},
-            // One engine job per distinct test condition of a model point.
-            {"jobs", r.model_points * int(plan_runs(c.targets).runs.size())},
+           {{"model_points", r.model_points + r.next_test.model_points},
+            // One engine job per distinct test condition of a model point; the next test's
+            // points run on the menu's conditions too.
+            {"jobs", r.model_points * int(plan_runs(c.targets).runs.size()) +
+                         r.next_test.model_points *
+                             int(plan_runs(with_menu(c.targets, r.next_test)).runs.size())},
             {"failed_values", r.failed_values},
             {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
           {"units", "model"}};
