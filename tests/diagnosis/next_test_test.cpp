@@ -96,6 +96,15 @@ TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
   EXPECT_TRUE(std::isnan(v.discrimination[0]));
   EXPECT_TRUE(v.visible);
   EXPECT_FALSE(separate("C", "", {0.0, 0.02}, {}, noise).visible);
+  // The most discriminating test (0.99 apart in noise 0.5 + 0.5: 1.40 units, under its bar of 1)
+  // gives way to one that clears its bar (0.27 in noise 0.2: 1.35 units), so that "no test on the
+  // menu shows it" is said only when none does.
+  const std::vector<TestNoise> mixed{{0.5, "x", 0.5, "x"}, {0.2, "y", 0.0, "y"}};
+  const Separation m = separate("D", "", {0.99, 0.27}, {}, mixed);
+  ASSERT_TRUE(m.best);
+  EXPECT_GT(m.discrimination[0], m.discrimination[1]);
+  EXPECT_EQ(*m.best, 1u);
+  EXPECT_TRUE(m.visible);
 }
 
 // "next_test": false runs no batch and says so.
