@@ -225,7 +225,10 @@ TEST(Slurm, KillNineMidSweepThenRestartReattachesAndNeverSubmitsTwice) {
   ServerProcess server(dir.path(), options);
   server.start();
   auto c = server.client();
-  json request = sweep_request({"uct"}, {40, 80}, {50, 70, 90});
+  // Strengths whose runs all peak at this fixed speed (at F_s0/F_r0 above 2 the cylinder hardens
+  // after its bonds fail and may reach max_strain first: (40, 90) did, with the engine's
+  // round-off).
+  json request = sweep_request({"uct"}, {40, 80}, {50, 60, 70});
   request["job"]["sample"] = {{"diameter", 16}, {"height", 32}, {"radius", 1}};
   request["job"]["loading"]["platen_velocity"] = 0.02;
   auto id = post_campaign(c, request);
