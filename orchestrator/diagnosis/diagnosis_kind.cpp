@@ -29,8 +29,7 @@ std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
   // The next test's batch runs on the dataset's and the menu's conditions.
   const int next_test = c.next_test ? next_test_model_points(c) : 0;
   if (next_test > 0) {
-    std::vector<Target> all = c.targets;
-    for (const MenuTest& m : test_menu(c.targets)) all.push_back(m.target);
+    const std::vector<Target> all = with_menu(c.targets, test_menu(c.targets));
     parts.push_back({"next_test", next_test * int(plan_runs(all).runs.size())});
   }
   return parts;

@@ -156,12 +156,11 @@ TEST_P(HiddenEffect, TheLocalDesignFindsItFromFewerRuns) {
   EXPECT_LT(local_runs, global_runs / 2) << local_runs << " vs " << global_runs;
   // One job per condition of a model point; the next test's points run on the menu's too.
   const NextTest& next = r.report.next_test;
-  std::vector<Target> with_menu = r.campaign.targets;
-  for (const MenuTest& m : next.menu) with_menu.push_back(m.target);
+  const std::vector<Target> all = with_menu(r.campaign.targets, next.menu);
   EXPECT_GT(next.model_points, 0);
   EXPECT_EQ(r.summary["runs"]["jobs"].get<int>(),
             (local_runs - next.model_points) * int(plan_runs(r.campaign.targets).runs.size()) +
-                next.model_points * int(plan_runs(with_menu).runs.size()));
+                next.model_points * int(plan_runs(all).runs.size()));
   std::printf("%s at s = %.2f, local design: G = %.3f, %d model points (global grids: %d)\n",
               effect, s, v["gap_closure"].get<double>(), local_runs, global_runs);
 }

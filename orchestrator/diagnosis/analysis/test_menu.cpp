@@ -112,4 +112,9 @@ std::vector<MenuTest> test_menu(const std::vector<Target>& targets) {
   return menu;
 }
 
+std::vector<Target> with_menu(std::vector<Target> targets, const std::vector<MenuTest>& menu) {
+  for (const MenuTest& m : menu) targets.push_back(m.target);
+  return targets;
+}
+
 }  // namespace rockcal::diagnosis

@@ -28,4 +28,7 @@ inline constexpr double kMenuConfinements[] = {0.1, 0.3, 0.6};
 // A target's sigma is 0 here: the next test borrows its noise (next_test.hpp).
 std::vector<MenuTest> test_menu(const std::vector<Target>& targets);
 
+// The targets followed by the menu's: the conditions a next-test batch runs on.
+std::vector<Target> with_menu(std::vector<Target> targets, const std::vector<MenuTest>& menu);
+
 }  // namespace rockcal::diagnosis

@@ -58,14 +58,13 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
     return out;
   }
   const std::vector<double>& budget = r.budget.per_target;
-  std::vector<Target> all = c.targets;
   std::vector<double> all_budget = budget;
   for (MenuTest& m : out.menu) {
     out.noise.push_back(borrowed_noise(m.target, c.targets, budget));
     m.target.sigma = out.noise.back().sigma;
-    all.push_back(m.target);
     all_budget.push_back(out.noise.back().budget);
   }
+  const std::vector<Target> all = with_menu(c.targets, out.menu);
 
   // The two leading hypotheses: the verdict and the runner-up, or without a verdict the runner-up
   // (the best-ranked effect) and the base model.

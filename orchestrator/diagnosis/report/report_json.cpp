@@ -402,11 +402,6 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
           {"reason", reason}};
 }
 
-std::vector<Target> with_menu(std::vector<Target> targets, const NextTest& next) {
-  for (const MenuTest& m : next.menu) targets.push_back(m.target);
-  return targets;
-}
-
 }  // namespace
 
 json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
@@ -448,7 +443,7 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
             // points run on the menu's conditions too.
             {"jobs", r.model_points * int(plan_runs(c.targets).runs.size()) +
                          r.next_test.model_points *
-                             int(plan_runs(with_menu(c.targets, r.next_test)).runs.size())},
+                             int(plan_runs(with_menu(c.targets, r.next_test.menu)).runs.size())},
             {"failed_values", r.failed_values},
             {"first_error", r.first_error.empty() ? json(nullptr) : json(r.first_error)}}},
           {"units", "model"}};
