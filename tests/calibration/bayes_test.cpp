@@ -5,6 +5,7 @@
 // budget remains (timestamps of a fake pool), and its verdict names a bound the targets press on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -485,6 +486,18 @@ TEST(BayesCalibration, FineRunsOnCoarseEmulatorsFindTheFineSpecimensStrengths) {
     EXPECT_EQ(p.coarse_runs + p.runs, int(r.history.size()));
     inside += in_credible_region(p, truth, fine_campaign(c)) ? 1 : 0;
     feasible += r.verdict == Verdict::feasible ? 1 : 0;
+    // The fine runs are spent where the answer is: each within 0.15 of the unit box of the point
+    // its check ran at (the first batch goes to the coarse estimate, a resolution factor of about
+    // 0.1 away here, and within 0.05 of it; spread over the posterior, they reach 0.2).
+    const auto check =
+        std::find_if(r.history.begin(), r.history.end(),
+                     [](const EvaluationRecord& h) { return h.phase == "fine check"; });
+    ASSERT_NE(check, r.history.end()) << twin;
+    const Eigen::Vector2d at = to_unit(check->point, fine_campaign(c));
+    for (const EvaluationRecord& h : r.history) {
+      if (h.phase == "fine")
+        EXPECT_LE((to_unit(h.point, fine_campaign(c)) - at).norm(), 0.15) << twin << " " << h.index;
+    }
     if (twin == 0) {
       std::printf("%s\n", r.verdict_reason.c_str());
       EXPECT_NE(r.verdict_reason.find("fine runs at"), std::string::npos) << r.verdict_reason;

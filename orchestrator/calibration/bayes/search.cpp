@@ -27,7 +27,10 @@ constexpr double kShareStop = 0.25;
 constexpr int kAnsweredRuns = 10;
 constexpr int kSpaceFilling = 256;  // candidates spread over the box, besides the posterior's own
 constexpr int kDensest = 64;        // candidates at the posterior's densest cells
-constexpr double kFirstFineSpacing = 0.1;  // of the unit box, between the first fine points
+// A fine run is dear and teaches the two-level emulator its discrepancy only near where it runs:
+// the fine runs go within this distance (of the unit box) of the current estimate, where the
+// answer and its check are, not along a valley of the posterior.
+constexpr double kFineReach = 0.05;
 
 struct Run {
   BondPoint point;  // the strengths run: the fine specimen's for a fine run
@@ -268,7 +271,7 @@ class Search {
 
   bool can_plan() const {
     if (checked_ || leaving_) return false;
-    if (fine_phase_) return fine_launched_ < c_.fine_runs;
+    if (fine_phase_) return fine_launched_ < c_.fine_runs && !fine_in_flight();
     return launched_ < c_.max_evaluations || (has_fine_ && model_);
   }
 
@@ -298,11 +301,12 @@ class Search {
                   : space_filling(std::min(batch_, left), c_, false));
   }
 
-  // The fine runs: designed on the fine emulators once there are two fine points (on the coarse
-  // posterior before), then the check batch at the fine estimate.
+  // The fine runs: one batch at a time (a batch planned while another runs would be designed on
+  // the same emulators, at the same place), near the current estimate (the coarse one before two
+  // fine points exist), then the check batch at the fine estimate.
   void plan_fine() {
     const int left = c_.fine_runs - fine_launched_;
-    if (left <= 0) return;
+    if (left <= 0 || fine_in_flight()) return;
     if (fine_model_ && (converged_ || left <= batch_)) {
       before_check_ = summarise(*fine_model_, fine_c_, rounds_);
       const BondPoint estimate = before_check_->estimate;
@@ -315,36 +319,15 @@ class Search {
     }
     ++rounds_;
     const int n = std::min(batch_, left);
-    if (fine_model_) return launch(design(*fine_model_, fine_c_, n, true));
-    launch(model_ ? first_fine(*model_, n) : space_filling(n, fine_c_, true));
+    const Emulators* m = fine_model_ ? &*fine_model_ : model_ ? &*model_ : nullptr;
+    if (!m) return launch(space_filling(n, fine_c_, true));
+    const Eigen::Vector2d estimate = inference::density_peak(m->grid, m->emulators(), m->targets);
+    launch(design(*m, fine_c_, n, true, &estimate));
   }
 
-  // Before a fine emulator exists the fine runs go where the coarse posterior is densest, at
-  // distinct points a tenth of the box apart (neither the run nor the in-flight fine points
-  // repeated): a coarse emulator's variance says nothing about where a fine run teaches most.
-  std::vector<Run> first_fine(const Emulators& coarse, int n) {
-    std::vector<Eigen::Vector2d> taken;
-    for (const EvaluationRecord& r : fine_history_) taken.push_back(to_unit(r.point, fine_c_));
-    for (const Flight& f : flights_) {
-      for (const Run& r : f.runs) {
-        if (r.fine) taken.push_back(to_unit(r.point, fine_c_));
-      }
-    }
-    std::vector<Run> runs;
-    const Eigen::Vector2d peak = to_unit(posterior_estimate(coarse, c_), c_);
-    std::vector<Eigen::Vector2d> candidates = {peak};
-    for (int cell : inference::densest_cells(coarse.grid, int(coarse.grid.weight.size())))
-      candidates.push_back(coarse.grid.points.row(cell).transpose());
-    for (const Eigen::Vector2d& u : candidates) {
-      if (int(runs.size()) >= n) break;
-      const bool near = std::any_of(taken.begin(), taken.end(), [&](const Eigen::Vector2d& t) {
-        return (t - u).norm() < kFirstFineSpacing;
-      });
-      if (near) continue;
-      taken.push_back(u);
-      runs.push_back(run_at(from_unit(u, fine_c_), "fine", true));
-    }
-    return runs;
+  bool fine_in_flight() const {
+    return std::any_of(flights_.begin(), flights_.end(),
+                       [](const Flight& f) { return !f.runs.empty() && f.runs.front().fine; });
   }
 
   std::vector<Run> space_filling(int n, const CalibrationCampaign& c, bool fine) {
@@ -357,28 +340,36 @@ class Search {
 
   // A batch of n runs chosen on emulators m over campaign c's box (the fine campaign's for fine
   // runs; with the coarse emulators there when no fine one is fitted yet, the unit box being
-  // shared). Only runs of the same resolution in flight count as pending.
-  std::vector<Run> design(const Emulators& m, const CalibrationCampaign& c, int n, bool fine) {
+  // shared). Only runs of the same resolution in flight count as pending. With `near` (unit box),
+  // only candidates within kFineReach of it, the point itself among them.
+  std::vector<Run> design(const Emulators& m, const CalibrationCampaign& c, int n, bool fine,
+                          const Eigen::Vector2d* near = nullptr) {
     // Candidates: spread over the box, at the posterior's densest cells, and (when another
     // packing is another specimen) the points already run: a further realisation there.
     std::vector<Eigen::Vector2d> cand;
     std::vector<std::optional<BondPoint>> exact;  // the existing point a candidate repeats
-    // A fine run is dear (and slow far from the answer): only where the posterior is.
-    const int spread = fine ? 0 : kSpaceFilling;
+    auto add = [&](const Eigen::Vector2d& u, std::optional<BondPoint> p) {
+      if (near && (u - *near).norm() > kFineReach) return;
+      cand.push_back(u);
+      exact.push_back(p);
+    };
+    if (near) add(*near, std::nullopt);
+    const int spread = near ? 0 : kSpaceFilling;
     for (const auto& u :
          latin_hypercube(spread, c_.random_seed + 104729 * std::uint64_t(rounds_))) {
-      cand.push_back({u[0], u[1]});
-      exact.push_back(std::nullopt);
+      add({u[0], u[1]}, std::nullopt);
     }
-    for (int cell : inference::densest_cells(m.grid, kDensest)) {
-      cand.push_back(m.grid.points.row(cell).transpose());
-      exact.push_back(std::nullopt);
+    const std::vector<int> dense =
+        inference::densest_cells(m.grid, near ? int(m.grid.weight.size()) : kDensest);
+    int densest = 0;
+    for (int cell : dense) {
+      if (densest == kDensest) break;
+      const std::size_t before = cand.size();
+      add(m.grid.points.row(cell).transpose(), std::nullopt);
+      densest += int(cand.size() - before);
     }
     if (c_.seed_matters && (m.coarse_runs > 0) == fine) {
-      for (const BondPoint& p : m.points) {
-        cand.push_back(to_unit(p, c));
-        exact.push_back(p);
-      }
+      for (const BondPoint& p : m.points) add(to_unit(p, c), p);
     }
     inference::DesignInput in;
     in.emulators = m.emulators();
