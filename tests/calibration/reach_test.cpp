@@ -2,10 +2,11 @@
 // formula engine whose UCT/BTT load ratio range depends on the range in the patched template:
 // a ratio reached only at the second range moves the calibration there and meets the targets, a
 // ratio reached at the first stays there with no extra run, a ratio no range reaches is a
-// compromise naming every range tried, the stiffness stage is redone at the new range, and bad
-// fields are refused naming them.
+// compromise naming every range tried, the stiffness stage is redone at the new range, the bayes
+// search decides to leave a range once, and bad fields are refused naming them.
 #include <gtest/gtest.h>
 
+#include "orchestrator/calibration/bayes/search.hpp"
 #include "orchestrator/calibration/driver.hpp"
 #include "orchestrator/calibration/reach.hpp"
 #include "orchestrator/calibration/report.hpp"
@@ -245,6 +246,25 @@ TEST(Reach, TheBayesStrategyLeavesARangeOnceItsRunsShowTheRatioOutOfReach) {
   EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
   EXPECT_NE(r.verdict_reason.find(". Reach: interaction range 1.5: "), std::string::npos)
       << r.verdict_reason;
+}
+
+// The decision to leave is taken once, on the runs the search had then. The runs in flight, read
+// after, may bring the ratio back (noise); asked again, the range would end with neither a move
+// nor a posterior, a false "failed".
+TEST(Reach, TheBayesSearchDecidesToLeaveARangeOnce) {
+  RangedEvaluator e;
+  e.noise = 0.1;
+  const CalibrationCampaign c = beyond_range_1({{"strategy", "bayes"}, {"max_evaluations", 100}});
+  int asked = 0;
+  const LeaveRange leave = [&](const std::optional<orch::RatioRange>&, int) {
+    return ++asked == 1;
+  };
+  CalibrationReport r;
+  EXPECT_TRUE(bayes_calibration(c, e, RunOptions{}, r, leave));
+  EXPECT_EQ(asked, 1);
+  EXPECT_FALSE(r.posterior);
+  EXPECT_GE(r.history.size(), std::size_t(reach_probe_runs(100)));
+  EXPECT_LE(r.history.size(), std::size_t(reach_probe_runs(100)) + 4u);
 }
 
 std::string refusal(const json& reach, const json& more = json::object()) {
