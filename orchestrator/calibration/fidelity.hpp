@@ -1,14 +1,15 @@
 // Multi-fidelity: search on a coarse specimen, correct on the fine one. A search needs tens of
 // evaluations; at the lab's resolution (D/R near 49) each costs minutes. But a change of resolution
-// moves both peak loads by roughly common factors (measured, not assumed: docs/calibration.md), so
-// the coarse model's local response in log space is a first Jacobian for the fine one. Each
-// correction runs the fine tests at the current point (the campaign's realisations), and takes a
-// Newton step ln x += J^-1 (ln target - ln fine loads) with J fitted to the coarse evaluations near
-// the best point (least squares; the homogeneous scale step when they do not span two directions).
-// The fine model's sensitivities need not be the coarse one's (docs/calibration.md: the seed lab
-// case's fine steps swung about the answer by more than the fine specimen's cut scatter), so after
-// every fine step J takes the secant the two latest fine evaluations measured (Broyden's update):
-// the fine runs correct the Jacobian they are stepped with.
+// moves both peak loads by roughly common factors (measured, not assumed:
+// docs/calibration-measurements.md), so the coarse model's local response in log space is a first
+// Jacobian for the fine one. Each correction runs the fine tests at the current point (the
+// campaign's realisations), and takes a Newton step ln x += J^-1 (ln target - ln fine loads) with J
+// fitted to the coarse evaluations near the best point (least squares; the homogeneous scale step
+// when they do not span two directions). The fine model's sensitivities need not be the coarse
+// one's (docs/calibration-measurements.md: the seed lab case's fine steps swung about the answer by
+// more than the fine specimen's cut scatter), so after every fine step J takes the secant the two
+// latest fine evaluations measured (Broyden's update): the fine runs correct the Jacobian they are
+// stepped with.
 #pragma once
 
 #include <optional>
