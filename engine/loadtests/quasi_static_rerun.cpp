@@ -9,8 +9,9 @@
 
 namespace rockcal {
 
-TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hooks) {
-  TestResult first = run_compression_test(spec, hooks);
+TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hooks,
+                                       CompressionRun run) {
+  TestResult first = run(spec, hooks);
   if (!spec.loading.quasi_static_rerun || !first.peak_reached || !first.loading_rate ||
       first.loading_rate->quasi_static() || first.stop_reason == "cancelled")
     return first;
@@ -20,7 +21,7 @@ TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hook
   JobSpec slower = spec;
   slower.loading.auto_transits = spec.loading.auto_transits * factor;
   if (estimated_steps(effective_spec(slower)) > static_cast<double>(kMaxSteps)) return first;
-  TestResult second = run_compression_test(slower, hooks);
+  TestResult second = run(slower, hooks);
   // A slower run that found no peak (stopped at max_steps or max_strain) does not replace a peak.
   if (!second.peak_reached && second.stop_reason != "cancelled") {
     first.wall_seconds += second.wall_seconds;

@@ -7,6 +7,7 @@
 // again the few that came too fast costs those.
 #pragma once
 
+#include "engine/loadtests/driver.hpp"
 #include "engine/loadtests/result.hpp"
 
 namespace rockcal {
@@ -22,6 +23,9 @@ inline constexpr double kMaxRerunFactor = 8.0;
 // kRerunMargin x threshold / peak transits), whose result is returned with the first's peak and
 // transits in loading_rate.rerun and both runs' wall time. The first is returned, not
 // quasi-static, as it is when the slower run would exceed the step limit or ended without a peak.
-TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hooks);
+// `run` is the test itself (run_compression_test; a test injects the runs' outcomes there).
+using CompressionRun = TestResult (*)(const JobSpec&, const RunHooks&);
+TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hooks,
+                                       CompressionRun run = run_compression_test);
 
 }  // namespace rockcal

@@ -495,8 +495,8 @@ TEST(BayesCalibration, FineRunsOnCoarseEmulatorsFindTheFineSpecimensStrengths) {
     ASSERT_NE(check, r.history.end()) << twin;
     const Eigen::Vector2d at = to_unit(check->point, fine_campaign(c));
     for (const EvaluationRecord& h : r.history) {
-      if (h.phase == "fine")
-        EXPECT_LE((to_unit(h.point, fine_campaign(c)) - at).norm(), 0.15) << twin << " " << h.index;
+      if (h.phase != "fine") continue;
+      EXPECT_LE((to_unit(h.point, fine_campaign(c)) - at).norm(), 0.15) << twin << " " << h.index;
     }
     if (twin == 0) {
       std::printf("%s\n", r.verdict_reason.c_str());

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "engine/loadtests/driver.hpp"
 #include "engine/loadtests/loading_speed.hpp"
@@ -224,4 +226,58 @@ TEST(AutoSpeed, ARunThatCameTooFastRunsAgainSlowerWithTheRerun) {
   EXPECT_EQ(parse_job(to_json(s)), s);
   slow.loading.quasi_static_rerun = false;
   EXPECT_FALSE(to_json(slow)["loading"].contains("quasi_static_rerun"));
+}
+
+// Fault injection: the slower run ends without a peak (max_strain). A slower run's largest load is
+// not a strength, so the first run's peak stands, reported not quasi-static and without a rerun
+// record, with both runs' wall time; a slower run that was cancelled is returned as it is.
+namespace {
+std::vector<TestResult> injected;  // the outcomes the fake run returns, in order
+int injected_calls = 0;
+TestResult injected_run(const JobSpec&, const RunHooks&) {
+  return injected.at(std::size_t(injected_calls++));
+}
+TestResult outcome(bool peak, double load, double transits, const std::string& stop) {
+  TestResult r;
+  r.peak_reached = peak;
+  r.peak_load_n = load;
+  r.stop_reason = stop;
+  r.wall_seconds = 1.5;
+  r.loading_rate = LoadingRate{};
+  r.loading_rate->peak_transits = transits;
+  r.loading_rate->min_transits = kQuasiStaticTransits;
+  return r;
+}
+}  // namespace
+
+TEST(AutoSpeed, ASlowerRunWithoutAPeakLeavesTheFirstRunsPeak) {
+  JobSpec s = tiny(TestKind::uct, 40, 12);
+  s.loading.auto_transits = 10;
+  s.loading.quasi_static_rerun = true;
+  injected = {outcome(true, 100.0, 20.0, "post_peak"), outcome(false, 150.0, 0.0, "max_strain")};
+  injected_calls = 0;
+  const TestResult r = run_with_quasi_static_rerun(s, {}, injected_run);
+  EXPECT_EQ(injected_calls, 2);
+  EXPECT_TRUE(r.peak_reached);
+  EXPECT_EQ(r.peak_load_n, 100.0);
+  EXPECT_EQ(r.stop_reason, "post_peak");
+  ASSERT_TRUE(r.loading_rate);
+  EXPECT_FALSE(r.loading_rate->quasi_static());
+  EXPECT_FALSE(r.loading_rate->rerun);
+  EXPECT_EQ(r.wall_seconds, 3.0);
+  // A cancelled slower run is the result: the campaign stops, no peak is claimed.
+  injected = {outcome(true, 100.0, 20.0, "post_peak"), outcome(false, 40.0, 0.0, "cancelled")};
+  injected_calls = 0;
+  const TestResult cancelled = run_with_quasi_static_rerun(s, {}, injected_run);
+  EXPECT_EQ(cancelled.stop_reason, "cancelled");
+  EXPECT_FALSE(cancelled.peak_reached);
+  // With a peak, the slower run replaces the first, which it records.
+  injected = {outcome(true, 100.0, 20.0, "post_peak"), outcome(true, 90.0, 110.0, "post_peak")};
+  injected_calls = 0;
+  const TestResult slower = run_with_quasi_static_rerun(s, {}, injected_run);
+  EXPECT_EQ(slower.peak_load_n, 90.0);
+  ASSERT_TRUE(slower.loading_rate && slower.loading_rate->rerun);
+  EXPECT_EQ(slower.loading_rate->rerun->first_peak_load_n, 100.0);
+  EXPECT_EQ(slower.loading_rate->rerun->first_peak_transits, 20.0);
+  EXPECT_EQ(slower.wall_seconds, 3.0);
 }
