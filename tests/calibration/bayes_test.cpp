@@ -494,6 +494,11 @@ TEST(BayesCalibration, FineRunsOnCoarseEmulatorsFindTheFineSpecimensStrengths) {
                      [](const EvaluationRecord& h) { return h.phase == "fine check"; });
     ASSERT_NE(check, r.history.end()) << twin;
     const Eigen::Vector2d at = to_unit(check->point, fine_campaign(c));
+    // The first fine batch is two distinct points: the fine emulators need two to exist.
+    const auto first = std::find_if(r.history.begin(), r.history.end(),
+                                    [](const EvaluationRecord& h) { return h.phase == "fine"; });
+    ASSERT_TRUE(first != r.history.end() && first + 1 != r.history.end()) << twin;
+    EXPECT_FALSE(first->point == (first + 1)->point) << twin;
     for (const EvaluationRecord& h : r.history) {
       if (h.phase != "fine") continue;
       EXPECT_LE((to_unit(h.point, fine_campaign(c)) - at).norm(), 0.15) << twin << " " << h.index;

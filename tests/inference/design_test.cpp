@@ -1,6 +1,7 @@
 // Focus: the batch design. It picks where the posterior is, counts the pending runs so that a
-// batch is not the same run repeated blindly, returns as many runs as asked, and values a run by
-// what the emulator does not yet know against one run's scatter.
+// batch is not the same run repeated blindly, returns as many runs as asked (each candidate once
+// when asked for distinct points), and values a run by what the emulator does not yet know against
+// one run's scatter.
 #include <gtest/gtest.h>
 
 #include "orchestrator/inference/design/batch_design.hpp"
@@ -82,6 +83,21 @@ TEST(BatchDesign, TheEmulatorsShareFallsAsRunsAccumulate) {
   EXPECT_LT(b[0], a[0]);
   EXPECT_LT(b[1], a[1]);
   EXPECT_LT(b[0], 0.25);
+}
+
+// `distinct`: no candidate twice (the first runs of a new emulator need distinct points), and no
+// more picks than candidates; without it the same two candidates give a replicate.
+TEST(BatchDesign, ADistinctBatchPicksEachCandidateOnce) {
+  const Fitted s = setup(8, 1e-4);
+  Eigen::MatrixXd two(2, 2);
+  two << 0.7, 0.3, 0.1, 0.9;
+  const std::vector<DesignChoice> replicated = choose_batch(input(s, two, 3, 0.09));
+  ASSERT_EQ(replicated.size(), 3u);
+  DesignInput in = input(s, two, 3, 0.09);
+  in.distinct = true;
+  const std::vector<DesignChoice> picks = choose_batch(in);
+  ASSERT_EQ(picks.size(), 2u);
+  EXPECT_NE(picks[0].candidate, picks[1].candidate);
 }
 
 TEST(BatchDesign, MismatchedInputsAreRefused) {

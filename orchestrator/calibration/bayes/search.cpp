@@ -322,7 +322,7 @@ class Search {
     const Emulators* m = fine_model_ ? &*fine_model_ : model_ ? &*model_ : nullptr;
     if (!m) return launch(space_filling(n, fine_c_, true));
     const Eigen::Vector2d estimate = inference::density_peak(m->grid, m->emulators(), m->targets);
-    launch(design(*m, fine_c_, n, true, &estimate));
+    launch(design(*m, fine_c_, n, true, &estimate, !fine_model_));
   }
 
   bool fine_in_flight() const {
@@ -341,15 +341,21 @@ class Search {
   // A batch of n runs chosen on emulators m over campaign c's box (the fine campaign's for fine
   // runs; with the coarse emulators there when no fine one is fitted yet, the unit box being
   // shared). Only runs of the same resolution in flight count as pending. With `near` (unit box),
-  // only candidates within kFineReach of it, the point itself among them.
+  // only candidates within kFineReach of it, the point itself among them. `distinct`: n points
+  // that differ from each other and from the fine points run (the fine emulators need two).
   std::vector<Run> design(const Emulators& m, const CalibrationCampaign& c, int n, bool fine,
-                          const Eigen::Vector2d* near = nullptr) {
+                          const Eigen::Vector2d* near = nullptr, bool distinct = false) {
     // Candidates: spread over the box, at the posterior's densest cells, and (when another
     // packing is another specimen) the points already run: a further realisation there.
     std::vector<Eigen::Vector2d> cand;
     std::vector<std::optional<BondPoint>> exact;  // the existing point a candidate repeats
     auto add = [&](const Eigen::Vector2d& u, std::optional<BondPoint> p) {
       if (near && (u - *near).norm() > kFineReach) return;
+      if (distinct &&
+          std::any_of(fine_history_.begin(), fine_history_.end(), [&](const EvaluationRecord& r) {
+            return (to_unit(r.point, c) - u).norm() < 1e-9;
+          }))
+        return;
       cand.push_back(u);
       exact.push_back(p);
     };
@@ -371,6 +377,7 @@ class Search {
     if (c_.seed_matters && (m.coarse_runs > 0) == fine) {
       for (const BondPoint& p : m.points) add(to_unit(p, c), p);
     }
+    if (cand.empty()) return space_filling(n, c, fine);
     inference::DesignInput in;
     in.emulators = m.emulators();
     in.targets = m.targets;
@@ -387,6 +394,7 @@ class Search {
     in.pending.resize(Eigen::Index(pend.size()), 2);
     for (std::size_t i = 0; i < pend.size(); ++i) in.pending.row(Eigen::Index(i)) = pend[i];
     in.batch = n;
+    in.distinct = distinct;
     std::vector<Run> runs;
     std::vector<BondPoint> chosen;
     for (const inference::DesignChoice& d : inference::choose_batch(in)) {

@@ -50,7 +50,8 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
   if (pending.cols() != post.dims) pending.resize(0, post.dims);
   std::vector<DesignChoice> out;
   const int c = int(in.candidates.rows());
-  for (int pick = 0; pick < in.batch; ++pick) {
+  std::vector<bool> taken(std::size_t(c), false);
+  for (int pick = 0; pick < in.batch && (!in.distinct || pick < c); ++pick) {
     Eigen::VectorXd score = Eigen::VectorXd::Zero(c);
     for (std::size_t j = 0; j < in.emulators.size(); ++j) {
       const Gp& gp = *in.emulators[j];
@@ -81,8 +82,14 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
         score(k) *= std::exp(post.log_feasibility(cell));
       }
     }
+    if (in.distinct) {
+      for (int k = 0; k < c; ++k) {
+        if (taken[std::size_t(k)]) score(k) = -1.0;  // every untaken score is >= 0
+      }
+    }
     Eigen::Index best = 0;
     score.maxCoeff(&best);
+    taken[std::size_t(best)] = true;
     out.push_back({int(best), score(best)});
     pending.conservativeResize(pending.rows() + 1, Eigen::NoChange);
     pending.row(pending.rows() - 1) = in.candidates.row(best);

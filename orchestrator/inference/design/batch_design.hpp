@@ -27,6 +27,7 @@ struct DesignInput {
   Eigen::MatrixXd candidates;  // c x d: where a run may go (new and existing points)
   Eigen::MatrixXd pending;     // p x d: runs submitted whose values are not yet known
   int batch = 1;               // runs to choose
+  bool distinct = false;       // each candidate at most once (no replicates within the batch)
   int reference_cells = 400;   // the densest cells the shrinkage is summed over
 };
 
@@ -35,7 +36,8 @@ struct DesignChoice {
   double value = 0.0;  // its expected shrinkage when picked
 };
 
-// `batch` choices in the order picked; a candidate may be picked more than once (replicates).
+// `batch` choices in the order picked (fewer when `distinct` runs out of candidates); a candidate
+// may be picked more than once (replicates) unless `distinct`.
 std::vector<DesignChoice> choose_batch(const DesignInput& input);
 
 // The emulators' share of the posterior's variance, weighted by the posterior: for each target,
