@@ -42,6 +42,24 @@ std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool
   return out;
 }
 
+// The loads the emulators know less well at the estimate than the lab knows its target (their sd
+// there above the lab's) and whose check runs miss the target beyond the tolerance, as
+// "UCT -21.6% (the emulator's sd 8.2%, the lab's 5%)": a prediction that real runs do not bear
+// out and that the emulators cannot vouch for. Checks that agree with such a prediction only say
+// that the prediction is vague.
+std::string unsure_checks(const PosteriorSummary& p, double tolerance) {
+  std::string out;
+  for (const auto& [name, load] : {std::pair{"UCT", &p.uct}, std::pair{"BTT", &p.btt}}) {
+    if (!load->check || load->emulator_sd <= load->lab_sd) continue;
+    if (std::abs(load->check->relative_to_target) <= tolerance) continue;
+    out += (out.empty() ? "" : ", ") + std::string(name) +
+           sentence(" %+.3g%% (the emulator's sd %.2g%%, the lab's %.2g%%)",
+                    100 * load->check->relative_to_target, 100 * load->emulator_sd,
+                    100 * load->lab_sd);
+  }
+  return out;
+}
+
 }  // namespace
 
 void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
@@ -87,6 +105,20 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
         ": the emulators are wrong near the estimate; more runs there (a larger "
         "\"max_evaluations\") would correct them" +
         runs + "; " + region_text(p) + faults;
+    return;
+  }
+  const std::string unsure = unsure_checks(p, c.tolerance);
+  if (met && !unsure.empty()) {
+    r.verdict = Verdict::compromise;
+    r.verdict_reason =
+        "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
+        "), but the emulators know the loads there less well than the lab knows its targets and "
+        "the check runs there miss them (" +
+        unsure +
+        " of the target): the prediction is not established; more runs near the estimate (a "
+        "larger " +
+        (p.resolution == "fine" ? "\"fidelity.runs\"" : "\"max_evaluations\"") +
+        ") would settle it" + runs + "; " + region_text(p) + faults;
     return;
   }
   if (met) {
