@@ -93,32 +93,26 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   }
   const std::string disagree = disagreeing_checks(p, c.tolerance, true);
   const std::string differ = disagreeing_checks(p, c.tolerance, false);
-  if (met && !disagree.empty()) {
-    // The prediction meets the targets, the real runs at the estimate do not bear it out.
-    r.verdict = Verdict::compromise;
-    r.verdict_reason =
-        "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
-        "), but the check runs there disagree with the prediction beyond the packings' scatter "
-        "and the emulators' variance (" +
-        disagree +
-        sentence(" from the prediction, outside its %.0f%% interval)", 100 * kCheckLevel) +
-        ": the emulators are wrong near the estimate; more runs there (a larger "
-        "\"max_evaluations\") would correct them" +
-        runs + "; " + region_text(p) + faults;
-    return;
-  }
   const std::string unsure = unsure_checks(p, c.tolerance);
-  if (met && !unsure.empty()) {
+  if (met && (!disagree.empty() || !unsure.empty())) {
+    // The prediction meets the targets, the real runs at the estimate do not bear it out: they
+    // disagree with it, or they miss the targets where the emulators cannot vouch for it.
+    const std::string why =
+        !disagree.empty()
+            ? "the check runs there disagree with the prediction beyond the packings' scatter and "
+              "the emulators' variance (" +
+                  disagree +
+                  sentence(" from the prediction, outside its %.0f%% interval)",
+                           100 * kCheckLevel) +
+                  ": the emulators are wrong near the estimate"
+            : "the emulators know the loads there less well than the lab knows its targets and "
+              "the check runs there miss them (" +
+                  unsure + " of the target): the prediction is not established";
     r.verdict = Verdict::compromise;
-    r.verdict_reason =
-        "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
-        "), but the emulators know the loads there less well than the lab knows its targets and "
-        "the check runs there miss them (" +
-        unsure +
-        " of the target): the prediction is not established; more runs near the estimate (a "
-        "larger " +
-        (p.resolution == "fine" ? "\"fidelity.runs\"" : "\"max_evaluations\"") +
-        ") would settle it" + runs + "; " + region_text(p) + faults;
+    r.verdict_reason = "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
+                       "), but " + why + "; more runs near the estimate (a larger " +
+                       (p.resolution == "fine" ? "\"fidelity.runs\"" : "\"max_evaluations\"") +
+                       ") would settle it" + runs + "; " + region_text(p) + faults;
     return;
   }
   if (met) {
