@@ -132,7 +132,12 @@ def main():
                                          and cons["fs0"][0] <= truth[1] <= cons["fs0"][1])
                 elif post:
                     row.update({"inside": in_region(post, *truth), "fr0": post["fr0"], "fs0": post["fs0"],
-                                "estimate": post["estimate"], "runs": post["runs"], "unique": post["unique"]})
+                                "estimate": post["estimate"], "runs": post["runs"], "unique": post["unique"],
+                                # what the verdict rests on: the prediction's sd and the checks
+                                "predicted": {k: {"relative_error": post[k].get("relative_error"),
+                                                  "emulator_sd": post[k].get("emulator_sd"),
+                                                  "check": post[k].get("check")}
+                                              for k in ("uct", "btt")}})
             done[twin] = row
             append_row(a.out, row)
     finally:
