@@ -42,24 +42,6 @@ std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool
   return out;
 }
 
-// The loads the emulators know less well at the estimate than the lab knows its target (their sd
-// there above the lab's) and whose check runs miss the target beyond the tolerance, as
-// "UCT -21.6% (the emulator's sd 8.2%, the lab's 5%)": a prediction that real runs do not bear
-// out and that the emulators cannot vouch for. Checks that agree with such a prediction only say
-// that the prediction is vague.
-std::string unsure_checks(const PosteriorSummary& p, double tolerance) {
-  std::string out;
-  for (const auto& [name, load] : {std::pair{"UCT", &p.uct}, std::pair{"BTT", &p.btt}}) {
-    if (!load->check || load->emulator_sd <= load->lab_sd) continue;
-    if (std::abs(load->check->relative_to_target) <= tolerance) continue;
-    out += (out.empty() ? "" : ", ") + std::string(name) +
-           sentence(" %+.3g%% (the emulator's sd %.2g%%, the lab's %.2g%%)",
-                    100 * load->check->relative_to_target, 100 * load->emulator_sd,
-                    100 * load->lab_sd);
-  }
-  return out;
-}
-
 }  // namespace
 
 void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
@@ -93,26 +75,18 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   }
   const std::string disagree = disagreeing_checks(p, c.tolerance, true);
   const std::string differ = disagreeing_checks(p, c.tolerance, false);
-  const std::string unsure = unsure_checks(p, c.tolerance);
-  if (met && (!disagree.empty() || !unsure.empty())) {
-    // The prediction meets the targets, the real runs at the estimate do not bear it out: they
-    // disagree with it, or they miss the targets where the emulators cannot vouch for it.
-    const std::string why =
-        !disagree.empty()
-            ? "the check runs there disagree with the prediction beyond the packings' scatter and "
-              "the emulators' variance (" +
-                  disagree +
-                  sentence(" from the prediction, outside its %.0f%% interval)",
-                           100 * kCheckLevel) +
-                  ": the emulators are wrong near the estimate"
-            : "the emulators know the loads there less well than the lab knows its targets and "
-              "the check runs there miss them (" +
-                  unsure + " of the target): the prediction is not established";
+  if (met && !disagree.empty()) {
+    // The prediction meets the targets, the real runs at the estimate do not bear it out.
     r.verdict = Verdict::compromise;
-    r.verdict_reason = "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
-                       "), but " + why + "; more runs near the estimate (a larger " +
-                       (p.resolution == "fine" ? "\"fidelity.runs\"" : "\"max_evaluations\"") +
-                       ") would settle it" + runs + "; " + region_text(p) + faults;
+    r.verdict_reason =
+        "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
+        "), but the check runs there disagree with the prediction beyond the packings' scatter "
+        "and the emulators' variance (" +
+        disagree +
+        sentence(" from the prediction, outside its %.0f%% interval)", 100 * kCheckLevel) +
+        ": the emulators are wrong near the estimate; more runs there (a larger "
+        "\"max_evaluations\") would correct them" +
+        runs + "; " + region_text(p) + faults;
     return;
   }
   if (met) {
