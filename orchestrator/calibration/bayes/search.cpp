@@ -350,14 +350,15 @@ class Search {
     std::vector<Eigen::Vector2d> cand;
     std::vector<std::optional<BondPoint>> exact;  // the existing point a candidate repeats
     auto add = [&](const Eigen::Vector2d& u, std::optional<BondPoint> p) {
-      if (near && (u - *near).norm() > kFineReach) return;
+      if (near && (u - *near).norm() > kFineReach) return false;
       if (distinct &&
           std::any_of(fine_history_.begin(), fine_history_.end(), [&](const EvaluationRecord& r) {
             return (to_unit(r.point, c) - u).norm() < 1e-9;
           }))
-        return;
+        return false;
       cand.push_back(u);
       exact.push_back(p);
+      return true;
     };
     if (near) add(*near, std::nullopt);
     const int spread = near ? 0 : kSpaceFilling;
@@ -370,9 +371,7 @@ class Search {
     int densest = 0;
     for (int cell : dense) {
       if (densest == kDensest) break;
-      const std::size_t before = cand.size();
-      add(m.grid.points.row(cell).transpose(), std::nullopt);
-      densest += int(cand.size() - before);
+      if (add(m.grid.points.row(cell).transpose(), std::nullopt)) ++densest;
     }
     if (c_.seed_matters && (m.coarse_runs > 0) == fine) {
       for (const BondPoint& p : m.points) add(to_unit(p, c), p);
