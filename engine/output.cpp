@@ -73,6 +73,8 @@ nlohmann::json result_to_json(const JobSpec& spec, const TestResult& r, int rank
         {"quasi_static", r.peak_reached ? json(q.quasi_static()) : json()},
         {"late_velocity", q.late_velocity_m_s > 0 ? json(q.late_velocity_m_s) : json()},
         {"late_peak", r.peak_reached ? json(q.late_peak) : json()},
+        {"follow_transits", q.follow_transits > 0 ? json(q.follow_transits) : json()},
+        {"followed", r.peak_reached && q.follow_transits > 0 ? json(q.followed) : json()},
         {"rerun", q.rerun ? json{{"first_peak_transits", q.rerun->first_peak_transits},
                                  {"first_peak_load", q.rerun->first_peak_load_n},
                                  {"auto_transits", q.rerun->auto_transits}}

@@ -322,6 +322,11 @@ LoadingSpec parse_loading(ObjectReader& root, TestKind test) {
       throw SpecError("loading.quasi_static_rerun", "applies to platen_velocity \"auto\" only");
     l.quasi_static_rerun = *rerun;  // the elastic test, loaded at its own pace, ignores it
   }
+  if (r.number("follow_transits")) {
+    if (l.platen_velocity_m_s)
+      throw SpecError("loading.follow_transits", "applies to platen_velocity \"auto\" only");
+    l.follow_transits = r.in_range("follow_transits", l.follow_transits, 10.0, 10000.0, false);
+  }
   if (const json* dt = r.find("dt")) {
     if (dt->is_string()) {
       if (dt->get<std::string>() != "auto")
@@ -590,6 +595,7 @@ nlohmann::json to_json(const JobSpec& s) {
     l["past_window"] = s.loading.speed_up_past_window ? "speed_up" : "stop";
     // Absent when off, so that the identities of jobs from before it stay.
     if (s.loading.quasi_static_rerun) l["quasi_static_rerun"] = true;
+    if (s.loading.follow_transits > 0) l["follow_transits"] = s.loading.follow_transits;
   }
   if (s.loading.dt_s)
     l["dt"] = *s.loading.dt_s;

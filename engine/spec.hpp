@@ -99,6 +99,11 @@ struct LoadingSpec {
   // quasi-static threshold runs again once, with auto_transits raised so that the same peak
   // would come at kRerunMargin times the threshold (loadtests/quasi_static_rerun.hpp).
   bool quasi_static_rerun = false;
+  // "auto" speed only, 0 = off: the platens never close slower than the closure since seating
+  // over this many wave transits (loadtests/loading_speed.hpp, follow_speed): a peak that comes
+  // many bond failure strains in is reached at the same relative rate, not after as many transits
+  // per failure strain as the first bond took.
+  double follow_transits = 0.0;
   std::optional<double> dt_s;   // nullopt = "auto"
   double dt_safety = 0.5;       // fraction of the critical step used by "auto"
   double ramp_fraction = 0.01;  // speed ramps over this fraction of the run (>= 2 wave transits)

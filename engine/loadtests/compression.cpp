@@ -208,6 +208,7 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   // The kinetic / bond energy ratio, sampled at every curve row (a sum over particles and bonds
   // per row, not per step); the result reports the last sample at or before the peak.
   double energy_ratio = 0.0, energy_ratio_at_peak = 0.0;
+  bool followed_at_peak = false;  // the follow speed set the platens' speed at the peak
   auto sample_energy = [&] {
     double e[2] = {kinetic_energy(sim.particles), bond_energy(sim.bonds, sim.particles)};
     reduce_sum(sim.domain, e, 2);
@@ -280,7 +281,9 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
       schedule.speed_up_from(t);
       late_step = sim.step;
     }
-    const double v = schedule.speed_at(t + 0.5 * sim.dt);
+    const double scheduled = schedule.speed_at(t + 0.5 * sim.dt);
+    const double following = follow_speed(spec, closure);
+    const double v = std::max(scheduled, following);
     bottom.velocity = Vec3(0, 0, v);
     top.velocity = Vec3(0, 0, -v);
     sim.advance();
@@ -300,7 +303,10 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
       next_curve = closure + curve_spacing;
       sample_energy();
     }
-    if (peak.peak_step == sim.step) energy_ratio_at_peak = energy_ratio;
+    if (peak.peak_step == sim.step) {
+      energy_ratio_at_peak = energy_ratio;
+      followed_at_peak = following > scheduled;
+    }
     if (hooks.on_frame && closure >= next_frame) {
       snapshot();
       next_frame = closure + frame_spacing;
@@ -338,7 +344,9 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
                                kQuasiStaticTransits,
                                late_step >= 0 ? schedule.late_m_s : 0.0,
                                late_step >= 0 && r.peak_step >= late_step,
-                               std::nullopt};
+                               std::nullopt,
+                               ld.follow_transits,
+                               followed_at_peak};
   if (!r.peak_reached) r.no_peak_reason = peak.no_peak_reason(r.stop_reason);
   r.strength_pa = strength_pa(spec, r.peak_load_n);
   if (spec.test != TestKind::btt && r.peak_reached) {

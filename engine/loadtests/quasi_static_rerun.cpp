@@ -20,6 +20,7 @@ TestResult run_with_quasi_static_rerun(const JobSpec& spec, const RunHooks& hook
       std::min(kMaxRerunFactor, kRerunMargin * q.min_transits / std::max(q.peak_transits, 1.0));
   JobSpec slower = spec;
   slower.loading.auto_transits = spec.loading.auto_transits * factor;
+  slower.loading.follow_transits = spec.loading.follow_transits * factor;  // 0 stays off
   if (estimated_steps(effective_spec(slower)) > static_cast<double>(kMaxSteps)) return first;
   TestResult second = run(slower, hooks);
   // A slower run that found no peak (stopped at max_steps or max_strain) does not replace a peak.

@@ -57,6 +57,8 @@ struct LoadingRate {
   double late_velocity_m_s = 0.0;     // auto: the speed past the bond-controlled window, if reached
   bool late_peak = false;             // the peak came after that window (and at the faster speed)
   std::optional<QuasiStaticRerun> rerun;  // this run followed one that came too fast
+  double follow_transits = 0.0;           // loading.follow_transits (0: off)
+  bool followed = false;                  // the follow speed set the speed at the peak
   bool quasi_static() const { return peak_transits >= min_transits; }
 };
 

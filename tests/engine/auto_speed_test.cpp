@@ -73,6 +73,17 @@ TEST(AutoSpeed, SpecTakesAutoWithItsTransitsAndKeepsNumbersAsTheyWere) {
             "loading.past_window: applies to platen_velocity \"auto\" only");
   EXPECT_EQ(refusal({{"platen_velocity", "auto"}, {"past_window", "slow"}}),
             "loading.past_window: must be \"stop\" or \"speed_up\"");
+  // The follow speed: auto only, in the canonical form only when on (older jobs keep their ids).
+  j["loading"] = {{"platen_velocity", "auto"}, {"follow_transits", 100}};
+  EXPECT_EQ(parse_job(j).loading.follow_transits, 100.0);
+  EXPECT_EQ(to_json(parse_job(j))["loading"]["follow_transits"], 100.0);
+  EXPECT_EQ(parse_job(to_json(parse_job(j))), parse_job(j));
+  j["loading"] = {{"platen_velocity", "auto"}};
+  EXPECT_FALSE(to_json(parse_job(j))["loading"].contains("follow_transits"));
+  EXPECT_EQ(refusal({{"platen_velocity", 0.05}, {"follow_transits", 100}}),
+            "loading.follow_transits: applies to platen_velocity \"auto\" only");
+  EXPECT_EQ(refusal({{"platen_velocity", "auto"}, {"follow_transits", 5}}),
+            "loading.follow_transits: must be in [10.0, 10000.0]");
 }
 
 TEST(AutoSpeed, SpeedClosesTheBondFailureStrainInTheGivenTransits) {
@@ -126,6 +137,65 @@ TEST(AutoSpeed, PeakLoadIsHomogeneousOfDegreeOneOverAHundredfoldStrengthRange) {
     EXPECT_NEAR(p, 1.0, 0.1) << to_string(test);
     RecordProperty(std::string("exponent_") + to_string(test), std::to_string(p));
   }
+}
+
+// The same with the follow speed setting the UCT's speed at its peak (F_s0 / F_r0 1.8, two-rate
+// loading at auto_transits 10, follow_transits 100, as the calibration templates load): the
+// follow speed scales with the closure, which scales with the strengths.
+TEST(AutoSpeed, AFollowedPeakIsHomogeneousOfDegreeOneOverAHundredfoldStrengthRange) {
+  auto followed = [](double scale) {
+    JobSpec s = tiny(TestKind::uct, 0.25 * scale, 0.45 * scale);
+    s.loading.auto_transits = 10;
+    s.loading.slow_factor = 0.25;
+    s.loading.follow_transits = 100;
+    return run_test(s);
+  };
+  const TestResult weak = followed(1), strong = followed(100);
+  ASSERT_TRUE(weak.peak_reached && strong.peak_reached);
+  ASSERT_TRUE(weak.loading_rate && strong.loading_rate);
+  EXPECT_TRUE(weak.loading_rate->followed);
+  EXPECT_TRUE(strong.loading_rate->followed);
+  const double p = std::log(strong.peak_load_n / weak.peak_load_n) / std::log(100.0);
+  EXPECT_NEAR(p, 1.0, 0.1);
+  RecordProperty("exponent", std::to_string(p));
+}
+
+// Where F_s0 exceeds F_r0 the UCT's peak comes many tensile failure strains in, so at the auto
+// speed (two-rate, auto_transits 10) it takes hundreds of transits. Following the closure
+// (follow_transits 100) reaches it in far fewer steps, with the follow speed setting the speed at
+// the peak and the peak still past the quasi-static threshold; the BTT ignores it (its closure is
+// mostly its contacts' indentation) and runs step for step as without.
+TEST(AutoSpeed, FollowingTheClosureReachesALateUctPeakInFewerStepsAndLeavesTheBttAlone) {
+  JobSpec s = tiny(TestKind::uct, 25, 45);
+  s.loading.auto_transits = 10;
+  s.loading.slow_factor = 0.25;
+  const TestResult plain = run_test(s);
+  s.loading.follow_transits = 100;
+  const TestResult followed = run_test(s);
+  ASSERT_TRUE(plain.peak_reached && followed.peak_reached);
+  ASSERT_TRUE(plain.loading_rate && followed.loading_rate);
+  EXPECT_FALSE(plain.loading_rate->followed);
+  EXPECT_TRUE(followed.loading_rate->followed);
+  EXPECT_EQ(followed.loading_rate->follow_transits, 100.0);
+  EXPECT_TRUE(followed.loading_rate->quasi_static());
+  EXPECT_LT(double(followed.steps), 0.7 * double(plain.steps));
+  // The peak's closure grew at most e-fold per follow_transits transits past the auto speed's
+  // reach: no sooner than 100 transits after seating.
+  EXPECT_GE(followed.loading_rate->peak_transits, 100.0);
+  EXPECT_NEAR(followed.peak_load_n / plain.peak_load_n, 1.0, 0.15);
+  RecordProperty("steps_plain", std::to_string(plain.steps));
+  RecordProperty("steps_followed", std::to_string(followed.steps));
+  RecordProperty("peak_ratio", std::to_string(followed.peak_load_n / plain.peak_load_n));
+
+  JobSpec disc = tiny(TestKind::btt, 25, 45);
+  disc.loading.slow_factor = 0.25;
+  const TestResult disc_plain = run_test(disc);
+  disc.loading.follow_transits = 100;
+  const TestResult disc_followed = run_test(disc);
+  EXPECT_EQ(disc_followed.steps, disc_plain.steps);
+  EXPECT_EQ(disc_followed.peak_load_n, disc_plain.peak_load_n);
+  ASSERT_TRUE(disc_followed.loading_rate);
+  EXPECT_FALSE(disc_followed.loading_rate->followed);
 }
 
 // A weak rock whose UCT is carried past its bonds' failure to large strains (compressed bonds,

@@ -23,7 +23,7 @@ struct Fitted {
 
 Fitted setup(int runs, double noise_var) {
   const Eigen::MatrixXd x = latin_square(runs, 5);
-  GpData u{x, Eigen::VectorXd(runs), Eigen::VectorXd::Constant(runs, noise_var), {}}, b = u;
+  GpData u{x, Eigen::VectorXd(runs), Eigen::VectorXd::Constant(runs, noise_var), {}, {}}, b = u;
   for (int i = 0; i < runs; ++i) {
     u.y(i) = ln_uct(x.row(i).transpose());
     b.y(i) = ln_btt(x.row(i).transpose());

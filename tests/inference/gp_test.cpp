@@ -18,7 +18,8 @@ using testing::ln_uct;
 GpData noisy(int n, double sd, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, sd);
-  GpData d{latin_square(n, seed), Eigen::VectorXd(n), Eigen::VectorXd::Constant(n, sd * sd), {}};
+  GpData d{
+      latin_square(n, seed), Eigen::VectorXd(n), Eigen::VectorXd::Constant(n, sd * sd), {}, {}};
   for (int i = 0; i < n; ++i) d.y(i) = ln_uct(d.x.row(i).transpose()) + noise(rng);
   return d;
 }
@@ -90,6 +91,29 @@ TEST(Emulator, OneRunsScatterIsLearnedAndAPointOfManyRunsIsKnownBetter) {
   EXPECT_LT(predict(condition_gp(more, gp.hyper), x0).var, predict(gp, x0).var);
 }
 
+// Four points of two runs each, whose runs agree to sd 0.03 but whose means depart from any
+// smooth trend over the box by +-0.2 (a pattern lengths of at least the box cannot follow): the
+// replicates' spread says the packings' scatter is small, so the misfit is signal, not noise.
+// With the means alone the nugget takes the misfit for scatter (what made the seed rock's D/R 49
+// checks agree with a vague prediction).
+TEST(Emulator, ReplicatesSpreadSetsTheNuggetSoAMisfitBetweenPointsIsNotScatter) {
+  Eigen::MatrixXd x(4, 2);
+  x << 0, 0, 1, 0, 0, 1, 1, 1;
+  GpData d{x, Eigen::Vector4d(0.2, -0.2, -0.2, 0.2), Eigen::VectorXd::Zero(4),
+           Eigen::VectorXd::Constant(4, 2.0), Eigen::VectorXd::Constant(4, 0.03 * 0.03)};
+  GpOptions o;
+  o.min_length = 1.0;
+  o.linear_trend = false;
+  o.replicate_spread = true;
+  const Gp with_runs = fit_gp(d, o);
+  o.replicate_spread = false;
+  const Gp means_only = fit_gp(d, o);
+  EXPECT_LT(std::sqrt(per_run_noise(with_runs)), 0.06);
+  EXPECT_GT(std::sqrt(per_run_noise(means_only)), 0.15);
+  RecordProperty("run_sd_with_runs", std::to_string(std::sqrt(per_run_noise(with_runs))));
+  RecordProperty("run_sd_means_only", std::to_string(std::sqrt(per_run_noise(means_only))));
+}
+
 TEST(Emulator, BadDataAreRefused) {
   GpData d = noisy(5, 0.01, 1);
   auto message = [](const GpData& data) {
@@ -118,6 +142,13 @@ TEST(Emulator, BadDataAreRefused) {
   GpData no_runs = d;
   no_runs.runs = Eigen::VectorXd::Zero(5);
   EXPECT_EQ(message(no_runs), "emulator: runs must be >= 1 for every point");
+  GpData spread = d;
+  spread.runs = Eigen::VectorXd::Constant(5, 2.0);
+  spread.within_ss = Eigen::VectorXd::Constant(5, -0.1);
+  EXPECT_EQ(message(spread), "emulator: within_ss must be >= 0 for every point");
+  spread.runs.resize(0);
+  spread.within_ss = Eigen::VectorXd::Zero(5);
+  EXPECT_EQ(message(spread), "emulator: within_ss needs the points' runs");
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ struct Pair {
 
 Pair exact_emulators() {
   const Eigen::MatrixXd x = latin_square(40, 11);
-  GpData u{x, Eigen::VectorXd(40), Eigen::VectorXd::Constant(40, 1e-6), {}}, b = u;
+  GpData u{x, Eigen::VectorXd(40), Eigen::VectorXd::Constant(40, 1e-6), {}, {}}, b = u;
   for (int i = 0; i < 40; ++i) {
     u.y(i) = ln_uct(x.row(i).transpose());
     b.y(i) = ln_btt(x.row(i).transpose());
@@ -66,7 +66,7 @@ TEST(Posterior, ExactEmulatorsLeaveOnlyTheLabsUncertainty) {
   const Eigen::Vector2d truth(0.5, 0.5);
   const std::vector<Target> t = targets_at(truth, 0.05);
   const Eigen::MatrixXd x = latin_square(6, 3);
-  GpData u{x, Eigen::VectorXd(6), Eigen::VectorXd::Constant(6, 0.04), {}}, b = u;
+  GpData u{x, Eigen::VectorXd(6), Eigen::VectorXd::Constant(6, 0.04), {}, {}}, b = u;
   for (int i = 0; i < 6; ++i) {
     u.y(i) = ln_uct(x.row(i).transpose());
     b.y(i) = ln_btt(x.row(i).transpose());

@@ -22,7 +22,7 @@ double ln_fine(const Eigen::VectorXd& x) {
 GpData runs(int n, unsigned seed, double sd, bool fine) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, sd);
-  GpData d{latin_square(n, seed), Eigen::VectorXd(n), Eigen::VectorXd::Zero(n), {}};
+  GpData d{latin_square(n, seed), Eigen::VectorXd(n), Eigen::VectorXd::Zero(n), {}, {}};
   for (int i = 0; i < n; ++i) {
     const Eigen::VectorXd x = d.x.row(i).transpose();
     d.y(i) = (fine ? ln_fine(x) : ln_uct(x)) + noise(rng);
@@ -62,9 +62,25 @@ TEST(TwoLevelEmulator, AFewFineRunsOnACoarseEmulatorPredictTheFineObservable) {
   EXPECT_GT(double(inside) / total, 0.75);
 }
 
+// Four fine points of two runs each that agree to sd 0.03, on a discrepancy from the coarse
+// emulator that alternates by +-0.2 over the box (the seed rock's fine UCT: 1.5x the coarse at one
+// end of the valley, 0.8x at the other): the replicates' spread keeps the nugget at the runs'
+// scatter, so the misfit shows as the emulator's variance, not as one run's noise.
+TEST(TwoLevelEmulator, TheFineRunsReplicatesSetOneFineRunsScatter) {
+  const Gp coarse = fit_gp(runs(80, 3, 0.15, false));
+  GpData fine{Eigen::MatrixXd(4, 2), Eigen::VectorXd(4), Eigen::VectorXd::Zero(4),
+              Eigen::VectorXd::Constant(4, 2.0), Eigen::VectorXd::Constant(4, 0.03 * 0.03)};
+  fine.x << 0.1, 0.1, 0.9, 0.1, 0.1, 0.9, 0.9, 0.9;
+  const double shift[] = {0.2, -0.2, -0.2, 0.2};
+  for (int i = 0; i < 4; ++i) fine.y(i) = ln_fine(fine.x.row(i).transpose()) + shift[i];
+  const Gp two = fit_two_level(coarse, fine);
+  EXPECT_LT(std::sqrt(two.hyper.nugget), 0.06);
+  RecordProperty("fine_run_sd", std::to_string(std::sqrt(two.hyper.nugget)));
+}
+
 TEST(TwoLevelEmulator, MismatchedDataAreRefused) {
   const Gp coarse = fit_gp(runs(20, 3, 0.1, false));
-  GpData three_d{latin_square(5, 4, 3), Eigen::VectorXd::Zero(5), Eigen::VectorXd::Zero(5), {}};
+  GpData three_d{latin_square(5, 4, 3), Eigen::VectorXd::Zero(5), Eigen::VectorXd::Zero(5), {}, {}};
   try {
     fit_two_level(coarse, three_d);
     FAIL() << "a 3-D fine set on a 2-D coarse emulator was accepted";

@@ -42,6 +42,23 @@ void check(const GpData& d) {
   if (d.noise_var.minCoeff() < 0) throw std::invalid_argument("emulator: a negative noise_var");
   if (d.runs.size() != 0 && (d.runs.size() != n || !d.runs.allFinite() || d.runs.minCoeff() < 1))
     throw std::invalid_argument("emulator: runs must be >= 1 for every point");
+  if (d.within_ss.size() != 0 &&
+      (d.within_ss.size() != n || !d.within_ss.allFinite() || d.within_ss.minCoeff() < 0))
+    throw std::invalid_argument("emulator: within_ss must be >= 0 for every point");
+  if (d.within_ss.size() != 0 && d.runs.size() == 0)
+    throw std::invalid_argument("emulator: within_ss needs the points' runs");
+}
+
+// The log-likelihood of each point's runs about their mean: sum_i of ln N-chi^2 terms with
+// runs_i - 1 degrees of freedom and variance nugget (the constant in the runs' counts left out).
+double within_log_likelihood(const GpData& d, double nugget) {
+  double ll = 0.0;
+  for (Eigen::Index i = 0; i < d.within_ss.size(); ++i) {
+    const double dof = d.runs(i) - 1.0;
+    if (dof > 0)
+      ll -= 0.5 * (dof * std::log(2.0 * std::numbers::pi * nugget) + d.within_ss(i) / nugget);
+  }
+  return ll;
 }
 
 // Factorises at `hyper`; returns false when K is not positive definite.
@@ -70,7 +87,8 @@ bool factorise(Gp& gp) {
   const double log_det_hkh = hkh_f.vectorD().array().log().sum();
   const int p = gp.trend_terms;
   gp.log_likelihood = -0.5 * (r.dot(gp.alpha) + log_det_k + log_det_hkh +
-                              (n - p) * std::log(2.0 * std::numbers::pi));
+                              (n - p) * std::log(2.0 * std::numbers::pi)) +
+                      (gp.replicate_spread ? within_log_likelihood(d, gp.hyper.nugget) : 0.0);
   return std::isfinite(gp.log_likelihood);
 }
 
@@ -106,6 +124,7 @@ Gp fit_gp(GpData data, const GpOptions& options) {
   const int dims = int(data.x.cols());
   Gp gp;
   gp.trend_terms = options.linear_trend ? trend_terms_for(data) : 1;
+  gp.replicate_spread = options.replicate_spread;
   gp.data = std::move(data);
   gp.hyper.length = Eigen::VectorXd::Constant(dims, 0.5);
   // The scale of what the trend leaves: the signal variance is searched around it.

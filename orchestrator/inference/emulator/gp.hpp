@@ -11,10 +11,13 @@
 //          squares and its uncertainty carried into the predictive variance;
 //   f ~ GP(0, s2 * Matern52_ARD(x, x'; lengths)): the departure from it;
 //   noise_i ~ N(0, noise_var_i + nugget / runs_i): the nugget is one run's scatter (the
-//          packings' scatter, learned from all residuals and replicates together), over the
-//          point's number of runs (a point of many realisations is known better); noise_var_i a
-//          known extra variance of the point (0 for the calibration's runs).
-// Hyperparameters (lengths, s2, nugget) maximise the restricted likelihood (NLopt, bounded).
+//          packings' scatter), over the point's number of runs (a point of many realisations is
+//          known better); noise_var_i a known extra variance of the point (0 for the calibration's
+//          runs).
+// Hyperparameters (lengths, s2, nugget) maximise the restricted likelihood (NLopt, bounded) of
+// the points' means, and with GpOptions::replicate_spread of every run: times that of each point's
+// runs about their mean, which depends on the nugget alone (sum of squares within_ss_i ~ nugget
+// chi^2 with runs_i - 1 degrees of freedom).
 #pragma once
 
 #include <memory>
@@ -31,6 +34,9 @@ struct GpData {
   Eigen::VectorXd y;          // n
   Eigen::VectorXd noise_var;  // n, >= 0
   Eigen::VectorXd runs;       // n, >= 1; empty: one run each
+  // n: the sum of squared deviations of the point's runs from their mean y (0 for one run);
+  // empty: the means alone (what is known of the runs' spread is then not used).
+  Eigen::VectorXd within_ss;
 };
 
 struct GpHyper {
@@ -43,8 +49,15 @@ struct GpOptions {
   double min_length = 0.2;  // shorter chases the runs' scatter as if it were signal
   double max_length = 3.0;  // longer is a straight line over the box: the trend's job
   double min_nugget = 1e-8;
-  int restarts = 3;  // extra starts of the likelihood search beyond the default one
+  int restarts = 3;          // extra starts of the likelihood search beyond the default one
   bool linear_trend = true;  // false: a constant trend whatever the number of points
+  // The replicates' spread about their points' means enters the likelihood (data.within_ss).
+  // Where the lengths are held long (the two-level discrepancy, whose few points a smooth trend
+  // cannot always follow) the means alone let the misfit between points pass for the packings'
+  // scatter. Off for the coarse emulators, whose short lengths take a misfit as signal: there a
+  // few replicates' spread (4 degrees of freedom after 14 runs) pulled the nugget down by chance
+  // and a formula twin's search stopped sure of a region its check runs then contradicted (z 4.9).
+  bool replicate_spread = false;
 };
 
 struct Prediction {
@@ -63,6 +76,7 @@ struct Gp {
   Eigen::VectorXd alpha;             // K^-1 (y - H beta)
   Eigen::MatrixXd h_kinv_h_inv;      // (H' K^-1 H)^-1
   double log_likelihood = 0.0;       // the restricted log-likelihood at the hyperparameters
+  bool replicate_spread = false;     // GpOptions::replicate_spread: within_ss is in it
   // Set on a discrepancy emulator (two_level.hpp): this GP models y minus `base`'s mean, and its
   // predictions add `base`'s mean and variance.
   std::shared_ptr<const Gp> base;

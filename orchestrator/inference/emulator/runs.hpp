@@ -3,9 +3,9 @@
 //
 // Why: the packings' scatter is the noise the emulator must not chase. It is one variance for a
 // run anywhere in the box (the emulator's nugget, learned from every residual and every
-// replicate at once, which a handful of replicates alone would pin poorly), and a point's mean of
-// m runs carries it over m: a point run on several packings is known better, the same rule that
-// lets the design value a further realisation.
+// replicate's spread about its point's mean at once, which a handful of replicates alone would
+// pin poorly), and a point's mean of m runs carries it over m: a point run on several packings is
+// known better, the same rule that lets the design value a further realisation.
 #pragma once
 
 #include <vector>

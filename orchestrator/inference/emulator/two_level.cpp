@@ -17,6 +17,7 @@ Gp fit_two_level(const Gp& coarse, GpData fine, const TwoLevelOptions& options) 
   o.min_length = options.min_length;
   o.max_length = options.max_length;
   o.linear_trend = false;
+  o.replicate_spread = true;
   Gp gp = fit_gp(std::move(fine), o);
   gp.base = std::make_shared<const Gp>(coarse);
   return gp;

@@ -7,11 +7,12 @@
 // resolution trends), which in log space is a nearly constant shift: the fine observable is
 // y_fine(x) = y_coarse(x) + d(x) with d smooth. The coarse emulator carries the shape; a GP on the
 // fine runs' residuals from it (a constant or linear trend, lengths of at least the whole box by
-// default, its own nugget = one fine run's scatter) carries d. The coarse emulator's variance at a
-// fine point enters that point as known noise, and every prediction adds both emulators' means and
-// variances, so the fine answer is as uncertain as the two together (Kennedy & O'Hagan 2000's
-// autoregressive model with the scale fixed at 1, which homogeneity in log space makes the right
-// one).
+// default, its own nugget = one fine run's scatter, learned from the fine replicates' spread as
+// well as the residuals: with so few points the misfit alone would pass for scatter) carries d. The
+// coarse emulator's variance at a fine point enters that point as known noise, and every prediction
+// adds both emulators' means and variances, so the fine answer is as uncertain as the two together
+// (Kennedy & O'Hagan 2000's autoregressive model with the scale fixed at 1, which homogeneity in
+// log space makes the right one).
 #pragma once
 
 #include "orchestrator/inference/emulator/gp.hpp"
