@@ -292,7 +292,15 @@ std::string posterior_text(const json& p) {
               value_text(at(k, "runs")) +
               " packings: " + (k["agrees"] == true ? "agrees" : "DISAGREES") + ")";
   }
-  if (!checks.empty()) out << "  check runs at the estimate: " << checks << "\n";
+  const json& at_point = at(p, "checked_at");
+  if (!checks.empty() && at(p, "estimate_moved_after_check") == true && at_point.is_object()) {
+    out << "  check runs at (" << num(at_point["fr0"].get<double>(), "%.4g") << ", "
+        << num(at_point["fs0"].get<double>(), "%.4g")
+        << "), the estimate before them (the estimate moved with them; no run there): " << checks
+        << "\n";
+  } else if (!checks.empty()) {
+    out << "  check runs at the estimate: " << checks << "\n";
+  }
   return out.str();
 }
 

@@ -315,7 +315,11 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
       {"points", p->points},
       {"resolution", p->resolution.empty() ? json(nullptr) : json(p->resolution)},
       {"coarse_runs", p->coarse_runs},
-      {"rounds", p->rounds}};
+      {"rounds", p->rounds},
+      {"checked_at", p->checked_at
+                         ? json{{"fr0", p->checked_at->fr0_n}, {"fs0", p->checked_at->fs0_n}}
+                         : json(nullptr)},
+      {"estimate_moved_after_check", p->estimate_moved()}};
   if (c.targets.scaling) {
     const BondPoint lab = bonds_to_lab(p->estimate, *c.targets.scaling);
     const Scaling& s = *c.targets.scaling;

@@ -119,5 +119,39 @@ TEST(CheckRuns, AChecksDifferenceThatStillMeetsTheTargetsLeavesFeasibleAndIsName
       << r.verdict_reason;
 }
 
+// Fitted on the check runs too, the posterior can move its estimate away from the point they ran
+// at (the seed rock at D/R 49: checks at (59.58, 39.47), the estimate after them (41.62, 43.39)).
+// The report then says where the checks ran and that the estimate has no run of its own; an
+// estimate that stayed says nothing of the kind.
+TEST(CheckRuns, AnEstimateThatMovedAfterTheChecksIsSaidToRestOnTheEmulatorsAlone) {
+  const CalibrationCampaign c =
+      testing::campaign({120000, 9000}, {{"strategy", "bayes"}, {"max_evaluations", 100}});
+  CalibrationReport stayed = report_with(c, 0.9, 1.05);
+  stayed.posterior->estimate = {40.0, 60.0};
+  stayed.posterior->checked_at = BondPoint{40.2, 59.9};
+  judge_posterior(stayed, c);
+  EXPECT_FALSE(stayed.posterior->estimate_moved());
+  EXPECT_EQ(stayed.verdict_reason.find("check runs were made at"), std::string::npos)
+      << stayed.verdict_reason;
+
+  CalibrationReport moved = report_with(c, 0.85, 1.16);
+  moved.posterior->estimate = {41.62, 43.39};
+  moved.posterior->checked_at = BondPoint{59.58, 39.47};
+  judge_posterior(moved, c);
+  EXPECT_TRUE(moved.posterior->estimate_moved());
+  EXPECT_NE(
+      moved.verdict_reason.find(
+          "; the check runs were made at (F_r0 59.58, F_s0 39.47), the estimate before them "
+          "(UCT -14.9%, BTT +15.9% of the targets); fitted on them too, the posterior moved its "
+          "estimate to (41.62, 43.39), where no run has been made: its predicted loads rest "
+          "on the emulators alone"),
+      std::string::npos)
+      << moved.verdict_reason;
+  const nlohmann::json j = to_json(moved, c);
+  EXPECT_EQ(j["posterior"]["estimate_moved_after_check"], true);
+  EXPECT_EQ(j["posterior"]["checked_at"]["fr0"], 59.58);
+  EXPECT_EQ(to_json(stayed, c)["posterior"]["estimate_moved_after_check"], false);
+}
+
 }  // namespace
 }  // namespace rockcal::calibration

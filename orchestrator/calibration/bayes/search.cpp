@@ -115,6 +115,7 @@ class Search {
       if (report.posterior && before_check_ && report.best->uct && report.best->btt) {
         report.posterior->uct.check = check_agreement(before_check_->uct, *report.best->uct);
         report.posterior->btt.check = check_agreement(before_check_->btt, *report.best->btt);
+        report.posterior->checked_at = before_check_->estimate;
       }
     }
     // A region too wide to call unique: which further test would cut it most (on the specimen

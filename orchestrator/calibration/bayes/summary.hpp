@@ -2,6 +2,7 @@
 // campaign's model units. Every figure here comes from the emulators and runs of the campaign.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,6 +71,16 @@ struct PosteriorSummary {
   int coarse_runs = 0;
   int points = 0;  // distinct points among them
   int rounds = 0;  // batches designed after the start
+  // Where the check runs ran: the estimate before them. Fitted on them too, the posterior may put
+  // its estimate elsewhere, where no run has been made; `estimate` then differs from it.
+  std::optional<BondPoint> checked_at;
+  // The estimate moved after the check runs by more than kCheckedSpread (relative) in either
+  // strength: the check runs then say how the emulators did at the point before, not at this one.
+  static constexpr double kCheckedSpread = 0.02;
+  bool estimate_moved() const {
+    return checked_at && (std::abs(estimate.fr0_n / checked_at->fr0_n - 1.0) > kCheckedSpread ||
+                          std::abs(estimate.fs0_n / checked_at->fs0_n - 1.0) > kCheckedSpread);
+  }
 };
 
 }  // namespace rockcal::calibration

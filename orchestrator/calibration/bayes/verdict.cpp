@@ -42,6 +42,25 @@ std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool
   return out;
 }
 
+// When the estimate moved after the check runs: where they ran and that the estimate has no run of
+// its own, so its loads rest on the emulators alone. Empty when the check was at the estimate.
+std::string moved_text(const PosteriorSummary& p) {
+  if (!p.estimate_moved()) return "";
+  std::string checks;
+  for (const auto& [name, load] : {std::pair{"UCT", &p.uct}, std::pair{"BTT", &p.btt}}) {
+    if (load->check)
+      checks += (checks.empty() ? "" : ", ") + std::string(name) +
+                sentence(" %+.3g%%", 100 * load->check->relative_to_target);
+  }
+  return sentence("; the check runs were made at (F_r0 %.4g, F_s0 %.4g), the estimate before them",
+                  p.checked_at->fr0_n, p.checked_at->fs0_n) +
+         (checks.empty() ? "" : " (" + checks + " of the targets)") +
+         sentence(
+             "; fitted on them too, the posterior moved its estimate to (%.4g, %.4g), where no "
+             "run has been made: its predicted loads rest on the emulators alone",
+             p.estimate.fr0_n, p.estimate.fs0_n);
+}
+
 }  // namespace
 
 void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
@@ -86,7 +105,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
         sentence(" from the prediction, outside its %.0f%% interval)", 100 * kCheckLevel) +
         ": the emulators are wrong near the estimate; more runs there (a larger "
         "\"max_evaluations\") would correct them" +
-        runs + "; " + region_text(p) + faults;
+        runs + "; " + region_text(p) + moved_text(p) + faults;
     return;
   }
   if (met) {
@@ -101,7 +120,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
              : "; the check runs at the estimate differ from the prediction beyond its " +
                    sentence("%.0f%% interval (", 100 * kCheckLevel) + differ +
                    ") but meet the targets themselves") +
-        faults;
+        moved_text(p) + faults;
     return;
   }
   if (r.stop_reason == StopReason::cancelled) {
