@@ -159,8 +159,10 @@ std::string fidelity_text(const json& f) {
 
 // The rock at the estimate: "rock at the estimate (lab units): UCS 105 MPa [98.1, 112], BTS 17.5
 // MPa [16.8, 18.2]; E 11.2 GPa (lab 12.3) and nu 0.212 (lab 0.2) from 2 check runs", or "from
-// the elastic test (UCT slope 6.1 GPa)" when the stiffness stage measured them.
-std::string rock_text(const json& r) {
+// the elastic test (UCT slope 6.1 GPa)" when the stiffness stage measured them. When the estimate
+// moved after the check runs (posterior.estimate_moved_after_check), E and nu are the check runs'
+// at their own point, which the text names.
+std::string rock_text(const json& r, const json& posterior) {
   if (!r.is_object()) return "";
   const bool lab = at(r, "units") == "lab";
   const double mpa = lab ? 1e-6 : 1.0;
@@ -192,6 +194,10 @@ std::string rock_text(const json& r) {
              (lab ? " GPa" : " Pa") + ")";
   } else if (e.is_object() && e["runs"].is_number()) {
     out += " from " + e["runs"].dump() + " check runs";
+    const json& checked = at(posterior, "checked_at");
+    if (at(posterior, "estimate_moved_after_check") == true && checked.is_object())
+      out += " at (F_r0 " + num(checked["fr0"].get<double>(), "%.4g") + ", F_s0 " +
+             num(checked["fs0"].get<double>(), "%.4g") + ")";
     // A run that measured E without nu (a result from an engine before the UCT's gauges).
     if (nu.is_object() && nu["value"].is_number() && nu["runs"].is_number() &&
         nu["runs"] != e["runs"])
@@ -315,7 +321,7 @@ std::string calibration_text(const json& s) {
   const json& posterior = at(s, "posterior");
   if (posterior.is_object()) {
     out << posterior_text(posterior);
-    out << rock_text(at(s, "rock_properties"));
+    out << rock_text(at(s, "rock_properties"), posterior);
     out << "unique: " << (at(posterior, "unique") == true ? "yes" : "no") << " - "
         << value_text(at(posterior, "why")) << "\n";
     const json& next = at(s, "suggestion");

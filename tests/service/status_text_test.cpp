@@ -299,6 +299,25 @@ TEST(CalibrationSummary, TheRocksNuFromTheCheckRunsSaysHowManyMeasuredIt) {
   EXPECT_NE(text.find("; E 1.3 GPa (lab 12.3) and nu 0.6 (lab 0.2) from 2 check runs (nu from 1)"),
             std::string::npos)
       << text;
+  // The estimate moved after the check runs: E and nu are theirs, at their own point, and the
+  // check line says where they ran.
+  summary["rock_properties"] = rock(2);
+  summary["posterior"]["checked_at"] = {{"fr0", 59.58}, {"fs0", 39.47}};
+  summary["posterior"]["estimate_moved_after_check"] = true;
+  summary["posterior"]["uct"]["check"] = {{"relative_error", -0.1448},
+                                          {"relative_to_prediction", -0.1718},
+                                          {"sd", 0.094},
+                                          {"runs", 2},
+                                          {"agrees", true}};
+  text = calibration_text(summary);
+  EXPECT_NE(text.find("; E 1.3 GPa (lab 12.3) and nu 0.6 (lab 0.2) from 2 check runs at (F_r0 "
+                      "59.58, F_s0 39.47)\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  check runs at (59.58, 39.47), the estimate before them (the estimate "
+                      "moved with them; no run there): UCT -14.48% of the target"),
+            std::string::npos)
+      << text;
 }
 
 // E and nu as targets: the stiffness stage's line in lab units (E and its target in GPa, nu and
