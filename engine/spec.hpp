@@ -100,7 +100,7 @@ struct LoadingSpec {
   // would come at kRerunMargin times the threshold (loadtests/quasi_static_rerun.hpp).
   bool quasi_static_rerun = false;
   // "auto" speed only, 0 = off: the platens never close slower than the closure since seating
-  // over this many wave transits (loadtests/loading_speed.hpp, follow_speed): a peak that comes
+  // over this many wave transits (loadtests/loading_speed.hpp, follow_rate): a peak that comes
   // many bond failure strains in is reached at the same relative rate, not after as many transits
   // per failure strain as the first bond took.
   double follow_transits = 0.0;

@@ -157,6 +157,15 @@ std::string fidelity_text(const json& f) {
   return out.str();
 }
 
+// Where the check runs ran when the posterior moved its estimate after them, as "(F_r0 59.58,
+// F_s0 39.47)"; empty when they ran at the estimate.
+std::string moved_check_point(const json& posterior) {
+  const json& p = at(posterior, "checked_at");
+  if (at(posterior, "estimate_moved_after_check") != true || !p.is_object()) return "";
+  return "(F_r0 " + num(p["fr0"].get<double>(), "%.4g") + ", F_s0 " +
+         num(p["fs0"].get<double>(), "%.4g") + ")";
+}
+
 // The rock at the estimate: "rock at the estimate (lab units): UCS 105 MPa [98.1, 112], BTS 17.5
 // MPa [16.8, 18.2]; E 11.2 GPa (lab 12.3) and nu 0.212 (lab 0.2) from 2 check runs", or "from
 // the elastic test (UCT slope 6.1 GPa)" when the stiffness stage measured them. When the estimate
@@ -194,10 +203,8 @@ std::string rock_text(const json& r, const json& posterior) {
              (lab ? " GPa" : " Pa") + ")";
   } else if (e.is_object() && e["runs"].is_number()) {
     out += " from " + e["runs"].dump() + " check runs";
-    const json& checked = at(posterior, "checked_at");
-    if (at(posterior, "estimate_moved_after_check") == true && checked.is_object())
-      out += " at (F_r0 " + num(checked["fr0"].get<double>(), "%.4g") + ", F_s0 " +
-             num(checked["fs0"].get<double>(), "%.4g") + ")";
+    const std::string checked = moved_check_point(posterior);
+    if (!checked.empty()) out += " at " + checked;
     // A run that measured E without nu (a result from an engine before the UCT's gauges).
     if (nu.is_object() && nu["value"].is_number() && nu["runs"].is_number() &&
         nu["runs"] != e["runs"])
@@ -298,14 +305,14 @@ std::string posterior_text(const json& p) {
               value_text(at(k, "runs")) +
               " packings: " + (k["agrees"] == true ? "agrees" : "DISAGREES") + ")";
   }
-  const json& at_point = at(p, "checked_at");
-  if (!checks.empty() && at(p, "estimate_moved_after_check") == true && at_point.is_object()) {
-    out << "  check runs at (" << num(at_point["fr0"].get<double>(), "%.4g") << ", "
-        << num(at_point["fs0"].get<double>(), "%.4g")
-        << "), the estimate before them (the estimate moved with them; no run there): " << checks
-        << "\n";
-  } else if (!checks.empty()) {
-    out << "  check runs at the estimate: " << checks << "\n";
+  const std::string checked = moved_check_point(p);
+  if (!checks.empty()) {
+    out << "  check runs at "
+        << (checked.empty() ? "the estimate"
+                            : checked +
+                                  ", the estimate before them (the estimate moved with "
+                                  "them; no run there)")
+        << ": " << checks << "\n";
   }
   return out.str();
 }

@@ -200,6 +200,7 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
   SpeedSchedule schedule{speed, ld.slow_factor, t_ramp,
                          stop_past_window ? 0.0 : late_platen_speed(spec)};
   const double late_closure = kBondControlledWindow * bond_failure_strain(spec) * length;
+  const double follow_per_m = follow_rate(spec);  // speed per metre of closure; 0 when off
   std::int64_t late_step = -1;
   bool slow_peak = false;
   const auto slow_trigger = static_cast<std::int64_t>(
@@ -282,7 +283,7 @@ TestResult run_compression_test(const JobSpec& job, const RunHooks& hooks) {
       late_step = sim.step;
     }
     const double scheduled = schedule.speed_at(t + 0.5 * sim.dt);
-    const double following = follow_speed(spec, closure);
+    const double following = follow_per_m * closure;
     const double v = std::max(scheduled, following);
     bottom.velocity = Vec3(0, 0, v);
     top.velocity = Vec3(0, 0, -v);

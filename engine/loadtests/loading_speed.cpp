@@ -29,10 +29,10 @@ double late_platen_speed(const JobSpec& spec) {
   return std::max(v, covering);
 }
 
-double follow_speed(const JobSpec& spec, double closure_m) {
+double follow_rate(const JobSpec& spec) {
   const LoadingSpec& ld = spec.loading;
   if (ld.platen_velocity_m_s || ld.follow_transits <= 0 || spec.test == TestKind::btt) return 0.0;
-  return closure_m / (2.0 * ld.follow_transits * wave_transit_time(spec));
+  return 1.0 / (2.0 * ld.follow_transits * wave_transit_time(spec));  // both platens move
 }
 
 }  // namespace rockcal

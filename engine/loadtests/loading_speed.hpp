@@ -40,10 +40,10 @@ double platen_speed(const JobSpec& spec);
 // that covers max_strain in kLateTransits transits; a given speed stays as it is.
 double late_platen_speed(const JobSpec& spec);
 
-// The follow speed (loading.follow_transits n, "auto" only): the speed that closes the specimen by
-// `closure` (counted from the seated state) in n wave transits; 0 when off. The platens move at
-// the larger of it and the scheduled speed, so the closure grows at most exponentially with time
-// constant n transits once it passes the auto speed's reach.
+// The follow speed (loading.follow_transits n, "auto" only) per metre of closure: times the closure
+// since seating, the speed that closes the specimen by it in n wave transits; 0 when off. The
+// platens move at the larger of that and the scheduled speed, so the closure grows at most
+// exponentially with time constant n transits once it passes the auto speed's reach.
 //
 // Why: the auto speed follows the first bond failure, but where F_s0 exceeds F_r0 the peak comes
 // 7-25 failure strains later (the shear bonds and friction carry the load while tensile bonds
@@ -59,6 +59,6 @@ double late_platen_speed(const JobSpec& spec);
 // (measured at D/R 20, (25, 45) and (40, 40), three seeds: followed at 100 transits the BTT peaks
 // came 4-5% above a 4x slower run's, against 1-2% without; docs/loading-rate.md). The BTT
 // ignores it, as the elastic test ignores the rerun; its runs are cheap either way.
-double follow_speed(const JobSpec& spec, double closure_m);
+double follow_rate(const JobSpec& spec);
 
 }  // namespace rockcal

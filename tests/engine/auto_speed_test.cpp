@@ -269,6 +269,14 @@ TEST(AutoSpeed, ARunThatCameTooFastRunsAgainSlowerWithTheRerun) {
                                                       once.loading_rate->peak_transits));
   EXPECT_TRUE(twice.loading_rate->quasi_static()) << twice.loading_rate->peak_transits;
   EXPECT_GT(twice.wall_seconds, once.wall_seconds);
+  // The follow speed slows down with the rest: the rerun's follow_transits by the same factor.
+  JobSpec followed = s;
+  followed.loading.follow_transits = 100;
+  const TestResult rerun = run_test(followed);
+  ASSERT_TRUE(rerun.loading_rate && rerun.loading_rate->rerun);
+  EXPECT_DOUBLE_EQ(rerun.loading_rate->follow_transits,
+                   100 * rerun.loading_rate->rerun->auto_transits / 10);
+  EXPECT_GT(rerun.loading_rate->follow_transits, 100.0);
   // A quasi-static run is not repeated.
   JobSpec slow = s;
   slow.loading.auto_transits = 40;

@@ -314,8 +314,8 @@ TEST(CalibrationSummary, TheRocksNuFromTheCheckRunsSaysHowManyMeasuredIt) {
                       "59.58, F_s0 39.47)\n"),
             std::string::npos)
       << text;
-  EXPECT_NE(text.find("  check runs at (59.58, 39.47), the estimate before them (the estimate "
-                      "moved with them; no run there): UCT -14.48% of the target"),
+  EXPECT_NE(text.find("  check runs at (F_r0 59.58, F_s0 39.47), the estimate before them (the "
+                      "estimate moved with them; no run there): UCT -14.48% of the target"),
             std::string::npos)
       << text;
 }

@@ -88,7 +88,7 @@ bool factorise(Gp& gp) {
   const int p = gp.trend_terms;
   gp.log_likelihood = -0.5 * (r.dot(gp.alpha) + log_det_k + log_det_hkh +
                               (n - p) * std::log(2.0 * std::numbers::pi)) +
-                      (gp.replicate_spread ? within_log_likelihood(d, gp.hyper.nugget) : 0.0);
+                      within_log_likelihood(d, gp.hyper.nugget);
   return std::isfinite(gp.log_likelihood);
 }
 
@@ -124,7 +124,7 @@ Gp fit_gp(GpData data, const GpOptions& options) {
   const int dims = int(data.x.cols());
   Gp gp;
   gp.trend_terms = options.linear_trend ? trend_terms_for(data) : 1;
-  gp.replicate_spread = options.replicate_spread;
+  if (!options.replicate_spread) data.within_ss.resize(0);
   gp.data = std::move(data);
   gp.hyper.length = Eigen::VectorXd::Constant(dims, 0.5);
   // The scale of what the trend leaves: the signal variance is searched around it.

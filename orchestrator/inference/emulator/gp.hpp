@@ -15,9 +15,9 @@
 //          known better); noise_var_i a known extra variance of the point (0 for the calibration's
 //          runs).
 // Hyperparameters (lengths, s2, nugget) maximise the restricted likelihood (NLopt, bounded) of
-// the points' means, and with GpOptions::replicate_spread of every run: times that of each point's
-// runs about their mean, which depends on the nugget alone (sum of squares within_ss_i ~ nugget
-// chi^2 with runs_i - 1 degrees of freedom).
+// the points' means, times, when the data carry within_ss, that of each point's runs about their
+// mean, which depends on the nugget alone (within_ss_i ~ nugget chi^2 with runs_i - 1 degrees of
+// freedom).
 #pragma once
 
 #include <memory>
@@ -51,7 +51,8 @@ struct GpOptions {
   double min_nugget = 1e-8;
   int restarts = 3;          // extra starts of the likelihood search beyond the default one
   bool linear_trend = true;  // false: a constant trend whatever the number of points
-  // The replicates' spread about their points' means enters the likelihood (data.within_ss).
+  // The replicates' spread about their points' means enters the likelihood (data.within_ss; off:
+  // fit_gp drops it, and the likelihood is that of the means).
   // Where the lengths are held long (the two-level discrepancy, whose few points a smooth trend
   // cannot always follow) the means alone let the misfit between points pass for the packings'
   // scatter. Off for the coarse emulators, whose short lengths take a misfit as signal: there a
@@ -76,7 +77,6 @@ struct Gp {
   Eigen::VectorXd alpha;             // K^-1 (y - H beta)
   Eigen::MatrixXd h_kinv_h_inv;      // (H' K^-1 H)^-1
   double log_likelihood = 0.0;       // the restricted log-likelihood at the hyperparameters
-  bool replicate_spread = false;     // GpOptions::replicate_spread: within_ss is in it
   // Set on a discrepancy emulator (two_level.hpp): this GP models y minus `base`'s mean, and its
   // predictions add `base`'s mean and variance.
   std::shared_ptr<const Gp> base;

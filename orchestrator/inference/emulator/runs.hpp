@@ -2,10 +2,11 @@
 // row, their mean, with how many there were.
 //
 // Why: the packings' scatter is the noise the emulator must not chase. It is one variance for a
-// run anywhere in the box (the emulator's nugget, learned from every residual and every
-// replicate's spread about its point's mean at once, which a handful of replicates alone would
-// pin poorly), and a point's mean of m runs carries it over m: a point run on several packings is
-// known better, the same rule that lets the design value a further realisation.
+// run anywhere in the box (the emulator's nugget, learned from every residual at once, which a
+// handful of replicates alone would pin poorly), and a point's mean of m runs carries it over m: a
+// point run on several packings is known better, the same rule that lets the design value a
+// further realisation. The runs' spread about each mean is kept too (within_ss), for an emulator
+// whose few points cannot tell misfit from scatter (GpOptions::replicate_spread).
 #pragma once
 
 #include <vector>
