@@ -306,6 +306,13 @@ std::string posterior_text(const json& p) {
               " packings: " + (k["agrees"] == true ? "agrees" : "DISAGREES") + ")";
   }
   const std::string checked = moved_check_point(p);
+  const json& failed = at(p, "check_failed");
+  if (failed.is_string() && at(p, "checked_at").is_object()) {
+    const json& k = p["checked_at"];
+    out << "  check runs at (F_r0 " << num(k["fr0"].get<double>(), "%.4g") << ", F_s0 "
+        << num(k["fs0"].get<double>(), "%.4g") << "): no loads (" << failed.get<std::string>()
+        << ")\n";
+  }
   if (!checks.empty()) {
     out << "  check runs at "
         << (checked.empty() ? "the estimate"

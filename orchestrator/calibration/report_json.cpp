@@ -319,7 +319,8 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
       {"checked_at", p->checked_at
                          ? json{{"fr0", p->checked_at->fr0_n}, {"fs0", p->checked_at->fs0_n}}
                          : json(nullptr)},
-      {"estimate_moved_after_check", p->estimate_moved()}};
+      {"estimate_moved_after_check", p->estimate_moved()},
+      {"check_failed", p->check_failed.empty() ? json(nullptr) : json(p->check_failed)}};
   if (c.targets.scaling) {
     const BondPoint lab = bonds_to_lab(p->estimate, *c.targets.scaling);
     const Scaling& s = *c.targets.scaling;

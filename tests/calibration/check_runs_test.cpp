@@ -153,5 +153,34 @@ TEST(CheckRuns, AnEstimateThatMovedAfterTheChecksIsSaidToRestOnTheEmulatorsAlone
   EXPECT_EQ(to_json(stayed, c)["posterior"]["estimate_moved_after_check"], false);
 }
 
+// Check runs that gave no loads (the estimate's UCT without a peak) bear nothing out: a prediction
+// that meets the targets is no answer there, and the report says where they ran and why.
+TEST(CheckRuns, ChecksWithoutLoadsTurnAFeasiblePredictionIntoACompromiseSayingWhy) {
+  const CalibrationCampaign c =
+      testing::campaign({120000, 9000}, {{"strategy", "bayes"}, {"max_evaluations", 100}});
+  CalibrationReport r = report_with(c, 1.0, 1.0);
+  r.posterior->uct.check.reset();
+  r.posterior->btt.check.reset();
+  r.posterior->estimate = {35.55, 52.36};
+  r.posterior->checked_at = BondPoint{34.62, 52.93};
+  r.posterior->check_failed = "uct: no peak: the load was still rising past the window";
+  judge_posterior(r, c);
+  EXPECT_EQ(r.verdict, Verdict::compromise);
+  EXPECT_EQ(r.verdict_reason.rfind(
+                "the predicted loads at the estimate meet the targets (UCT +0.1%, BTT -0.1%), but "
+                "the check runs at (F_r0 34.62, F_s0 52.93) gave no loads (uct: no peak: the load "
+                "was still rising past the window): no run bears the prediction out there; the "
+                "estimate then moved to (35.55, 52.36): the estimate lies at the edge of "
+                "strengths without a result",
+                0),
+            0u)
+      << r.verdict_reason;
+  EXPECT_EQ(r.verdict_reason.find("check runs were made at"), std::string::npos);
+  EXPECT_EQ(to_json(r, c)["posterior"]["check_failed"],
+            "uct: no peak: the load was still rising past the window");
+  CalibrationReport fine = report_with(c, 1.0, 1.0);
+  EXPECT_TRUE(to_json(fine, c)["posterior"]["check_failed"].is_null());
+}
+
 }  // namespace
 }  // namespace rockcal::calibration

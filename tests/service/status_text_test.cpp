@@ -320,6 +320,21 @@ TEST(CalibrationSummary, TheRocksNuFromTheCheckRunsSaysHowManyMeasuredIt) {
       << text;
 }
 
+// Check runs that gave no loads: the summary says where they ran and why, not "check runs at the
+// estimate" with nothing after it.
+TEST(CalibrationSummary, ChecksWithoutLoadsSayWhereTheyRanAndWhy) {
+  json summary = bayes_summary();
+  summary["posterior"]["checked_at"] = {{"fr0", 34.62}, {"fs0", 52.93}};
+  summary["posterior"]["check_failed"] = "uct: no peak: the load was still rising";
+  const std::string text = calibration_text(summary);
+  EXPECT_NE(text.find("  check runs at (F_r0 34.62, F_s0 52.93): no loads (uct: no peak: the load "
+                      "was still rising)\n"),
+            std::string::npos)
+      << text;
+  summary["posterior"]["check_failed"] = nullptr;
+  EXPECT_EQ(calibration_text(summary).find("no loads"), std::string::npos);
+}
+
 // E and nu as targets: the stiffness stage's line in lab units (E and its target in GPa, nu and
 // its target, the stiffnesses and the stage's reason), and the rock's E and nu from the elastic
 // test with the UCT's slope beside it.

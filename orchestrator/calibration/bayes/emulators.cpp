@@ -111,14 +111,19 @@ inference::RunResults run_results(const PointsRuns& g) {
   return r;
 }
 
-void finish(Emulators& m, const PointsRuns& g, const CalibrationCampaign& c) {
+// A fine run's outcome replaces the coarse runs' within this distance of the unit box (twice the
+// feasibility kernel's length): the fine UCT can lose its peak where the coarse one still has one.
+constexpr double kFineOutcomeReach = 0.1;
+
+void finish(Emulators& m, inference::RunResults outcomes, const CalibrationCampaign& c) {
   m.run_noise.clear();
   for (const inference::Gp* gp : m.emulators())
     m.run_noise.push_back(inference::per_run_noise(*gp));
   m.targets = inference_targets(c);
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
-  m.without_peak = int(std::count(g.outcome.begin(), g.outcome.end(), 0.0));
-  if (m.without_peak > 0) inference::apply_feasibility(m.grid, run_results(g), m.targets);
+  m.outcomes = std::move(outcomes);
+  if ((m.outcomes.has_value.array() < 0.5).any())
+    inference::apply_feasibility(m.grid, m.outcomes, m.targets);
 }
 
 }  // namespace
@@ -137,7 +142,7 @@ Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
   }
   m.points = g.points;
   m.runs = g.runs;
-  finish(m, g, c);
+  finish(m, run_results(g), c);
   return m;
 }
 
@@ -151,7 +156,16 @@ Emulators fit_fine_emulators(const std::vector<EvaluationRecord>& fine, const Em
   m.points = g.points;
   m.runs = g.runs;
   m.coarse_runs = coarse.runs;
-  finish(m, g, fine_c);
+  finish(m, inference::overlaid(coarse.outcomes, run_results(g), kFineOutcomeReach), fine_c);
+  return m;
+}
+
+Emulators with_fine_outcomes(const Emulators& coarse, const std::vector<EvaluationRecord>& fine,
+                             const CalibrationCampaign& fine_c) {
+  Emulators m = coarse;
+  finish(m,
+         inference::overlaid(coarse.outcomes, run_results(gather(fine, fine_c)), kFineOutcomeReach),
+         fine_c);
   return m;
 }
 

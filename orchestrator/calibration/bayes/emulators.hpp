@@ -7,6 +7,7 @@
 
 #include "orchestrator/calibration/bayes/summary.hpp"
 #include "orchestrator/calibration/ledger.hpp"
+#include "orchestrator/inference/posterior/feasibility.hpp"
 #include "orchestrator/inference/posterior/posterior.hpp"
 
 namespace rockcal::calibration {
@@ -19,7 +20,10 @@ struct Emulators {
   int runs = 0;
   int coarse_runs = 0;  // fine emulators: the coarse runs beneath them (0 for coarse emulators)
   std::vector<BondPoint> points;  // the distinct points run, in first-run order
-  int without_peak = 0;  // runs with a test that had no peak: the grid's feasibility is from them
+  // Where runs ended with both loads (1) or a test without a peak (0): the grid's feasibility is
+  // from them (inference/posterior/feasibility.hpp); for fine emulators, the fine runs' own and
+  // the coarse runs' away from them.
+  inference::RunResults outcomes;
   std::vector<inference::Target> targets;
   inference::PosteriorGrid grid;
   std::vector<const inference::Gp*> emulators() const {
@@ -40,6 +44,12 @@ Emulators fit_emulators(const std::vector<EvaluationRecord>& history, const Cali
 // (fine_campaign): its box is the coarse one scaled, so both share the unit coordinates. Throws
 // std::runtime_error with fewer than 2 distinct successful fine points.
 Emulators fit_fine_emulators(const std::vector<EvaluationRecord>& fine, const Emulators& coarse,
+                             const CalibrationCampaign& fine_c);
+
+// The coarse emulators placing the first fine runs, before two fine points have both loads: their
+// posterior weighed by the fine runs' outcomes too (where a fine run had no peak, the fine
+// specimen's answer is not, whatever the coarse runs there gave).
+Emulators with_fine_outcomes(const Emulators& coarse, const std::vector<EvaluationRecord>& fine,
                              const CalibrationCampaign& fine_c);
 
 // The campaign the fine runs answer: the job template with the fine patch merged in and the

@@ -112,10 +112,15 @@ class Search {
       report.best = check_record();
       // Against the prediction made before they ran: the posterior above has been fitted on them
       // too, which would pull its prediction toward them.
+      if (report.posterior && before_check_) {
+        report.posterior->checked_at = before_check_->estimate;
+        if (!report.best->loads)
+          report.posterior->check_failed =
+              report.best->error.empty() ? "no check run reported a result" : report.best->error;
+      }
       if (report.posterior && before_check_ && report.best->uct && report.best->btt) {
         report.posterior->uct.check = check_agreement(before_check_->uct, *report.best->uct);
         report.posterior->btt.check = check_agreement(before_check_->btt, *report.best->btt);
-        report.posterior->checked_at = before_check_->estimate;
       }
     }
     // A region too wide to call unique: which further test would cut it most (on the specimen
@@ -303,8 +308,10 @@ class Search {
   }
 
   // The fine runs: one batch at a time (a batch planned while another runs would be designed on
-  // the same emulators, at the same place), near the current estimate (the coarse one before two
-  // fine points exist), then the check batch at the fine estimate.
+  // the same emulators, at the same place), near the current estimate (before two fine points
+  // have both loads, the coarse one, weighed by the fine runs' outcomes so that a batch that
+  // found no fine peak does not send the next one to the same place), then the check batch at
+  // the fine estimate.
   void plan_fine() {
     const int left = c_.fine_runs - fine_launched_;
     if (left <= 0 || fine_in_flight()) return;
@@ -320,10 +327,11 @@ class Search {
     }
     ++rounds_;
     const int n = std::min(batch_, left);
-    const Emulators* m = fine_model_ ? &*fine_model_ : model_ ? &*model_ : nullptr;
-    if (!m) return launch(space_filling(n, fine_c_, true));
-    const Eigen::Vector2d estimate = inference::density_peak(m->grid, m->emulators(), m->targets);
-    launch(design(*m, fine_c_, n, true, &estimate, !fine_model_));
+    if (!fine_model_ && !model_) return launch(space_filling(n, fine_c_, true));
+    const Emulators m =
+        fine_model_ ? *fine_model_ : with_fine_outcomes(*model_, fine_history_, fine_c_);
+    const Eigen::Vector2d estimate = inference::density_peak(m.grid, m.emulators(), m.targets);
+    launch(design(m, fine_c_, n, true, &estimate, !fine_model_));
   }
 
   bool fine_in_flight() const {

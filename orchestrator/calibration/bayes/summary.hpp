@@ -74,6 +74,9 @@ struct PosteriorSummary {
   // Where the check runs ran: the estimate before them. Fitted on them too, the posterior may put
   // its estimate elsewhere, where no run has been made; `estimate` then differs from it.
   std::optional<BondPoint> checked_at;
+  // Why the check runs gave no loads (their error, e.g. a UCT without a peak); empty when they
+  // gave both or none ran. The estimate's prediction then has no run to bear it out.
+  std::string check_failed;
   // The estimate moved after the check runs by more than kCheckedSpread (relative) in either
   // strength: the check runs then say how the emulators did at the point before, not at this one.
   static constexpr double kCheckedSpread = 0.02;

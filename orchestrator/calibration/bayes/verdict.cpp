@@ -45,7 +45,7 @@ std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool
 // When the estimate moved after the check runs: where they ran and that the estimate has no run of
 // its own, so its loads rest on the emulators alone. Empty when the check was at the estimate.
 std::string moved_text(const PosteriorSummary& p) {
-  if (!p.estimate_moved()) return "";
+  if (!p.estimate_moved() || !p.check_failed.empty()) return "";
   std::string checks;
   for (const auto& [name, load] : {std::pair{"UCT", &p.uct}, std::pair{"BTT", &p.btt}}) {
     if (load->check)
@@ -59,6 +59,18 @@ std::string moved_text(const PosteriorSummary& p) {
              "; fitted on them too, the posterior moved its estimate to (%.4g, %.4g), where no "
              "run has been made: its predicted loads rest on the emulators alone",
              p.estimate.fr0_n, p.estimate.fs0_n);
+}
+
+// When the check runs gave no loads: where they ran and why, which leaves the prediction without
+// a run to bear it out. Empty when they gave both loads (or none ran).
+std::string failed_check_text(const PosteriorSummary& p) {
+  if (p.check_failed.empty() || !p.checked_at) return "";
+  return sentence("the check runs at (F_r0 %.4g, F_s0 %.4g) gave no loads (", p.checked_at->fr0_n,
+                  p.checked_at->fs0_n) +
+         p.check_failed + "): no run bears the prediction out there" +
+         (p.estimate_moved() ? sentence("; the estimate then moved to (%.4g, %.4g)",
+                                        p.estimate.fr0_n, p.estimate.fs0_n)
+                             : "");
 }
 
 }  // namespace
@@ -94,6 +106,16 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   }
   const std::string disagree = disagreeing_checks(p, c.tolerance, true);
   const std::string differ = disagreeing_checks(p, c.tolerance, false);
+  const std::string failed_check = failed_check_text(p);
+  if (met && !failed_check.empty()) {
+    // The prediction meets the targets where the real specimen gives no result.
+    r.verdict = Verdict::compromise;
+    r.verdict_reason = "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
+                       "), but " + failed_check +
+                       ": the estimate lies at the edge of strengths without a result" + runs +
+                       "; " + region_text(p) + faults;
+    return;
+  }
   if (met && !disagree.empty()) {
     // The prediction meets the targets, the real runs at the estimate do not bear it out.
     r.verdict = Verdict::compromise;
@@ -159,7 +181,8 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
                        ", though the emulators know the region well: the model cannot "
                        "meet both loads within the tolerance there";
   }
-  r.verdict_reason += runs + "; " + region_text(p) + faults;
+  r.verdict_reason +=
+      runs + "; " + region_text(p) + (failed_check.empty() ? "" : "; " + failed_check) + faults;
 }
 
 }  // namespace rockcal::calibration

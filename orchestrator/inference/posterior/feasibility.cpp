@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace rockcal::inference {
 
@@ -18,6 +19,30 @@ double feasibility(const RunResults& runs, const Eigen::VectorXd& x, const Feasi
     sum_wy += w * runs.has_value(i);
   }
   return (sum_wy + s.prior_weight) / (sum_w + s.prior_weight);
+}
+
+RunResults overlaid(const RunResults& under, const RunResults& over, double reach) {
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index i = 0; i < under.x.rows(); ++i) {
+    const bool covered =
+        over.x.rows() > 0 &&
+        (over.x.rowwise() - under.x.row(i)).rowwise().squaredNorm().minCoeff() <= reach * reach;
+    if (!covered) kept.push_back(i);
+  }
+  RunResults r;
+  r.x.resize(Eigen::Index(kept.size()) + over.x.rows(),
+             under.x.cols() ? under.x.cols() : over.x.cols());
+  r.has_value.resize(r.x.rows());
+  Eigen::Index k = 0;
+  for (Eigen::Index i : kept) {
+    r.x.row(k) = under.x.row(i);
+    r.has_value(k++) = under.has_value(i);
+  }
+  for (Eigen::Index i = 0; i < over.x.rows(); ++i) {
+    r.x.row(k) = over.x.row(i);
+    r.has_value(k++) = over.has_value(i);
+  }
+  return r;
 }
 
 void apply_feasibility(PosteriorGrid& grid, const RunResults& runs,

@@ -32,6 +32,12 @@ struct FeasibilitySettings {
 double feasibility(const RunResults& runs, const Eigen::VectorXd& x,
                    const FeasibilitySettings& s = {});
 
+// Two resolutions' outcomes as one: `over`'s runs (the resolution the posterior answers for) and
+// those of `under` (another resolution, whose zones without a result the first one shares only in
+// part) that lie farther than `reach` from every run of `over`. Near its own runs the answered
+// resolution's outcomes replace the other's; elsewhere the other's are all there is.
+RunResults overlaid(const RunResults& under, const RunResults& over, double reach);
+
 // Sets grid.log_feasibility from the runs and re-weighs the grid (an empty `runs` clears it).
 void apply_feasibility(PosteriorGrid& grid, const RunResults& runs,
                        const std::vector<Target>& targets, const FeasibilitySettings& s = {});
