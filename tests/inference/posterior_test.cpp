@@ -150,5 +150,37 @@ TEST(Feasibility, FailedRunsTakeThePosteriorsMassOutOfTheirZone) {
   RecordProperty("mass_beyond_plain", std::to_string(plain));
 }
 
+// Where one direction decides the outcome (a strength ratio), the metric measures distance mostly
+// along it: a failure then stands far along the other direction, and a success beside it on that
+// direction does not blur it. Two resolutions' outcomes overlaid: near the answered resolution's
+// runs (by the same metric) its outcomes replace the other's.
+TEST(Feasibility, AMetricLetsAnOutcomeHoldAlongTheDirectionThatLeavesItUnchanged) {
+  FeasibilitySettings along;
+  along.metric = Eigen::Matrix2d{{1.0, 0.0}, {0.0, 1.0 / 16}};  // x decides, y reaches 4x farther
+  RunResults runs{Eigen::MatrixXd(2, 2), Eigen::Vector2d(0.0, 1.0)};
+  runs.x << 0.7, 0.2, 0.5, 0.5;  // a failure at x 0.7, a success at x 0.5
+  // At (0.7, 0.6): 0.4 from the failure, 0.224 from the success. Isotropic, the success is the
+  // nearer and the failure's weight exp(-22) leaves it feasible; with the metric the failure is
+  // 0.1 away (same x), the success 0.2016, whose weight exp(-0.5 (0.040625 - 0.01) / 0.05^2)
+  // leaves the point about as infeasible as at the failure itself.
+  const Eigen::Vector2d x(0.7, 0.6);
+  EXPECT_GT(feasibility(runs, x), 0.999);
+  const double w = std::exp(-0.5 * (0.040625 - 0.01) / 0.0025);
+  EXPECT_NEAR(feasibility(runs, x, along), (w + 0.05) / (1 + w + 0.05), 1e-9);
+  EXPECT_LT(feasibility(runs, x, along), 0.05);
+  EXPECT_NEAR(squared_distances(runs.x, x, along)(0), 0.01, 1e-12);
+
+  // The coarse success at (0.7, 0.45) lies 0.0625 from the fine failure at (0.7, 0.2) under the
+  // metric: replaced. The coarse failure at (0.3, 0.9) is 0.224 from the fine success at (0.5,
+  // 0.5) and farther from the failure: kept.
+  RunResults coarse{Eigen::MatrixXd(2, 2), Eigen::Vector2d(1.0, 0.0)};
+  coarse.x << 0.7, 0.45, 0.3, 0.9;
+  const RunResults both = overlaid(coarse, runs, 0.1, along);
+  ASSERT_EQ(both.x.rows(), 3);
+  EXPECT_EQ(both.x.row(0), Eigen::RowVector2d(0.3, 0.9));
+  EXPECT_EQ(both.has_value, Eigen::Vector3d(0.0, 0.0, 1.0));
+  EXPECT_EQ(overlaid(coarse, runs, 0.1).x.rows(), 4);  // isotropic: 0.206 and 0.45 away, kept
+}
+
 }  // namespace
 }  // namespace rockcal::inference

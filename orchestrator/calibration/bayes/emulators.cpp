@@ -61,38 +61,52 @@ namespace {
 
 // Each distinct point's runs of both loads, in ln, on the campaign's unit box.
 struct PointsRuns {
-  std::vector<BondPoint> points;
-  std::vector<inference::PointRuns> uct, btt;
+  std::vector<BondPoint> points;               // the distinct points with both loads
+  std::vector<inference::PointRuns> uct, btt;  // every point with either load (empty otherwise)
   std::vector<std::vector<inference::PointRuns>> further;  // [target][point]
-  int runs = 0;
+  int runs = 0;                                            // runs with both loads
   // Every run's point with 1 when it gave both loads, 0 when one of its tests had no peak.
   std::vector<Eigen::Vector2d> outcome_at;
   std::vector<double> outcome;
 };
 
+// A test's peak load when it had one: a run whose other test had no peak still measured it.
+std::optional<double> peak_of(const std::optional<orch::Ensemble>& e) {
+  if (!e || !e->peak_load.mean || !std::isfinite(*e->peak_load.mean) || *e->peak_load.mean <= 0)
+    return std::nullopt;
+  return *e->peak_load.mean;
+}
+
 PointsRuns gather(const std::vector<EvaluationRecord>& history, const CalibrationCampaign& c) {
   PointsRuns g;
   g.further.resize(c.further.size());
-  std::map<std::pair<double, double>, int> index;
+  std::map<std::pair<double, double>, int> index;  // a point's row in uct, btt and further
+  std::map<std::pair<double, double>, bool> both;  // the points with both loads, in g.points
   for (const EvaluationRecord& r : history) {
     if (r.loads || is_no_peak(r.error)) {
       g.outcome_at.push_back(to_unit(r.point, c));
       g.outcome.push_back(r.loads ? 1.0 : 0.0);
     }
-    if (!r.loads) continue;
-    auto [it, fresh] = index.try_emplace({r.point.fr0_n, r.point.fs0_n}, int(g.points.size()));
+    // Each test's emulator learns from every run of it that had a peak: where the UCT is still
+    // loading up past the bonds' window the BTT has one all the same.
+    const std::optional<double> uct = r.loads ? r.loads->uct_n : peak_of(r.uct);
+    const std::optional<double> btt = r.loads ? r.loads->btt_n : peak_of(r.btt);
+    if (!uct && !btt) continue;
+    const std::pair<double, double> key{r.point.fr0_n, r.point.fs0_n};
+    auto [it, fresh] = index.try_emplace(key, int(g.uct.size()));
     if (fresh) {
-      g.points.push_back(r.point);
       g.uct.push_back({to_unit(r.point, c), {}});
       g.btt.push_back({to_unit(r.point, c), {}});
       for (auto& f : g.further) f.push_back({to_unit(r.point, c), {}});
     }
+    if (uct) g.uct[it->second].values.push_back(std::log(*uct));
+    if (btt) g.btt[it->second].values.push_back(std::log(*btt));
+    if (!r.loads) continue;
+    if (both.try_emplace(key, true).second) g.points.push_back(r.point);
     for (std::size_t k = 0; k < g.further.size() && k < r.further_n.size(); ++k) {
       if (r.further_n[k] && *r.further_n[k] > 0)
         g.further[k][it->second].values.push_back(std::log(*r.further_n[k]));
     }
-    g.uct[it->second].values.push_back(std::log(r.loads->uct_n));
-    g.btt[it->second].values.push_back(std::log(r.loads->btt_n));
     ++g.runs;
   }
   return g;
@@ -111,8 +125,26 @@ inference::RunResults run_results(const PointsRuns& g) {
   return r;
 }
 
-// A fine run's outcome replaces the coarse runs' within this distance of the unit box (twice the
-// feasibility kernel's length): the fine UCT can lose its peak where the coarse one still has one.
+// Whether a run reaches a peak is decided by the strengths' ratio F_s0/F_r0: the model is
+// homogeneous of degree one in them (docs/loading-rate.md), so scaling both scales the run's loads
+// and strains and leaves the shape of its curve, and whether it has a peak, as it was. The seed
+// rock's UCTs at D/R 20 had none from F_s0/F_r0 about 2.8 at every scale from 20 to 290 N. The
+// feasibility's distance is measured along the log ratio, and an outcome holds this many times
+// farther along the scale (both strengths times one factor); not infinitely far, as the packing,
+// the time step and the seating load do not scale exactly.
+constexpr double kScaleReach = 4.0;
+
+inference::FeasibilitySettings feasibility_settings(const CalibrationCampaign& c) {
+  const double w0 = std::log(c.fr0_n.hi / c.fr0_n.lo), w1 = std::log(c.fs0_n.hi / c.fs0_n.lo);
+  const Eigen::Vector2d ratio = Eigen::Vector2d(-w0, w1).normalized();  // d ln(F_s0/F_r0)
+  const Eigen::Vector2d scale = Eigen::Vector2d(w1, w0).normalized();   // across it
+  inference::FeasibilitySettings s;
+  s.metric = ratio * ratio.transpose() + scale * scale.transpose() / (kScaleReach * kScaleReach);
+  return s;
+}
+
+// A fine run's outcome replaces the coarse runs' within this distance (the feasibility's, twice
+// its kernel's length): the fine UCT can lose its peak where the coarse one still has one.
 constexpr double kFineOutcomeReach = 0.1;
 
 void finish(Emulators& m, inference::RunResults outcomes, const CalibrationCampaign& c) {
@@ -123,7 +155,7 @@ void finish(Emulators& m, inference::RunResults outcomes, const CalibrationCampa
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
   m.outcomes = std::move(outcomes);
   if ((m.outcomes.has_value.array() < 0.5).any())
-    inference::apply_feasibility(m.grid, m.outcomes, m.targets);
+    inference::apply_feasibility(m.grid, m.outcomes, m.targets, feasibility_settings(c));
 }
 
 }  // namespace
@@ -156,7 +188,10 @@ Emulators fit_fine_emulators(const std::vector<EvaluationRecord>& fine, const Em
   m.points = g.points;
   m.runs = g.runs;
   m.coarse_runs = coarse.runs;
-  finish(m, inference::overlaid(coarse.outcomes, run_results(g), kFineOutcomeReach), fine_c);
+  finish(m,
+         inference::overlaid(coarse.outcomes, run_results(g), kFineOutcomeReach,
+                             feasibility_settings(fine_c)),
+         fine_c);
   return m;
 }
 
@@ -164,7 +199,8 @@ Emulators with_fine_outcomes(const Emulators& coarse, const std::vector<Evaluati
                              const CalibrationCampaign& fine_c) {
   Emulators m = coarse;
   finish(m,
-         inference::overlaid(coarse.outcomes, run_results(gather(fine, fine_c)), kFineOutcomeReach),
+         inference::overlaid(coarse.outcomes, run_results(gather(fine, fine_c)), kFineOutcomeReach,
+                             feasibility_settings(fine_c)),
          fine_c);
   return m;
 }

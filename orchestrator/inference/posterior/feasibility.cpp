@@ -6,11 +6,18 @@
 
 namespace rockcal::inference {
 
+Eigen::VectorXd squared_distances(const Eigen::MatrixXd& at, const Eigen::VectorXd& x,
+                                  const FeasibilitySettings& s) {
+  const Eigen::MatrixXd d = at.rowwise() - x.transpose();
+  if (s.metric.size() == 0) return d.rowwise().squaredNorm();
+  return (d * s.metric).cwiseProduct(d).rowwise().sum();
+}
+
 double feasibility(const RunResults& runs, const Eigen::VectorXd& x, const FeasibilitySettings& s) {
   if (runs.x.rows() != runs.has_value.size())
     throw std::invalid_argument("feasibility: one outcome per run is needed");
   if (runs.x.rows() == 0) return 1.0;
-  const Eigen::VectorXd d2 = (runs.x.rowwise() - x.transpose()).rowwise().squaredNorm();
+  const Eigen::VectorXd d2 = squared_distances(runs.x, x, s);
   const double nearest = d2.minCoeff();
   double sum_w = 0.0, sum_wy = 0.0;
   for (Eigen::Index i = 0; i < runs.x.rows(); ++i) {
@@ -21,12 +28,13 @@ double feasibility(const RunResults& runs, const Eigen::VectorXd& x, const Feasi
   return (sum_wy + s.prior_weight) / (sum_w + s.prior_weight);
 }
 
-RunResults overlaid(const RunResults& under, const RunResults& over, double reach) {
+RunResults overlaid(const RunResults& under, const RunResults& over, double reach,
+                    const FeasibilitySettings& s) {
   std::vector<Eigen::Index> kept;
   for (Eigen::Index i = 0; i < under.x.rows(); ++i) {
     const bool covered =
         over.x.rows() > 0 &&
-        (over.x.rowwise() - under.x.row(i)).rowwise().squaredNorm().minCoeff() <= reach * reach;
+        squared_distances(over.x, under.x.row(i).transpose(), s).minCoeff() <= reach * reach;
     if (!covered) kept.push_back(i);
   }
   RunResults r;

@@ -26,7 +26,15 @@ struct RunResults {
 struct FeasibilitySettings {
   double length = 0.05;        // the kernel's length on the unit box
   double prior_weight = 0.05;  // a, against the nearest run's weight 1
+  // d x d: the squared distance between runs is dx' M dx (empty: the identity). Where what decides
+  // a result is one combination of the parameters (a strength ratio), M measures mostly along it,
+  // and an outcome holds far along the directions that leave it unchanged.
+  Eigen::MatrixXd metric;
 };
+
+// The squared distance from x to each row of `at` under s.metric.
+Eigen::VectorXd squared_distances(const Eigen::MatrixXd& at, const Eigen::VectorXd& x,
+                                  const FeasibilitySettings& s);
 
 // p(x) in (0, 1]; 1 with no runs.
 double feasibility(const RunResults& runs, const Eigen::VectorXd& x,
@@ -36,7 +44,8 @@ double feasibility(const RunResults& runs, const Eigen::VectorXd& x,
 // those of `under` (another resolution, whose zones without a result the first one shares only in
 // part) that lie farther than `reach` from every run of `over`. Near its own runs the answered
 // resolution's outcomes replace the other's; elsewhere the other's are all there is.
-RunResults overlaid(const RunResults& under, const RunResults& over, double reach);
+RunResults overlaid(const RunResults& under, const RunResults& over, double reach,
+                    const FeasibilitySettings& s = {});
 
 // Sets grid.log_feasibility from the runs and re-weighs the grid (an empty `runs` clears it).
 void apply_feasibility(PosteriorGrid& grid, const RunResults& runs,
