@@ -16,37 +16,55 @@
 namespace rockcal::calibration {
 namespace {
 
-// How fast this driver's evaluations go, for a client's ETA. Evaluations the job cache answered
-// at once (the replay of a restarted driver, points run before) count against the budget but not
-// in the pace: they would make every later evaluation look nearly free.
+// How fast this driver's evaluations go, for a client's ETA: the search's and the fine runs'
+// apart (a fine run costs tens of search evaluations). Evaluations the job cache answered at once
+// (the replay of a restarted driver, points run before) count against the budget but not in the
+// pace: they would make every later evaluation look nearly free.
 class Pace {
  public:
-  Pace() : start_(Clock::now()) {}
+  Pace() : start_(Clock::now()), last_(start_) {}
 
   void add(const EvaluationRecord& r) {
-    if (answered_by_cache(r)) return;
-    times_.push_back(Clock::now());
+    const bool fine = r.phase.rfind("fine", 0) == 0;
+    const Clock::time_point now = Clock::now();
+    if (fine) ++fine_done_;
+    if (!answered_by_cache(r)) {
+      Kind& k = fine ? fine_ : search_;
+      // A kind's first evaluation is timed from when the one before it (of either kind) ended:
+      // the fine runs start as the search ends.
+      if (k.times.empty()) k.since = last_;
+      k.times.push_back(now);
+    }
+    last_ = now;
   }
 
-  // Per evaluation over the latest kWindow timed ones: the start batch runs its points side by
-  // side, the search after it one by one, so the pace of the start would promise too much.
-  std::optional<double> seconds_per_evaluation() const {
-    const int n = int(times_.size());
-    if (n > kWindow) return seconds(times_.back() - times_[n - 1 - kWindow]) / kWindow;
-    if (n > 0) return seconds(times_.back() - start_) / n;
-    return std::nullopt;
-  }
+  EvaluationPace pace() const { return {search_.per(), fine_.per(), fine_done_}; }
 
   nlohmann::json to_json() const {
-    const auto per = seconds_per_evaluation();
+    const auto per = search_.per();
+    const auto fine = fine_.per();
     return {{"wall_seconds", seconds(Clock::now() - start_)},
-            {"evaluations_timed", int(times_.size())},
-            {"seconds_per_evaluation", per ? nlohmann::json(*per) : nlohmann::json(nullptr)}};
+            {"evaluations_timed", int(search_.times.size() + fine_.times.size())},
+            {"seconds_per_evaluation", per ? nlohmann::json(*per) : nlohmann::json(nullptr)},
+            {"seconds_per_fine_run", fine ? nlohmann::json(*fine) : nlohmann::json(nullptr)}};
   }
 
  private:
   using Clock = std::chrono::steady_clock;
   static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+  struct Kind {
+    Clock::time_point since;               // when the one before its first ended
+    std::vector<Clock::time_point> times;  // when each timed evaluation ended
+    // Per evaluation over the latest kWindow timed ones: the start batch runs its points side by
+    // side, the search after it one by one, so the pace of the start would promise too much.
+    std::optional<double> per() const {
+      const int n = int(times.size());
+      if (n > kWindow) return seconds(times.back() - times[n - 1 - kWindow]) / kWindow;
+      if (n > 0) return seconds(times.back() - since) / n;
+      return std::nullopt;
+    }
+  };
 
   static bool answered_by_cache(const EvaluationRecord& r) {
     if (!r.uct || !r.btt) return false;
@@ -59,8 +77,9 @@ class Pace {
   }
 
   static constexpr int kWindow = 8;
-  Clock::time_point start_;
-  std::vector<Clock::time_point> times_;  // when each timed evaluation ended
+  Clock::time_point start_, last_;
+  Kind search_, fine_;
+  int fine_done_ = 0;
 };
 
 }  // namespace
@@ -89,8 +108,7 @@ orch::CampaignKind calibration_kind() {
       live["stiffness"] = stiffness;
       live["scatter_runs"] = seed_reruns(c);
       live["pace"] = pace.to_json();
-      live["progress"] =
-          progress_model_json(history.size(), c, pace.seconds_per_evaluation(), false);
+      live["progress"] = progress_model_json(history.size(), c, pace.pace(), false);
       ctx.service.set_progress(ctx.campaign_id, live, ctx.stop);
     };
     publish();
@@ -108,8 +126,7 @@ orch::CampaignKind calibration_kind() {
                         {ctx.stop, on_evaluation, ctx.service.config().workers, on_stiffness}),
         c);
     report["pace"] = pace.to_json();
-    report["progress"] =
-        progress_model_json(report["evaluations"].get<std::size_t>(), c, std::nullopt, true);
+    report["progress"] = progress_model_json(report["evaluations"].get<std::size_t>(), c, {}, true);
     return report;
   };
   return kind;

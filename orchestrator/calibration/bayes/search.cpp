@@ -83,6 +83,7 @@ class Search {
                  leave_(ratio_range(history_, c_.targets.model_loads_n), int(history_.size()));
       if (leaving_) continue;
       refit();
+      reopen_after_check();
       const Emulators* current =
           fine_phase_ ? (fine_model_ ? &*fine_model_ : nullptr) : (model_ ? &*model_ : nullptr);
       if (current && !checked_) {
@@ -143,16 +144,45 @@ class Search {
   // tolerance); past kAnsweredRuns the search ends with its check batch.
   void note_answer(const Emulators& m, int runs_taken) {
     const CalibrationCampaign& c = fine_phase_ ? fine_c_ : c_;
-    const PosteriorSummary p = summarise(m, c, rounds_);
-    bool met = p.unique && std::abs(p.uct.relative_error) <= c_.tolerance &&
-               std::abs(p.btt.relative_error) <= c_.tolerance;
-    for (const PredictedLoad& f : p.further)
-      met = met && std::abs(f.relative_error) <= c_.tolerance;
-    answered_runs_ = met ? answered_runs_ + runs_taken : 0;
+    answered_runs_ = answers(summarise(m, c, rounds_)) ? answered_runs_ + runs_taken : 0;
     if (answered_runs_ >= kAnsweredRuns) {
       answered_ = true;
       converged_ = true;
     }
+  }
+
+  // Unique, with every predicted load within the tolerance.
+  bool answers(const PosteriorSummary& p) const {
+    bool met = p.unique && std::abs(p.uct.relative_error) <= c_.tolerance &&
+               std::abs(p.btt.relative_error) <= c_.tolerance;
+    for (const PredictedLoad& f : p.further)
+      met = met && std::abs(f.relative_error) <= c_.tolerance;
+    return met;
+  }
+
+  // The search stopped before its budget (its posterior answered, or the emulators held too little
+  // of its variance for more runs to matter) and checked the estimate. When the check runs
+  // disagree with the prediction made before them (the emulators were wrong there), or, after an
+  // answer, the posterior fitted on them no longer answers, and budget is left for a batch and
+  // another check, the search goes on instead of ending with the question open and runs unspent;
+  // the earlier checks stay in the emulators, the next check is at the new estimate.
+  void reopen_after_check() {
+    if (!checked_ || !converged_ || fine_phase_ || has_fine_ || !model_ || !flights_.empty())
+      return;
+    if (c_.max_evaluations - launched_ < 2 * batch_ || !before_check_) return;
+    const EvaluationRecord check = check_record();
+    bool agree = true;
+    for (const auto& [predicted, ran] :
+         {std::pair{&before_check_->uct, &check.uct}, std::pair{&before_check_->btt, &check.btt}}) {
+      if (!*ran) continue;
+      const std::optional<CheckAgreement> a = check_agreement(*predicted, **ran);
+      agree = agree && (!a || a->agrees);
+    }
+    if (agree && check.loads && (!answered_ || answers(summarise(*model_, c_, rounds_)))) return;
+    checked_ = answered_ = converged_ = false;
+    answered_runs_ = 0;
+    check_.clear();
+    before_check_.reset();
   }
 
   std::vector<Run> start() {
