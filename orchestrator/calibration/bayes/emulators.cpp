@@ -128,23 +128,27 @@ inference::RunResults run_results(const PointsRuns& g) {
 // Whether a run reaches a peak is decided by the strengths' ratio F_s0/F_r0: the model is
 // homogeneous of degree one in them (docs/loading-rate.md), so scaling both scales the run's loads
 // and strains and leaves the shape of its curve, and whether it has a peak, as it was. The seed
-// rock's UCTs at D/R 20 had none from F_s0/F_r0 about 2.8 at every scale from 20 to 290 N. The
-// feasibility's distance is measured along the log ratio, and an outcome holds this many times
-// farther along the scale (both strengths times one factor); not infinitely far, as the packing,
-// the time step and the seating load do not scale exactly.
-constexpr double kScaleReach = 4.0;
+// rock's UCTs at D/R 20 had none from F_s0/F_r0 about 2.4-3.1 (packings differ) at every scale
+// from 20 to 290 N. So the feasibility's kernel has its lengths in ln units of the strengths, not
+// of the box: 0.1 in ln(F_s0/F_r0), the width of that fuzzy border (a length of the box, 0.05 of
+// ln 1000 on the main job's bounds, spanned a factor 1.6 in the ratio and let the border's
+// failures and the runs well inside it blur into one), and ten times that in ln(F_r0 F_s0); not
+// infinitely far, as the packing, the time step and the seating load do not scale exactly.
+constexpr double kRatioLength = 0.1, kScaleLength = 1.0;
 
 inference::FeasibilitySettings feasibility_settings(const CalibrationCampaign& c) {
   const double w0 = std::log(c.fr0_n.hi / c.fr0_n.lo), w1 = std::log(c.fs0_n.hi / c.fs0_n.lo);
-  const Eigen::Vector2d ratio = Eigen::Vector2d(-w0, w1).normalized();  // d ln(F_s0/F_r0)
-  const Eigen::Vector2d scale = Eigen::Vector2d(w1, w0).normalized();   // across it
+  const Eigen::Vector2d ratio(-w0, w1);  // d ln(F_s0/F_r0) per unit of the box
+  const Eigen::Vector2d scale(w0, w1);   // d ln(F_r0 F_s0)
   inference::FeasibilitySettings s;
-  s.metric = ratio * ratio.transpose() + scale * scale.transpose() / (kScaleReach * kScaleReach);
+  const double a = s.length / kRatioLength, b = s.length / kScaleLength;
+  s.metric = a * a * ratio * ratio.transpose() + b * b * scale * scale.transpose();
   return s;
 }
 
 // A fine run's outcome replaces the coarse runs' within this distance (the feasibility's, twice
-// its kernel's length): the fine UCT can lose its peak where the coarse one still has one.
+// its kernel's length: 0.2 in ln(F_s0/F_r0)): the fine UCT can lose its peak where the coarse one
+// still has one.
 constexpr double kFineOutcomeReach = 0.1;
 
 void finish(Emulators& m, inference::RunResults outcomes, const CalibrationCampaign& c) {
