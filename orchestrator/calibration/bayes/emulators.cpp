@@ -135,12 +135,18 @@ inference::RunResults run_results(const PointsRuns& g) {
 // failures and the runs well inside it blur into one), and ten times that in ln(F_r0 F_s0); not
 // infinitely far, as the packing, the time step and the seating load do not scale exactly.
 constexpr double kRatioLength = 0.1, kScaleLength = 1.0;
+// The odds against the nearest runs' outcome, as a pseudo-run of "feasible": where a UCT has no
+// peak no packing has been seen to give one, and a floor of 5% (the inference core's default) let
+// the no-peak half of the box, flat in the UCT emulator there (no UCT values), hold the 5% tail of
+// F_r0's marginal (the main job's F_r0 interval reached 15.5 against a region ending at 18).
+constexpr double kFeasiblePrior = 0.01;
 
 inference::FeasibilitySettings feasibility_settings(const CalibrationCampaign& c) {
   const double w0 = std::log(c.fr0_n.hi / c.fr0_n.lo), w1 = std::log(c.fs0_n.hi / c.fs0_n.lo);
   const Eigen::Vector2d ratio(-w0, w1);  // d ln(F_s0/F_r0) per unit of the box
   const Eigen::Vector2d scale(w0, w1);   // d ln(F_r0 F_s0)
   inference::FeasibilitySettings s;
+  s.prior_weight = kFeasiblePrior;
   const double a = s.length / kRatioLength, b = s.length / kScaleLength;
   s.metric = a * a * ratio * ratio.transpose() + b * b * scale * scale.transpose();
   return s;
