@@ -182,5 +182,43 @@ TEST(CheckRuns, ChecksWithoutLoadsTurnAFeasiblePredictionIntoACompromiseSayingWh
   EXPECT_TRUE(to_json(fine, c)["posterior"]["check_failed"].is_null());
 }
 
+// A region that reaches a bound only because it is wide (a few fine runs on it) does not press on
+// the bound: the estimate lies inside, the miss is the emulators' (the D/R 49 case: "widen bounds"
+// named as the cause with the estimate at F_r0 29 of a box up to 1666). An estimate at the bound
+// does press on it.
+TEST(CheckRuns, ARegionThatReachesABoundOnlyByItsWidthDoesNotPressOnIt) {
+  const CalibrationCampaign c =
+      testing::campaign({120000, 9000}, {{"strategy", "bayes"}, {"max_evaluations", 100}});
+  CalibrationReport r = report_with(c, 1.0, 1.0);
+  r.stop_reason = StopReason::budget_exhausted;
+  PosteriorSummary& p = *r.posterior;
+  p.uct.check.reset();
+  p.btt.check.reset();
+  p.btt.relative_error = -0.0239;
+  p.unique = false;
+  p.grid_cells = 81;
+  p.grid_fr0 = {1, 1000};
+  p.grid_fs0 = {1, 1000};
+  p.estimate = {29.42, 39.7};
+  p.bounds_reached = {"the upper bound of F_r0 (1000)"};
+  judge_posterior(r, c);
+  EXPECT_EQ(r.verdict, Verdict::compromise);
+  EXPECT_EQ(r.verdict_reason.find("presses on"), std::string::npos) << r.verdict_reason;
+  EXPECT_NE(
+      r.verdict_reason.find(" when the budget of 100 runs ran out, with the emulators holding"),
+      std::string::npos)
+      << r.verdict_reason;
+  EXPECT_NE(r.verdict_reason.find("(as wide as they leave it, the region reaches the upper bound "
+                                  "of F_r0 (1000), though the estimate lies inside)"),
+            std::string::npos)
+      << r.verdict_reason;
+  p.estimate = {980, 39.7};  // within two cells (a factor 1000^(2/81) = 1.19) of the bound
+  judge_posterior(r, c);
+  EXPECT_NE(r.verdict_reason.find(": the posterior presses on the upper bound of F_r0 (1000); the "
+                                  "targets need strengths beyond it: widen \"bounds\""),
+            std::string::npos)
+      << r.verdict_reason;
+}
+
 }  // namespace
 }  // namespace rockcal::calibration

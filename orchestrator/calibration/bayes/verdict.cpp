@@ -73,6 +73,29 @@ std::string failed_check_text(const PosteriorSummary& p) {
                              : "");
 }
 
+// The bound the estimate itself lies at (within two of the grid's cells), worded as
+// bounds_reached words it; empty when the estimate lies inside. A region that reaches a bound only
+// because it is wide (its emulators unsure, a few fine runs on it) does not press on it: its
+// targets are met or missed inside the box, and widening the bounds would change nothing. Without
+// a grid (a summary made by hand), the region's first bound.
+std::string bound_pressed(const PosteriorSummary& p) {
+  if (p.grid_cells <= 0) return p.bounds_reached.empty() ? "" : p.bounds_reached.front();
+  const double margin = 2.0 / p.grid_cells;
+  const char* names[] = {"F_r0", "F_s0"};
+  const Range* ranges[] = {&p.grid_fr0, &p.grid_fs0};
+  const double at[] = {p.estimate.fr0_n, p.estimate.fs0_n};
+  for (int k = 0; k < 2; ++k) {
+    const Range& r = *ranges[k];
+    if (!(r.lo > 0 && r.hi > r.lo && at[k] > 0)) continue;
+    const double u = std::log(at[k] / r.lo) / std::log(r.hi / r.lo);
+    if (u < margin)
+      return std::string("the lower bound of ") + names[k] + sentence(" (%.4g)", r.lo);
+    if (u > 1 - margin)
+      return std::string("the upper bound of ") + names[k] + sentence(" (%.4g)", r.hi);
+  }
+  return "";
+}
+
 }  // namespace
 
 void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
@@ -152,6 +175,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
     return;
   }
   r.verdict = Verdict::compromise;
+  const std::string pressed = bound_pressed(p);
   const std::string miss =
       "the predicted loads at the estimate miss the targets (" + loads_text(p, c) + ")";
   if (r.ratio && !r.ratio->target_inside()) {
@@ -161,21 +185,30 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
                    ": the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] "
                    "the runs reached",
                    r.ratio->target, r.ratio->min, r.ratio->max);
-    if (!p.bounds_reached.empty())
-      r.verdict_reason += "; the posterior presses on " + p.bounds_reached.front() +
+    if (!pressed.empty())
+      r.verdict_reason += "; the posterior presses on " + pressed +
                           ": widen \"bounds\" to see whether the ratio moves toward the target "
                           "beyond it; if it does not, the model cannot reach this ratio";
-  } else if (!p.bounds_reached.empty()) {
-    r.verdict_reason = miss + ": the posterior presses on " + p.bounds_reached.front() +
+  } else if (!pressed.empty()) {
+    r.verdict_reason = miss + ": the posterior presses on " + pressed +
                        "; the targets need strengths beyond it: widen \"bounds\"";
   } else if (r.stop_reason == StopReason::budget_exhausted) {
+    const std::string budget =
+        p.resolution == "fine"
+            ? sentence(" when the budget of %.0f runs and %.0f fine runs ran out",
+                       c.max_evaluations, c.fine_runs)
+            : sentence(" when the budget of %.0f runs ran out", c.max_evaluations);
     r.verdict_reason =
-        miss + sentence(
-                   " when the budget of %.0f runs ran out, with the emulators "
-                   "holding %.0f%% (UCT) and %.0f%% (BTT) of the posterior's "
-                   "variance: more runs would narrow it",
-                   c.max_evaluations, 100 * p.uct.emulator_share / (1 + p.uct.emulator_share),
-                   100 * p.btt.emulator_share / (1 + p.btt.emulator_share));
+        miss + budget +
+        sentence(
+            ", with the emulators holding %.0f%% (UCT) and %.0f%% (BTT) of the posterior's "
+            "variance: more runs would narrow it",
+            100 * p.uct.emulator_share / (1 + p.uct.emulator_share),
+            100 * p.btt.emulator_share / (1 + p.btt.emulator_share)) +
+        (p.bounds_reached.empty()
+             ? ""
+             : " (as wide as they leave it, the region reaches " + p.bounds_reached.front() +
+                   ", though the estimate lies inside)");
   } else {
     r.verdict_reason = miss +
                        ", though the emulators know the region well: the model cannot "
