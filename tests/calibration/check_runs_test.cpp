@@ -90,6 +90,16 @@ TEST(CheckRuns, ChecksThatDisagreeTurnAFeasiblePredictionIntoACompromiseNamingTh
             std::string::npos)
       << disagree.verdict_reason;
   EXPECT_EQ(disagree.verdict_reason.find("BTT +5%"), std::string::npos) << disagree.verdict_reason;
+  EXPECT_NE(disagree.verdict_reason.find("(a larger \"max_evaluations\") would correct them"),
+            std::string::npos);
+  // On a fine posterior it is the fine runs that would correct them.
+  CalibrationReport fine = report_with(c, 0.7, 1.05);
+  fine.posterior->resolution = "fine";
+  judge_posterior(fine, c);
+  EXPECT_NE(
+      fine.verdict_reason.find("(a larger \"fidelity\".\"runs\": fine runs) would correct them"),
+      std::string::npos)
+      << fine.verdict_reason;
   // The JSON carries the figures the sentence quotes.
   const nlohmann::json j = to_json(disagree, c);
   const nlohmann::json& k = j["posterior"]["uct"]["check"];

@@ -148,9 +148,9 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
         "and the emulators' variance (" +
         disagree +
         sentence(" from the prediction, outside its %.0f%% interval)", 100 * kCheckLevel) +
-        ": the emulators are wrong near the estimate; more runs there (a larger "
-        "\"max_evaluations\") would correct them" +
-        runs + "; " + region_text(p) + moved_text(p) + faults;
+        ": the emulators are wrong near the estimate; more runs there (a larger " +
+        (p.resolution == "fine" ? "\"fidelity\".\"runs\": fine runs" : "\"max_evaluations\"") +
+        ") would correct them" + runs + "; " + region_text(p) + moved_text(p) + faults;
     return;
   }
   if (met) {
