@@ -16,16 +16,14 @@ std::optional<double> fine_cost_ratio(const CalibrationCampaign& c) {
   if (c.fine_patch.is_null()) return std::nullopt;
   nlohmann::json fine = c.job_template;
   fine.merge_patch(c.fine_patch);
+  const nlohmann::json coarse_sample = c.job_template.value("sample", nlohmann::json::object());
+  const nlohmann::json fine_sample = fine.value("sample", nlohmann::json::object());
   double ratio = 1.0;
   // field, the power of fine/coarse it enters with
   for (const auto& [field, power] :
        {std::pair{"diameter", 2.0}, std::pair{"height", 2.0}, std::pair{"radius", -4.0}}) {
-    const nlohmann::json* a = nullptr;
-    const nlohmann::json* b = nullptr;
-    if (c.job_template.contains("sample")) a = &c.job_template["sample"];
-    if (fine.contains("sample")) b = &fine["sample"];
-    if (!a || !b || !a->contains(field) || !b->contains(field)) return std::nullopt;
-    const nlohmann::json &x = (*a)[field], &y = (*b)[field];
+    const nlohmann::json x = coarse_sample.value(field, nlohmann::json());
+    const nlohmann::json y = fine_sample.value(field, nlohmann::json());
     if (!x.is_number() || !y.is_number() || x.get<double>() <= 0 || y.get<double>() <= 0)
       return std::nullopt;
     ratio *= std::pow(y.get<double>() / x.get<double>(), power);

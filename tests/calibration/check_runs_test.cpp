@@ -181,13 +181,21 @@ TEST(CheckRuns, ChecksWithoutLoadsTurnAFeasiblePredictionIntoACompromiseSayingWh
                 "the check runs at (F_r0 34.62, F_s0 52.93) gave no loads (uct: no peak: the load "
                 "was still rising past the window): no run bears the prediction out there; the "
                 "estimate then moved to (35.55, 52.36): the estimate lies at the edge of "
-                "strengths without a result",
+                "strengths without a peak",
                 0),
             0u)
       << r.verdict_reason;
   EXPECT_EQ(r.verdict_reason.find("check runs were made at"), std::string::npos);
   EXPECT_EQ(to_json(r, c)["posterior"]["check_failed"],
             "uct: no peak: the load was still rising past the window");
+  // A check that failed for another reason (a crashed job) is said, with no cause read into it.
+  r.posterior->check_failed = "uct: the engine exited with status 134";
+  judge_posterior(r, c);
+  EXPECT_EQ(r.verdict, Verdict::compromise);
+  EXPECT_NE(r.verdict_reason.find("gave no loads (uct: the engine exited with status 134)"),
+            std::string::npos)
+      << r.verdict_reason;
+  EXPECT_EQ(r.verdict_reason.find("without a peak"), std::string::npos) << r.verdict_reason;
   CalibrationReport fine = report_with(c, 1.0, 1.0);
   EXPECT_TRUE(to_json(fine, c)["posterior"]["check_failed"].is_null());
 }
@@ -218,8 +226,8 @@ TEST(CheckRuns, ARegionThatReachesABoundOnlyByItsWidthDoesNotPressOnIt) {
       r.verdict_reason.find(" when the budget of 100 runs ran out, with the emulators holding"),
       std::string::npos)
       << r.verdict_reason;
-  EXPECT_NE(r.verdict_reason.find("(as wide as they leave it, the region reaches the upper bound "
-                                  "of F_r0 (1000), though the estimate lies inside)"),
+  EXPECT_NE(r.verdict_reason.find("(the region reaches the upper bound of F_r0 (1000), though the "
+                                  "estimate lies inside)"),
             std::string::npos)
       << r.verdict_reason;
   p.estimate = {980, 39.7};  // within two cells (a factor 1000^(2/81) = 1.19) of the bound

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "orchestrator/calibration/bayes/box.hpp"
@@ -59,7 +60,7 @@ std::vector<inference::Target> inference_targets(const CalibrationCampaign& c) {
 
 namespace {
 
-// Each distinct point's runs of both loads, in ln, on the campaign's unit box.
+// Each distinct point's runs of each load that had a peak, in ln, on the campaign's unit box.
 struct PointsRuns {
   std::vector<BondPoint> points;               // the distinct points with both loads
   std::vector<inference::PointRuns> uct, btt;  // every point with either load (empty otherwise)
@@ -81,7 +82,7 @@ PointsRuns gather(const std::vector<EvaluationRecord>& history, const Calibratio
   PointsRuns g;
   g.further.resize(c.further.size());
   std::map<std::pair<double, double>, int> index;  // a point's row in uct, btt and further
-  std::map<std::pair<double, double>, bool> both;  // the points with both loads, in g.points
+  std::set<std::pair<double, double>> both;        // the points with both loads, in g.points
   for (const EvaluationRecord& r : history) {
     if (r.loads || is_no_peak(r.error)) {
       g.outcome_at.push_back(to_unit(r.point, c));
@@ -102,7 +103,7 @@ PointsRuns gather(const std::vector<EvaluationRecord>& history, const Calibratio
     if (uct) g.uct[it->second].values.push_back(std::log(*uct));
     if (btt) g.btt[it->second].values.push_back(std::log(*btt));
     if (!r.loads) continue;
-    if (both.try_emplace(key, true).second) g.points.push_back(r.point);
+    if (both.insert(key).second) g.points.push_back(r.point);
     for (std::size_t k = 0; k < g.further.size() && k < r.further_n.size(); ++k) {
       if (r.further_n[k] && *r.further_n[k] > 0)
         g.further[k][it->second].values.push_back(std::log(*r.further_n[k]));
@@ -273,18 +274,10 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
       p.region.back().i_hi = rows[j][k];
     }
   }
-  const char* names[] = {"F_r0", "F_s0"};
-  const Range* ranges[] = {&c.fr0_n, &c.fs0_n};
   for (int k = 0; k < 2; ++k) {
-    char text[128];
-    if (region.at_lower[k]) {
-      std::snprintf(text, sizeof text, "the lower bound of %s (%.4g)", names[k], ranges[k]->lo);
-      p.bounds_reached.push_back(text);
-    }
-    if (region.at_upper[k]) {
-      std::snprintf(text, sizeof text, "the upper bound of %s (%.4g)", names[k], ranges[k]->hi);
-      p.bounds_reached.push_back(text);
-    }
+    const Range& r = k == 0 ? c.fr0_n : c.fs0_n;
+    if (region.at_lower[k]) p.bounds_reached.push_back(bound_text(k, false, r));
+    if (region.at_upper[k]) p.bounds_reached.push_back(bound_text(k, true, r));
   }
   const double z = two_sided_z(s.level);
   const std::vector<double> share = emulator_shares(m);

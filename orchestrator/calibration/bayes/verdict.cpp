@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "orchestrator/calibration/bayes/box.hpp"
 #include "orchestrator/calibration/bayes/check.hpp"
 #include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
@@ -73,25 +74,20 @@ std::string failed_check_text(const PosteriorSummary& p) {
                              : "");
 }
 
-// The bound the estimate itself lies at (within two of the grid's cells), worded as
-// bounds_reached words it; empty when the estimate lies inside. A region that reaches a bound only
-// because it is wide (its emulators unsure, a few fine runs on it) does not press on it: its
-// targets are met or missed inside the box, and widening the bounds would change nothing. Without
-// a grid (a summary made by hand), the region's first bound.
+// The bound the estimate itself lies at (within two of the grid's cells), as bounds_reached words
+// it; empty when the estimate lies inside. A region that reaches a bound only because it is wide
+// (its emulators unsure, a few fine runs on it) does not press on it: its targets are met or
+// missed inside the box, and widening the bounds would change nothing.
 std::string bound_pressed(const PosteriorSummary& p) {
-  if (p.grid_cells <= 0) return p.bounds_reached.empty() ? "" : p.bounds_reached.front();
+  if (p.grid_cells <= 0) return "";
   const double margin = 2.0 / p.grid_cells;
-  const char* names[] = {"F_r0", "F_s0"};
-  const Range* ranges[] = {&p.grid_fr0, &p.grid_fs0};
   const double at[] = {p.estimate.fr0_n, p.estimate.fs0_n};
   for (int k = 0; k < 2; ++k) {
-    const Range& r = *ranges[k];
+    const Range& r = k == 0 ? p.grid_fr0 : p.grid_fs0;
     if (!(r.lo > 0 && r.hi > r.lo && at[k] > 0)) continue;
     const double u = std::log(at[k] / r.lo) / std::log(r.hi / r.lo);
-    if (u < margin)
-      return std::string("the lower bound of ") + names[k] + sentence(" (%.4g)", r.lo);
-    if (u > 1 - margin)
-      return std::string("the upper bound of ") + names[k] + sentence(" (%.4g)", r.hi);
+    if (u < margin) return bound_text(k, false, r);
+    if (u > 1 - margin) return bound_text(k, true, r);
   }
   return "";
 }
@@ -133,10 +129,12 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   if (met && !failed_check.empty()) {
     // The prediction meets the targets where the real specimen gives no result.
     r.verdict = Verdict::compromise;
-    r.verdict_reason = "the predicted loads at the estimate meet the targets (" + loads_text(p, c) +
-                       "), but " + failed_check +
-                       ": the estimate lies at the edge of strengths without a result" + runs +
-                       "; " + region_text(p) + faults;
+    r.verdict_reason =
+        "the predicted loads at the estimate meet the targets (" + loads_text(p, c) + "), but " +
+        failed_check +
+        (is_no_peak(p.check_failed) ? ": the estimate lies at the edge of strengths without a peak"
+                                    : "") +
+        runs + "; " + region_text(p) + faults;
     return;
   }
   if (met && !disagree.empty()) {
@@ -176,6 +174,11 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   }
   r.verdict = Verdict::compromise;
   const std::string pressed = bound_pressed(p);
+  // A region that reaches a bound it does not press on: said beside the cause.
+  const std::string wide = pressed.empty() && !p.bounds_reached.empty()
+                               ? " (the region reaches " + p.bounds_reached.front() +
+                                     ", though the estimate lies inside)"
+                               : "";
   const std::string miss =
       "the predicted loads at the estimate miss the targets (" + loads_text(p, c) + ")";
   if (r.ratio && !r.ratio->target_inside()) {
@@ -205,14 +208,12 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
             "variance: more runs would narrow it",
             100 * p.uct.emulator_share / (1 + p.uct.emulator_share),
             100 * p.btt.emulator_share / (1 + p.btt.emulator_share)) +
-        (p.bounds_reached.empty()
-             ? ""
-             : " (as wide as they leave it, the region reaches " + p.bounds_reached.front() +
-                   ", though the estimate lies inside)");
+        wide;
   } else {
     r.verdict_reason = miss +
                        ", though the emulators know the region well: the model cannot "
-                       "meet both loads within the tolerance there";
+                       "meet both loads within the tolerance there" +
+                       wide;
   }
   r.verdict_reason +=
       runs + "; " + region_text(p) + (failed_check.empty() ? "" : "; " + failed_check) + faults;

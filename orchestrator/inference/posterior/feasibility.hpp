@@ -24,7 +24,7 @@ struct RunResults {
 };
 
 struct FeasibilitySettings {
-  double length = 0.05;        // the kernel's length on the unit box
+  double length = 0.05;        // the kernel's length on the unit box (under `metric` when set)
   double prior_weight = 0.05;  // a, against the nearest run's weight 1
   // d x d: the squared distance between runs is dx' M dx (empty: the identity). Where what decides
   // a result is one combination of the parameters (a strength ratio), M measures mostly along it,
