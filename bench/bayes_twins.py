@@ -6,7 +6,8 @@ number; redrawn while F_s0/F_r0 exceeds --max-ratio, where the specimen has no U
 the lab runs reach no peak: a lab rock has one), the "lab" = the engine's own mean over --lab-packings packings at the truth (a sweep with
 realisations; seeds far from the calibration's), stated to the standard error those packings give
 (at least 2%); then the main job's request (examples/calibrate_seed_lab.json, its specimen and
-budget) with those model-unit targets. Recorded: whether the truth lies in the 90% region (its
+budget) with those model-unit targets alone (its E and nu targets dropped: the twin's lab runs at
+the template's stiffness). Recorded: whether the truth lies in the 90% region (its
 cells on the log grid), the intervals, the verdict, runs and wall time.
 
 `--strategy auto --realisations auto` runs the same twins (the same lab, from the same seeds) with

@@ -121,7 +121,7 @@ TEST(Campaign, RootMustBeAnObject) {
   }
 }
 
-TEST(Campaign, ExampleSeedLabCampaignIsValid) {
+TEST(Campaign, TheMainJobRequestIsValidAndAsksForTheFourTargets) {
   std::ifstream in(ROCKCAL_SOURCE_DIR "/examples/calibrate_seed_lab.json");
   ASSERT_TRUE(in.good());
   const CalibrationCampaign c = parse_calibration_campaign(json::parse(in));
@@ -130,6 +130,9 @@ TEST(Campaign, ExampleSeedLabCampaignIsValid) {
   // Lab UCT/BTT load ratio 311 / 51.9 = 5.99 survives the (linear) force scaling.
   EXPECT_NEAR(c.targets.model_loads_n.uct_n / c.targets.model_loads_n.btt_n, 311000.0 / 51900.0,
               1e-9);
+  // The main job calibrates the field's four targets: the seed paper's E and nu (Table 1) too.
+  EXPECT_EQ(c.targets.elastic.youngs_modulus_pa, 12.33e9);
+  EXPECT_EQ(c.targets.elastic.poisson_ratio, 0.2);
 }
 
 // The lab load a UCT or BTT target of a benchmark request stands for: its peak load, or its
