@@ -14,7 +14,7 @@ nu at the material's K_s/K_r (--nu sets it by eq. 3, as a calibration's start do
 
   bench/reach_map.py [--build build] [--out runs/reach] [--size 20] [--strength 20]
       [--ratios 0.25,0.5,1,2,4,8] [--factors 1,1.5,1.8] [--seeds 1] [--jobs 1]
-      [--packing fcc|random] [--radius-ratio 1.5] [--nu 0.2]
+      [--packing fcc|random] [--radius-ratio 1.5] [--nu 0.2] [--stiffness-exponent 0]
       [--auto-transits 10] [--slow-factor 0.25] [--log FILE]
 
 Prints a markdown table (means over the seeds with a peak): UCT and BTT peak loads, the load
@@ -47,7 +47,8 @@ def job(test, a, s, factor, seed):
                         "dt": "auto", "slow_factor": a.slow_factor, "max_strain": 0.1},
             "damping": {"local": 0.7}}
     if factor != 1.0:
-        spec["effects"] = {"interaction_range": {"factor": factor}}
+        spec["effects"] = {"interaction_range": {"factor": factor,
+                                                 "stiffness_exponent": a.stiffness_exponent}}
     return spec
 
 
@@ -70,6 +71,8 @@ def main():
     ap.add_argument("--packing", choices=["fcc", "random"], default="fcc")
     ap.add_argument("--radius-ratio", type=float, default=1.5)
     ap.add_argument("--nu", type=float, default=0.2)
+    ap.add_argument("--stiffness-exponent", type=float, default=0.0,
+                    help="n: bonds beyond touching get stiffnesses x ((R_i + R_j) / L)^n")
     a = ap.parse_args()
     ratios = [float(x) for x in a.ratios.split(",")]
     factors = [float(x) for x in a.factors.split(",")]
@@ -83,9 +86,12 @@ def main():
         for seed in range(1, a.seeds + 1):
             name = "elastic_d%g_range%g_seed%d" % (a.size, f, seed)
             runs.append(((f, None, "elastic", seed), name, job("elastic", a, 1.0, f, seed)))
-    if a.packing != "fcc" or a.nu != 0.2:  # the FCC map's run names stay those of its cache
+    if a.packing != "fcc" or a.nu != 0.2 or a.stiffness_exponent:
+        # the FCC map's run names stay those of its cache
         tag = "_%s%s_nu%g" % (a.packing, "_rr%g" % a.radius_ratio if a.packing == "random" else "",
                               a.nu)
+        if a.stiffness_exponent:
+            tag += "_n%g" % a.stiffness_exponent
         runs = [(key, name + tag, spec) for key, name, spec in runs]
     results = run_all(a, runs, line_of)
 

@@ -333,6 +333,31 @@ TEST(Effects, InteractionRangeBondsTheLatticesSecondNeighboursFromSqrtTwo) {
   EXPECT_LT(double(wide) / double(plain), 1.5);
 }
 
+TEST(Effects, InteractionRangeSoftensTheLongerBondsByTheirLengthToTheExponent) {
+  // The four stiffnesses of each bond at range 1.5 with stiffness_exponent n against n = 0:
+  // touching bonds keep theirs, the second neighbours (at 2R sqrt(2)) get 2^(-n/2) of them.
+  auto bonds_of = [](double n) {
+    JobSpec s = cylinder();
+    s.effects = {{"interaction_range", {{"factor", 1.5}, {"stiffness_exponent", n}}}};
+    return make_specimen(s).bonds;
+  };
+  const std::vector<Bond> stiff = bonds_of(0), soft = bonds_of(3);
+  ASSERT_EQ(stiff.size(), soft.size());
+  int touching = 0, long_ones = 0;
+  for (std::size_t k = 0; k < stiff.size(); ++k) {
+    const bool is_long = stiff[k].r0 > 2.0 * (1 + 1e-9);
+    const double w = is_long ? std::pow(2.0, -1.5) : 1.0;
+    (is_long ? long_ones : touching) += 1;
+    EXPECT_NEAR(soft[k].kr, stiff[k].kr * w, 1e-12 * stiff[k].kr) << k;
+    EXPECT_NEAR(soft[k].ks, stiff[k].ks * w, 1e-12 * stiff[k].kr) << k;
+    EXPECT_NEAR(soft[k].kb, stiff[k].kb * w, 1e-12 * stiff[k].kb) << k;
+    EXPECT_NEAR(soft[k].kt, stiff[k].kt * w, 1e-12 * stiff[k].kt) << k;
+    EXPECT_EQ(soft[k].fr0, stiff[k].fr0);  // strengths stay the job's
+  }
+  EXPECT_GT(touching, 0);
+  EXPECT_GT(long_ones, 0);
+}
+
 TEST(Effects, RollingResistanceResistsRelativeRotationUpToItsLimit) {
   // Two touching particles pressed together by an overlap of 0.01, j spinning about y (the
   // contact normal is z): the rolling moment on j opposes the spin, grows by
