@@ -341,6 +341,7 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
   for (std::size_t i = 0;; ++i) {
     evaluator.patch_template(interaction_range_patch(ranges[i]));
     CalibrationCampaign c = campaign;
+    c.job_template.merge_patch(interaction_range_patch(ranges[i]));  // what the evaluator runs
     c.max_evaluations = left;
     report = {};
     const bool another = i + 1 < ranges.size();

@@ -21,6 +21,13 @@ const char* stiffness_field(const json& job_template) {
   return m && m->contains("kr") ? "kr" : "youngs_modulus";
 }
 
+// Whether the template bonds beyond touching neighbours (an interaction range above 1).
+bool bonds_beyond_touching(const json& job_template) {
+  const json::json_pointer factor("/effects/interaction_range/factor");
+  return job_template.contains(factor) && job_template.at(factor).is_number() &&
+         job_template.at(factor).get<double>() > 1.0;
+}
+
 JobSpec spec_at(const CalibrationCampaign& c, const StiffnessSetting& s) {
   json job = c.job_template;
   job.merge_patch(stiffness_patch(c.job_template, s));
@@ -100,6 +107,33 @@ class Stage {
     return best;
   }
 
+  // NLopt over the long bonds' stiffness exponent n at `at`'s K_s/K_r, for nu at the target less
+  // half the tolerance: nu rises with n (softer long bonds) while the UCS/BTS ratio the range
+  // gives falls, so the search aims at the smallest n that meets the target. Returns the run
+  // nearest that aim, if any measured nu.
+  std::optional<StiffnessRun> search_exponent(double target, const StiffnessSetting& at) {
+    const double aim = target - 0.5 * kStiffnessNuTolerance;
+    nlopt::opt opt(nlopt::LN_NELDERMEAD, 1);
+    opt.set_lower_bounds(std::vector<double>{0.0});
+    opt.set_upper_bounds(std::vector<double>{kLongBondExponentMax});
+    opt.set_initial_step(std::vector<double>{2.0});
+    opt.set_maxeval(kLongBondRuns);
+    opt.set_stopval(0.25 * kStiffnessNuTolerance);
+    opt.set_xtol_abs(0.05);
+    std::vector<double> x = {2.0};
+    std::optional<StiffnessRun> best;
+    minimise(opt, x, [&](const std::vector<double>& v) {
+      StiffnessSetting s = at;
+      s.long_bond_exponent = std::clamp(v[0], 0.0, kLongBondExponentMax);
+      const StiffnessRun& r = run(s, "long_bonds");
+      if (!r.poisson_ratio) return 1.0;
+      if (!best || std::abs(*r.poisson_ratio - aim) < std::abs(*best->poisson_ratio - aim))
+        best = r;
+      return std::abs(*r.poisson_ratio - aim);
+    });
+    return best;
+  }
+
   std::vector<StiffnessRun> runs_;
 
  private:
@@ -126,8 +160,14 @@ std::string why(const StiffnessResult& r) {
     if (!r.poisson_ratio) {
       out = "no elastic run measured nu. ";
     } else if (within(nu_error(r), kStiffnessNuTolerance)) {
-      out = sentence("nu %.3f meets the target %.3f at K_s/K_r %.3g. ", *r.poisson_ratio,
+      out = sentence("nu %.3f meets the target %.3f at K_s/K_r %.3g", *r.poisson_ratio,
                      *r.target_poisson_ratio, r.ks_over_kr);
+      if (r.setting.long_bond_exponent > 0 && r.nu_reached_hi)
+        out += sentence(
+            " with the bonds beyond touching softened by ((R_i + R_j) / L)^%.3g (as "
+            "stiff as the touching ones, they left nu at most %.3f)",
+            r.setting.long_bond_exponent, *r.nu_reached_hi);
+      out += ". ";
     } else {
       out = sentence("nu %.3f misses the target %.3f: over K_s/K_r from %.3g to %.3g",
                      *r.poisson_ratio, *r.target_poisson_ratio, ks_over_kr(kStiffnessNuHi),
@@ -135,7 +175,13 @@ std::string why(const StiffnessResult& r) {
       if (r.nu_reached_lo && r.nu_reached_hi)
         out +=
             sentence(" the runs measured nu from %.3f to %.3f", *r.nu_reached_lo, *r.nu_reached_hi);
-      out += ", the packing's reach. ";
+      out += ", the packing's reach";
+      if (r.setting.long_bond_exponent > 0)
+        out += sentence(
+            ", and with the bonds beyond touching softened by ((R_i + R_j) / L)^%.3g "
+            "nu %.3f",
+            r.setting.long_bond_exponent, *r.poisson_ratio);
+      out += ". ";
     }
   }
   if (r.target_youngs_modulus_pa) {
@@ -170,7 +216,11 @@ bool stiffness_met(const StiffnessResult& r) {
 json stiffness_patch(const json& job_template, const StiffnessSetting& setting) {
   const char* field = stiffness_field(job_template);
   const double value = job_template.at("material").at(field).get<double>();
-  return {{"material", {{field, value * setting.scale}, {"nu", setting.nu}}}};
+  json patch = {{"material", {{field, value * setting.scale}, {"nu", setting.nu}}}};
+  if (setting.long_bond_exponent > 0)
+    patch["effects"] = {
+        {"interaction_range", {{"stiffness_exponent", setting.long_bond_exponent}}}};
+  return patch;
 }
 
 std::optional<StiffnessResult> calibrate_stiffness(const CalibrationCampaign& c,
@@ -185,9 +235,18 @@ std::optional<StiffnessResult> calibrate_stiffness(const CalibrationCampaign& c,
           .material.nu;
   Stage stage(c, evaluator);
   // The nu search at the template's scale; its best run is where E is measured.
-  const std::optional<StiffnessRun> base =
+  std::optional<StiffnessRun> base =
       t.poisson_ratio ? stage.search_nu(*t.poisson_ratio, 1.0)
                       : std::optional<StiffnessRun>(stage.run({1.0, template_nu}, "start"));
+  // A nu above what any K_s/K_r gives, with bonds beyond touching: soften those.
+  if (t.poisson_ratio && base && base->poisson_ratio &&
+      *base->poisson_ratio < *t.poisson_ratio - kStiffnessNuTolerance &&
+      bonds_beyond_touching(c.job_template)) {
+    const std::optional<StiffnessRun> soft = stage.search_exponent(*t.poisson_ratio, base->setting);
+    if (soft && std::abs(*soft->poisson_ratio - *t.poisson_ratio) <
+                    std::abs(*base->poisson_ratio - *t.poisson_ratio))
+      base = soft;
+  }
   r.setting = base && base->poisson_ratio ? base->setting : StiffnessSetting{1.0, template_nu};
   std::optional<StiffnessRun> last = base;
   if (r.target_youngs_modulus_pa && base && base->youngs_modulus_pa) {
@@ -220,6 +279,7 @@ json to_json(const StiffnessResult& r, const CalibrationCampaign& c) {
                     {"kr", x.kr_n_m},
                     {"ks_over_kr", ks_over_kr(x.setting.nu)},
                     {"nu_input", x.setting.nu},
+                    {"long_bond_exponent", x.setting.long_bond_exponent},
                     {"youngs_modulus_pa", optional_number(x.youngs_modulus_pa)},
                     {"poisson_ratio", optional_number(x.poisson_ratio)},
                     {"youngs_modulus_sd", optional_number(x.youngs_modulus_sd)},
@@ -248,6 +308,7 @@ json to_json(const StiffnessResult& r, const CalibrationCampaign& c) {
             {"nu_input", r.setting.nu},
             {"kr", r.kr_n_m},
             {"ks_over_kr", r.ks_over_kr},
+            {"long_bond_exponent", r.setting.long_bond_exponent},
             {"youngs_modulus_pa", e},
             {"poisson_ratio", nu},
             {"met", stiffness_met(r)},

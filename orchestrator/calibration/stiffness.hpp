@@ -8,7 +8,11 @@
 // proportional to K_r at a fixed K_s/K_r (tests/engine/stiffness_scale_test.cpp checks both on the
 // engine). Hence: a 1-D NLopt search over ln(K_s/K_r) (through eq. 3's nu, K_s/K_r = (1 - 3 nu) /
 // (1 + nu), which sets the bending and twisting ratios too) on elastic tests for the target nu,
-// from the target itself (eq. 3 as the start); then K_r times E_target / E_measured, one
+// from the target itself (eq. 3 as the start); when the template bonds beyond touching
+// neighbours and no K_s/K_r reaches a target nu above the packing's, a 1-D NLopt search over the
+// long bonds' stiffness exponent at the best K_s/K_r, for the stiffest long bonds that put nu
+// within the tolerance (they carry the UCS/BTS ratio the range is there for); then K_r times
+// E_target / E_measured, one
 // multiplication; then one elastic run that confirms both. E is the elastic test's: axial stress
 // over axial strain in the specimen's interior, as a lab's strain gauges measure it.
 #pragma once
@@ -28,7 +32,9 @@ namespace rockcal::calibration {
 // Eq. 3's nu that the search may take: K_s/K_r from 5 down to 0.077.
 inline constexpr double kStiffnessNuLo = -0.5;
 inline constexpr double kStiffnessNuHi = 0.3;
-inline constexpr int kStiffnessNuRuns = 10;            // elastic runs the nu search may take
+inline constexpr int kStiffnessNuRuns = 10;          // elastic runs the nu search may take
+inline constexpr double kLongBondExponentMax = 8.0;  // the effect's documented range
+inline constexpr int kLongBondRuns = 8;  // elastic runs the search over the exponent may take
 inline constexpr double kStiffnessNuTolerance = 0.03;  // |nu - target| that meets the target
 inline constexpr double kStiffnessETolerance = 0.05;   // |E / target - 1| that meets the target
 // Packings each elastic run measures when the template's seed makes another specimen (a random
@@ -40,11 +46,18 @@ inline constexpr int kStiffnessPackings = 4;
 struct StiffnessSetting {
   double scale = 1.0;  // of the template's stiffness field
   double nu = 0.2;     // eq. 3's nu
+  // The interaction range's stiffness_exponent n: bonds beyond touching get their stiffnesses
+  // times ((R_i + R_j) / L)^n. 0 (none) unless the template bonds beyond touching neighbours and
+  // no K_s/K_r reaches the target nu there: those bonds, as stiff as the touching ones, hold the
+  // lattice's nu down (docs/reach.md, "Softer long bonds").
+  double long_bond_exponent = 0.0;
 };
 
 // One elastic run of the stage.
 struct StiffnessRun {
-  std::string phase;  // "nu" (the search), "start" (E alone: the template's), "confirm"
+  // "nu" (the search), "long_bonds" (the exponent's search), "start" (E alone: the
+  // template's), "confirm"
+  std::string phase;
   StiffnessSetting setting;
   double kr_n_m = 0.0;  // the normal bond stiffness it ran (at the sample's mean radius)
   // Means over the packings that measured both (model units), and their standard deviations.
@@ -77,7 +90,8 @@ struct StiffnessResult {
 // Whether the confirming run met every target the request gave (E within 5%, nu within 0.03).
 bool stiffness_met(const StiffnessResult& result);
 
-// The patch of "job" that runs a setting: {"material": {field: template value x scale, "nu"}}.
+// The patch of "job" that runs a setting: {"material": {field: template value x scale, "nu"}},
+// with {"effects": {"interaction_range": {"stiffness_exponent": n}}} when n > 0.
 nlohmann::json stiffness_patch(const nlohmann::json& job_template, const StiffnessSetting& setting);
 
 // Runs the stage on the campaign's targets.elastic (nothing when it has none) and leaves the
