@@ -17,7 +17,7 @@ consistent set's F_r0 and F_s0 ranges.
 Resumes: rows already in --out (one JSON object per line) are kept and their twins skipped, so it
 may be run in parts; commit the file as it grows.
 
-  bench/bayes_twins.py [--build build] [--twins 10] [--out bench/results/bayes_twins_d20.jsonl]
+  bench/bayes_twins.py [--build build] [--twins 10] [--out bench/results/bayes_twins_d20_auto.jsonl]
                        [--strategy bayes|auto|ratio_scale|direct_2d] [--realisations auto|N]
 On demand only (3-5 minutes a twin on 2 idle cores); it builds nothing.
 """
@@ -70,7 +70,7 @@ def main():
                     help="largest F_s0/F_r0 of a truth: above about 3.3 the main job's specimen "
                          "reaches no UCT peak at the auto speed")
     ap.add_argument("--request", default=os.path.join(ROOT, "examples", "calibrate_seed_lab.json"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "bayes_twins_d20.jsonl"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "bayes_twins_d20_auto.jsonl"))
     ap.add_argument("--strategy", default="bayes")
     ap.add_argument("--realisations", default=None, help="the previous driver's packings an evaluation")
     a = ap.parse_args()
