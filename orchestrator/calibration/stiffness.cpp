@@ -217,7 +217,10 @@ json stiffness_patch(const json& job_template, const StiffnessSetting& setting) 
   const char* field = stiffness_field(job_template);
   const double value = job_template.at("material").at(field).get<double>();
   json patch = {{"material", {{field, value * setting.scale}, {"nu", setting.nu}}}};
-  if (setting.long_bond_exponent > 0)
+  // Stated whenever the template has a range, 0 included: patches merge into the evaluator's
+  // template, and an exponent set at one range must not stay on at the next.
+  const bool has_range = job_template.contains(json::json_pointer("/effects/interaction_range"));
+  if (has_range || setting.long_bond_exponent > 0)
     patch["effects"] = {
         {"interaction_range", {{"stiffness_exponent", setting.long_bond_exponent}}}};
   return patch;

@@ -91,7 +91,8 @@ struct StiffnessResult {
 bool stiffness_met(const StiffnessResult& result);
 
 // The patch of "job" that runs a setting: {"material": {field: template value x scale, "nu"}},
-// with {"effects": {"interaction_range": {"stiffness_exponent": n}}} when n > 0.
+// with {"effects": {"interaction_range": {"stiffness_exponent": n}}} when n > 0 or the template
+// has an interaction range (so that a later stage at another range resets it).
 nlohmann::json stiffness_patch(const nlohmann::json& job_template, const StiffnessSetting& setting);
 
 // Runs the stage on the campaign's targets.elastic (nothing when it has none) and leaves the

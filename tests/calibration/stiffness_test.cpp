@@ -135,6 +135,13 @@ TEST(StiffnessStage, ANuBeyondTheLatticesReachAtARangeSoftensTheLongerBonds) {
             std::string::npos)
       << s.why;
   EXPECT_EQ(to_json(r, c)["stiffness"]["long_bond_exponent"], s.setting.long_bond_exponent);
+  // At another range a setting without softening states n = 0, so the exponent set here does not
+  // stay on in the evaluator's template.
+  json at_range = c.job_template;
+  at_range["effects"] = {{"interaction_range", {{"factor", 1.8}}}};
+  json next = e.template_patch;
+  next.merge_patch(stiffness_patch(at_range, StiffnessSetting{}));
+  EXPECT_EQ(next["effects"]["interaction_range"]["stiffness_exponent"], 0.0);
 
   // With touching bonds only there is nothing to soften: the miss is said with the reach.
   testing::ModelEvaluator touching(testing::power_law);
