@@ -36,10 +36,14 @@ from rockcal_service import append_row, call, finish, load_rows, start_server  #
 
 
 def in_region(post, fr0, fs0):
+    # The grid spans where the posterior's mass lies (zoomed inside the bounds): a truth outside
+    # it is outside the region.
     g = post["region"]["grid"]
     n = g["cells"]
-    cell = lambda v, r: min(n - 1, max(0, int(math.floor(math.log(v / r[0]) / math.log(r[1] / r[0]) * n))))
+    cell = lambda v, r: int(math.floor(math.log(v / r[0]) / math.log(r[1] / r[0]) * n))
     i, j = cell(fr0, g["fr0"]), cell(fs0, g["fs0"])
+    if not (0 <= i < n and 0 <= j < n):
+        return False
     return any(s[0] == j and s[1] <= i <= s[2] for s in post["region"]["spans"])
 
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -39,6 +40,8 @@ double normal(const BondPoint& p, std::uint64_t seed, std::uint64_t salt) {
 struct ScatteringEvaluator : Evaluator {
   testing::Model model;
   double sd_uct = 0.2, sd_btt = 0.35;
+  // Set: the two sds at each point (a scatter that changes across the box), else the two above.
+  std::function<std::array<double, 2>(const BondPoint&)> sd_at;
   int workers = 0;
   std::chrono::milliseconds run_time{0};
   std::mutex mutex;
@@ -81,17 +84,18 @@ struct ScatteringEvaluator : Evaluator {
       return outcome_of(orch::make_ensemble({x}), orch::make_ensemble({x}));
     }
     const PeakLoads l = model(r.point);
+    const std::array<double, 2> sd = sd_at ? sd_at(r.point) : std::array{sd_uct, sd_btt};
     orch::Realisation u{r.sample_seed,
                         0,
                         "succeeded",
-                        l.uct_n * std::exp(sd_uct * normal(r.point, r.sample_seed, 1)),
+                        l.uct_n * std::exp(sd[0] * normal(r.point, r.sample_seed, 1)),
                         {},
                         {},
                         ""};
     orch::Realisation b{r.sample_seed,
                         0,
                         "succeeded",
-                        l.btt_n * std::exp(sd_btt * normal(r.point, r.sample_seed, 3)),
+                        l.btt_n * std::exp(sd[1] * normal(r.point, r.sample_seed, 3)),
                         {},
                         {},
                         ""};
@@ -115,56 +119,102 @@ struct ScatteringEvaluator : Evaluator {
   }
 };
 
-nlohmann::json bayes(int budget, double lab_sd) {
+nlohmann::json bayes(int budget, double lab_sd, double lab_btt_sd = -1) {
   return {{"strategy", "bayes"},
           {"max_evaluations", budget},
           {"bounds", {{"fr0", {10, 1000}}, {"fs0", {10, 1000}}}},
-          {"inference", {{"lab_uncertainty", {{"uct", lab_sd}, {"btt", lab_sd}}}}},
+          {"inference",
+           {{"lab_uncertainty", {{"uct", lab_sd}, {"btt", lab_btt_sd < 0 ? lab_sd : lab_btt_sd}}}}},
           // A seeded lattice: every packing seed is another specimen, as in the real templates.
           {"job", {{"sample", {{"lattice", "seeded"}, {"seed", 1}}}}}};
 }
 
-TEST(BayesCalibration, TheNinetyPercentRegionHoldsTheTruthInEightyToNinetySevenPercentOfTwins) {
-  constexpr int kTwins = 24;
-  constexpr double kLabSd = 0.05;
-  int inside = 0, feasible = 0, runs = 0, checked = 0, disagree = 0;
-  for (int twin = 0; twin < kTwins; ++twin) {
-    // The truth inside the box, away from its edges; the lab's means drawn with their sd.
+struct Coverage {
+  int twins = 0, inside = 0, feasible = 0, runs = 0, checked = 0, disagree = 0;
+  int quiet = 0, quiet_inside = 0;  // twins whose truth has F_s0 < F_r0
+  double quiet_width = 0.0;         // their mean ln(hi / lo) of F_r0's and F_s0's intervals
+};
+
+// `twins` calibrations of the power-law engine, each with a truth inside the box away from its
+// edges and lab means drawn with their sds (UCT, BTT); `scatter` sets each twin's evaluator.
+Coverage twins(int count, std::array<double, 2> lab_sd,
+               const std::function<void(ScatteringEvaluator&)>& scatter) {
+  Coverage cov;
+  for (int twin = 0; twin < count; ++twin) {
     const BondPoint probe{double(twin + 1), 7.0};
     const double u = 0.25 + 0.5 * 0.5 * (hash_unit(probe, 11, 1) + 1);
     const double v = 0.25 + 0.5 * 0.5 * (hash_unit(probe, 11, 2) + 1);
-    const CalibrationCampaign base = testing::campaign({1, 1}, bayes(60, kLabSd));
+    const CalibrationCampaign base = testing::campaign({1, 1}, bayes(60, lab_sd[0], lab_sd[1]));
     const BondPoint truth = from_unit({u, v}, base);
     const PeakLoads exact = testing::power_law(truth);
-    const PeakLoads lab{exact.uct_n * std::exp(kLabSd * normal(probe, 21, 1)),
-                        exact.btt_n * std::exp(kLabSd * normal(probe, 21, 3))};
-    nlohmann::json over = bayes(60, kLabSd);
+    const PeakLoads lab{exact.uct_n * std::exp(lab_sd[0] * normal(probe, 21, 1)),
+                        exact.btt_n * std::exp(lab_sd[1] * normal(probe, 21, 3))};
+    nlohmann::json over = bayes(60, lab_sd[0], lab_sd[1]);
     over["random_seed"] = twin + 1;
     over["job"]["sample"]["seed"] = 1 + 1000 * twin;
     const CalibrationCampaign c = testing::campaign(lab, over);
     ScatteringEvaluator e(testing::power_law);
+    scatter(e);
     const CalibrationReport r = run_calibration(c, e);
-    ASSERT_TRUE(r.posterior) << twin;
+    EXPECT_TRUE(r.posterior) << twin;
+    if (!r.posterior) continue;
     const PosteriorSummary& p = *r.posterior;
-    inside += in_credible_region(p, truth, c) ? 1 : 0;
-    runs += e.runs;
-    feasible += r.verdict == Verdict::feasible ? 1 : 0;
+    const bool in = in_credible_region(p, truth);
+    ++cov.twins;
+    cov.inside += in ? 1 : 0;
+    if (truth.fs0_n < truth.fr0_n) {
+      ++cov.quiet, cov.quiet_inside += in ? 1 : 0;
+      cov.quiet_width += 0.5 * (std::log(p.fr0.hi / p.fr0.lo) + std::log(p.fs0.hi / p.fs0.lo));
+    }
+    cov.runs += e.runs;
+    cov.feasible += r.verdict == Verdict::feasible ? 1 : 0;
     for (const PredictedLoad* l : {&p.uct, &p.btt}) {
       if (!l->check) continue;
-      ++checked;
-      disagree += l->check->agrees ? 0 : 1;
+      ++cov.checked;
+      cov.disagree += l->check->agrees ? 0 : 1;
     }
     EXPECT_LE(e.runs, 60);
   }
-  const double coverage = double(inside) / kTwins;
-  std::printf("coverage %d of %d twins, %d feasible, %.1f runs a twin; %d of %d checks disagree\n",
-              inside, kTwins, feasible, double(runs) / kTwins, disagree, checked);
-  EXPECT_GE(coverage, 0.80) << inside << " of " << kTwins;
-  EXPECT_LE(coverage, 0.97) << inside << " of " << kTwins;
-  EXPECT_GE(feasible, kTwins / 2);
+  if (cov.quiet > 0) cov.quiet_width /= cov.quiet;
+  std::printf(
+      "coverage %d of %d twins (%d of %d with F_s0 < F_r0, their intervals' mean ln width %.3f), "
+      "%d feasible, %.1f runs a twin; %d of %d checks disagree\n",
+      cov.inside, cov.twins, cov.quiet_inside, cov.quiet, cov.quiet_width, cov.feasible,
+      double(cov.runs) / std::max(1, cov.twins), cov.disagree, cov.checked);
+  return cov;
+}
+
+// `upper`: the region must not be wider than it says either (at most 97% inside).
+void expect_honest(const Coverage& c, int count, bool upper = true) {
+  EXPECT_EQ(c.twins, count);
+  const double coverage = double(c.inside) / count;
+  EXPECT_GE(coverage, 0.80) << c.inside << " of " << count;
+  if (upper) EXPECT_LE(coverage, 0.97) << c.inside << " of " << count;
+  EXPECT_GE(c.feasible, count / 2);
   // The check runs test the prediction at its 99% level: with honest emulators few disagree.
-  EXPECT_EQ(checked, 2 * kTwins);
-  EXPECT_LE(disagree, 3) << "of " << checked;
+  EXPECT_EQ(c.checked, 2 * count);
+  EXPECT_LE(c.disagree, 3) << "of " << c.checked;
+}
+
+TEST(BayesCalibration, TheNinetyPercentRegionHoldsTheTruthInEightyToNinetySevenPercentOfTwins) {
+  expect_honest(twins(24, {0.05, 0.05}, [](ScatteringEvaluator&) {}), 24);
+}
+
+// The real specimens' scatter depends on which bonds fail first: at D/R 20 one packing's ln load
+// scatters by 0.02 (UCT) and 0.06 (BTT) where F_s0 < F_r0 against 0.11 and 0.14 elsewhere
+// (measured on the real-engine twins' runs), and a lab's UCS may be known to 2%. Where the
+// scatter is small the emulators must follow the runs closely, and where it is large not chase
+// them; and a posterior pinned to a ridge narrower than a cell of the whole box must still hold
+// its truth (before the answer's grid zoomed onto the mass: 18 or 19 of these 24).
+TEST(BayesCalibration, TheRegionHoldsTheTruthWhenThePackingsScatterChangesAcrossTheBox) {
+  const Coverage c = twins(24, {0.02, 0.05}, [](ScatteringEvaluator& e) {
+    e.sd_at = [](const BondPoint& p) {
+      return p.fs0_n < p.fr0_n ? std::array{0.02, 0.06} : std::array{0.11, 0.14};
+    };
+  });
+  expect_honest(c, 24, false);  // what this probes is a truth outside; the band is the test above's
+  EXPECT_GE(c.quiet, 6);
+  EXPECT_GE(c.quiet_inside, c.quiet - 2) << "of " << c.quiet << " with F_s0 < F_r0";
 }
 
 TEST(BayesCalibration, NoWorkerIdlesWhileBudgetRemains) {
@@ -195,7 +245,7 @@ TEST(BayesCalibration, NoWorkerIdlesWhileBudgetRemains) {
 TEST(BayesCalibration, ARegionThatStaysUniqueEndsTheSearchBeforeTheBudget) {
   const CalibrationCampaign c = testing::campaign({120000, 9000}, bayes(200, 0.05));
   ScatteringEvaluator e(testing::power_law);
-  e.sd_uct = e.sd_btt = 0.05;
+  e.sd_uct = e.sd_btt = 0.15;  // loud enough that the emulators hold a share when it answers
   const CalibrationReport r = run_calibration(c, e);
   ASSERT_TRUE(r.posterior);
   EXPECT_EQ(r.stop_reason, StopReason::answered);
@@ -207,11 +257,11 @@ TEST(BayesCalibration, ARegionThatStaysUniqueEndsTheSearchBeforeTheBudget) {
   nlohmann::json strict = bayes(60, 0.05);
   strict["inference"]["unique_width"] = 1.01;
   ScatteringEvaluator all(testing::power_law);
-  all.sd_uct = all.sd_btt = 0.05;
+  all.sd_uct = all.sd_btt = 0.15;
   const CalibrationReport full = run_calibration(testing::campaign({120000, 9000}, strict), all);
   EXPECT_NE(full.stop_reason, StopReason::answered);
   ASSERT_TRUE(full.posterior);
-  EXPECT_TRUE(in_credible_region(*r.posterior, full.posterior->estimate, c))
+  EXPECT_TRUE(in_credible_region(*r.posterior, full.posterior->estimate))
       << full.posterior->estimate.fr0_n << ", " << full.posterior->estimate.fs0_n;
 }
 
@@ -219,17 +269,22 @@ TEST(BayesCalibration, ARegionThatStaysUniqueEndsTheSearchBeforeTheBudget) {
 // disagree with the prediction made before them (the emulators were wrong there) or the posterior
 // fitted on them no longer answers, the search goes on while budget remains and checks again at
 // the new estimate, rather than ending with the question open and runs unspent ("a larger
-// max_evaluations would correct them" with 182 of 200 left). Here the first designed batch's two
-// packings load 25% (UCT) and 35% (BTT) below the model, near the answer: the emulators learn a
-// dip that is not there, and the check finds the loads 8% and 19% above the prediction.
-struct LowFirstDesignEvaluator : ScatteringEvaluator {
+// max_evaluations would correct them" with 182 of 200 left). Here the first check's packings load
+// 30% (UCT) and 40% (BTT) above the model, as the rock would if the runs before had all come out
+// low near the answer: the check disagrees with the prediction.
+struct HighFirstCheckEvaluator : ScatteringEvaluator {
   using ScatteringEvaluator::ScatteringEvaluator;
-  int batches = 0;
+  bool checked = false;
   std::vector<EvaluationOutcome> evaluate_batch(std::span<const EvaluationRequest> rs) override {
     std::vector<EvaluationOutcome> out = ScatteringEvaluator::evaluate_batch(rs);
-    if (++batches != 2) return out;
+    const bool one_point =
+        rs.size() >= 2 && std::all_of(rs.begin(), rs.end(), [&](const auto& r) {
+          return r.point.fr0_n == rs[0].point.fr0_n && r.point.fs0_n == rs[0].point.fs0_n;
+        });
+    if (checked || !one_point) return out;
+    checked = true;
     for (EvaluationOutcome& o : out) {
-      for (auto [e, f] : {std::pair{&o.uct, 0.75}, std::pair{&o.btt, 0.65}}) {
+      for (auto [e, f] : {std::pair{&o.uct, 1.3}, std::pair{&o.btt, 1.4}}) {
         for (orch::Realisation& x : (*e)->realisations) x.peak_load_n = *x.peak_load_n * f;
         **e = orch::make_ensemble((*e)->realisations);
       }
@@ -241,17 +296,20 @@ struct LowFirstDesignEvaluator : ScatteringEvaluator {
 
 TEST(BayesCalibration, ACheckThatUndoesTheAnswerSendsTheSearchOnWhileBudgetRemains) {
   const CalibrationCampaign c = testing::campaign({120000, 9000}, bayes(200, 0.05));
-  LowFirstDesignEvaluator e(testing::power_law);
+  HighFirstCheckEvaluator e(testing::power_law);
   e.sd_uct = e.sd_btt = 0.05;
   const CalibrationReport r = run_calibration(c, e);
   ASSERT_TRUE(r.posterior);
-  std::vector<int> checks;  // the first run of each check batch
+  std::vector<int> checks;  // the first run of each check batch (one point each)
   for (std::size_t i = 0; i < r.history.size(); ++i) {
-    if (r.history[i].phase == "check" && (i == 0 || r.history[i - 1].phase != "check"))
+    const EvaluationRecord& h = r.history[i];
+    if (h.phase == "check" &&
+        (i == 0 || r.history[i - 1].phase != "check" || r.history[i - 1].point != h.point))
       checks.push_back(int(i));
   }
   ASSERT_GE(checks.size(), 2u) << "the search ended at its first check";
-  EXPECT_EQ(r.history[std::size_t(checks[1]) - 1].phase, "design");
+  // The next check is at the estimate the disagreeing check's runs moved.
+  EXPECT_NE(r.history[std::size_t(checks[1])].point, r.history[std::size_t(checks[0])].point);
   // The report's check is the last batch, at the estimate it was planned at.
   ASSERT_TRUE(r.best);
   EXPECT_EQ(r.best->index, checks.back());
@@ -425,7 +483,7 @@ TEST(BayesCalibration, RunsWithoutAPeakKeepTheDesignAndTheRegionOutOfTheirZone) 
   ASSERT_GT(designed, 20);
   EXPECT_LE(into_zone, designed * 2 / 5) << into_zone << " of " << designed;
   EXPECT_LE(deep, designed * 3 / 20) << deep << " of " << designed;
-  EXPECT_TRUE(in_credible_region(*r.posterior, truth, c));
+  EXPECT_TRUE(in_credible_region(*r.posterior, truth));
   EXPECT_FALSE(failing(r.posterior->estimate));
   EXPECT_NE(r.verdict_reason.find("still loading up past the bond-controlled window"),
             std::string::npos)
@@ -571,7 +629,7 @@ TEST(BayesCalibration, FineRunsOnCoarseEmulatorsFindTheFineSpecimensStrengths) {
     EXPECT_LE(e.fine_runs.load(), 12);
     EXPECT_LE(e.runs, 60);
     EXPECT_EQ(p.coarse_runs + p.runs, int(r.history.size()));
-    inside += in_credible_region(p, truth, fine_campaign(c)) ? 1 : 0;
+    inside += in_credible_region(p, truth) ? 1 : 0;
     feasible += r.verdict == Verdict::feasible ? 1 : 0;
     // The fine runs are spent where the answer is: each within 0.15 of the unit box of the point
     // its check ran at (the first batch goes to the coarse estimate, a resolution factor of about
@@ -665,7 +723,7 @@ TEST(BayesCalibration, FineRunsWithoutAPeakSendTheNextFineRunsOutOfTheirZone) {
     // counted only near each run (not along the ratio that decides them), 6 of its 10.
     EXPECT_LE(failed, 4) << twin;
     EXPECT_EQ(r.posterior->resolution, "fine") << twin;
-    EXPECT_TRUE(in_credible_region(*r.posterior, truth, fine_campaign(c))) << twin;
+    EXPECT_TRUE(in_credible_region(*r.posterior, truth)) << twin;
   }
 }
 
@@ -713,7 +771,7 @@ TEST(BayesCalibration, AddingTheNamedTestShrinksTheRegionAsExpected) {
   ASSERT_TRUE(after.posterior);
   ASSERT_EQ(after.posterior->further.size(), 1u);
   EXPECT_GT(e2.probes, 0);
-  EXPECT_TRUE(in_credible_region(*after.posterior, truth, with));
+  EXPECT_TRUE(in_credible_region(*after.posterior, truth));
   // The region's size: the product of the two intervals' log spans.
   auto area = [](const PosteriorSummary& p) {
     return std::log(p.fr0.hi / p.fr0.lo) * std::log(p.fs0.hi / p.fs0.lo);

@@ -215,8 +215,8 @@ TEST(CheckRuns, ARegionThatReachesABoundOnlyByItsWidthDoesNotPressOnIt) {
   p.btt.relative_error = -0.0239;
   p.unique = false;
   p.grid_cells = 81;
-  p.grid_fr0 = {1, 1000};
-  p.grid_fs0 = {1, 1000};
+  p.box_fr0 = p.grid_fr0 = {1, 1000};
+  p.box_fs0 = p.grid_fs0 = {1, 1000};
   p.estimate = {29.42, 39.7};
   p.bounds_reached = {"the upper bound of F_r0 (1000)"};
   judge_posterior(r, c);

@@ -167,7 +167,7 @@ TEST_F(Twin, TheBayesRegionHoldsTheEngineOwnBondStrengths) {
   std::printf("bayes twin: %d runs, lab se %.3f/%.3f, F_r0 [%g, %g], F_s0 [%g, %g], verdict %s\n",
               p.runs, se_uct, se_btt, p.fr0.lo, p.fr0.hi, p.fs0.lo, p.fs0.hi, to_string(r.verdict));
   EXPECT_LE(r.history.size(), 40u);
-  EXPECT_TRUE(in_credible_region(p, truth, c)) << r.verdict_reason;
+  EXPECT_TRUE(in_credible_region(p, truth)) << r.verdict_reason;
   EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
 }
 

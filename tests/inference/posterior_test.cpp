@@ -52,6 +52,46 @@ TEST(Posterior, TheRegionHoldsTheTruthAndIsBoundedInsideTheBox) {
   EXPECT_NEAR(peak(1), truth(1), 0.02);
 }
 
+// A posterior far narrower than a cell of the whole box: the zoomed grid spans its mass with
+// cells as fine as it, holds the truth, keeps the same intervals, and its edges inside the box
+// are not the box's bounds.
+TEST(Posterior, AZoomedGridResolvesAPosteriorNarrowerThanACellOfTheBox) {
+  const Pair e = exact_emulators();
+  const Eigen::Vector2d truth(0.43, 0.57);
+  const std::vector<Target> t = targets_at(truth, 0.003);
+  const PosteriorGrid whole = posterior_on_grid(e.both(), t);
+  const PosteriorGrid zoom = zoomed_grid(whole, e.both(), t);
+  EXPECT_EQ(zoom.per_dim, whole.per_dim);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_GT(zoom.lo(k), 0.0);
+    EXPECT_LT(zoom.hi(k), 1.0);
+    EXPECT_LT(zoom.hi(k) - zoom.lo(k), 0.25);
+    EXPECT_LT(zoom.lo(k), truth(k));
+    EXPECT_GT(zoom.hi(k), truth(k));
+  }
+  const Region r = credible_region(zoom, 0.9), coarse = credible_region(whole, 0.9);
+  EXPECT_TRUE(in_region(zoom, r, truth));
+  EXPECT_TRUE(r.bounded());  // a zoomed edge is not the box's
+  EXPECT_GT(r.cells.size(), 10 * coarse.cells.size());
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT(r.marginal_lo(k), truth(k));
+    EXPECT_GT(r.marginal_hi(k), truth(k));
+  }
+  EXPECT_NEAR(r.mass_fraction_of_box, coarse.mass_fraction_of_box, 0.5 / (81.0 * 81.0) * 50);
+  // Outside its span a point falls in no region cell.
+  EXPECT_FALSE(in_region(zoom, r, Eigen::Vector2d(0.9, 0.1)));
+}
+
+// Where the mass lies at the box's edge the zoomed grid keeps that edge, and the region says so.
+TEST(Posterior, AZoomedGridKeepsTheBoxsEdgeWhereTheMassIs) {
+  const Pair e = exact_emulators();
+  const Eigen::Vector2d truth(0.002, 0.5);
+  const std::vector<Target> t = targets_at(truth, 0.01);
+  const PosteriorGrid zoom = zoomed_grid(posterior_on_grid(e.both(), t), e.both(), t);
+  EXPECT_EQ(zoom.lo(0), 0.0);
+  EXPECT_TRUE(credible_region(zoom, 0.9).at_lower[0]);
+}
+
 TEST(Posterior, TheRegionShrinksWithTheLabsUncertainty) {
   const Pair e = exact_emulators();
   const Eigen::Vector2d truth(0.5, 0.5);

@@ -29,8 +29,9 @@ double two_sided_z(double level) {
 }
 
 PredictedLoad predicted(const inference::Gp& gp, const Eigen::Vector2d& x, double target_n,
-                        double lab_sd, double run_var, double share, double z) {
+                        double lab_sd, double share, double z) {
   const inference::Prediction p = predict(gp, x);
+  const double run_var = inference::run_noise_at(gp.hyper, x);
   PredictedLoad l;
   l.target_n = target_n;
   l.mean_n = std::exp(p.mean);
@@ -159,9 +160,6 @@ inference::FeasibilitySettings feasibility_settings(const CalibrationCampaign& c
 constexpr double kFineOutcomeReach = 0.1;
 
 void finish(Emulators& m, inference::RunResults outcomes, const CalibrationCampaign& c) {
-  m.run_noise.clear();
-  for (const inference::Gp* gp : m.emulators())
-    m.run_noise.push_back(inference::per_run_noise(*gp));
   m.targets = inference_targets(c);
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
   m.outcomes = std::move(outcomes);
@@ -176,12 +174,15 @@ Emulators fit_emulators(const std::vector<EvaluationRecord>& history,
   PointsRuns g = gather(history, c);
   if (g.points.size() < 3) throw std::runtime_error("fewer than 3 points with both loads");
   Emulators m;
-  m.uct = inference::fit_gp(inference::gp_data(g.uct));
-  m.btt = inference::fit_gp(inference::gp_data(g.btt));
+  // A packing's scatter depends on which bonds fail first (inference/emulator/gp.hpp).
+  inference::GpOptions o;
+  o.noise_trend = true;
+  m.uct = inference::fit_gp(inference::gp_data(g.uct), o);
+  m.btt = inference::fit_gp(inference::gp_data(g.btt), o);
   for (const auto& f : g.further) {
     const inference::GpData d = inference::gp_data(f);
     if (d.x.rows() < 3) throw std::runtime_error("fewer than 3 points with a further test's load");
-    m.further.push_back(inference::fit_gp(d));
+    m.further.push_back(inference::fit_gp(d, o));
   }
   m.points = g.points;
   m.runs = g.runs;
@@ -233,20 +234,26 @@ BondPoint posterior_estimate(const Emulators& m, const CalibrationCampaign& c) {
   return from_unit(inference::density_peak(m.grid, m.emulators(), m.targets), c);
 }
 
-bool in_credible_region(const PosteriorSummary& s, const BondPoint& p,
-                        const CalibrationCampaign& c) {
-  const Eigen::Vector2d u = to_unit(p, c);
+bool in_credible_region(const PosteriorSummary& s, const BondPoint& p) {
   const int n = s.grid_cells;
-  const int i = std::clamp(int(std::floor(u(0) * n)), 0, n - 1);
-  const int j = std::clamp(int(std::floor(u(1) * n)), 0, n - 1);
+  const auto cell = [n](double v, const Range& r) {
+    const double f = std::log(v / r.lo) / std::log(r.hi / r.lo);
+    return std::isfinite(f) && f >= 0 && f < 1 ? int(std::floor(f * n)) : -1;
+  };
+  const int i = cell(p.fr0_n, s.grid_fr0), j = cell(p.fs0_n, s.grid_fs0);
+  if (i < 0 || j < 0) return false;  // outside the grid, which spans the posterior's mass
   return std::any_of(s.region.begin(), s.region.end(),
                      [&](const RegionSpan& r) { return r.j == j && r.i_lo <= i && i <= r.i_hi; });
 }
 
 PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int rounds) {
   const InferenceSettings& s = c.inference;
-  const inference::Region region = inference::credible_region(m.grid, s.level);
-  const Eigen::Vector2d peak = inference::density_peak(m.grid, m.emulators(), m.targets);
+  // The answer's grid: as fine as the posterior where its mass is (inference::zoomed_grid).
+  inference::PosteriorGrid grid = inference::zoomed_grid(m.grid, m.emulators(), m.targets);
+  if ((m.outcomes.has_value.array() < 0.5).any())
+    inference::apply_feasibility(grid, m.outcomes, m.targets, feasibility_settings(c));
+  const inference::Region region = inference::credible_region(grid, s.level);
+  const Eigen::Vector2d peak = inference::density_peak(grid, m.emulators(), m.targets);
   PosteriorSummary p;
   p.level = s.level;
   p.estimate = from_unit(peak, c);
@@ -255,18 +262,20 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   p.fr0_extent = {strength_at(region.lo(0), 0, c), strength_at(region.hi(0), 0, c)};
   p.fs0_extent = {strength_at(region.lo(1), 1, c), strength_at(region.hi(1), 1, c)};
   const inference::Region exact =
-      inference::credible_region(inference::with_exact_emulators(m.grid, m.targets), s.level);
+      inference::credible_region(inference::with_exact_emulators(grid, m.targets), s.level);
   p.fr0_exact = {strength_at(exact.marginal_lo(0), 0, c), strength_at(exact.marginal_hi(0), 0, c)};
   p.fs0_exact = {strength_at(exact.marginal_lo(1), 1, c), strength_at(exact.marginal_hi(1), 1, c)};
-  p.grid_cells = m.grid.per_dim;
-  p.grid_fr0 = c.fr0_n;
-  p.grid_fs0 = c.fs0_n;
-  std::vector<std::vector<int>> rows(m.grid.per_dim);
+  p.box_fr0 = c.fr0_n;
+  p.box_fs0 = c.fs0_n;
+  p.grid_cells = grid.per_dim;
+  p.grid_fr0 = {strength_at(grid.lo(0), 0, c), strength_at(grid.hi(0), 0, c)};
+  p.grid_fs0 = {strength_at(grid.lo(1), 1, c), strength_at(grid.hi(1), 1, c)};
+  std::vector<std::vector<int>> rows(grid.per_dim);
   for (int cell : region.cells) {
-    const std::vector<int> ij = inference::cell_indices(m.grid, cell);
+    const std::vector<int> ij = inference::cell_indices(grid, cell);
     rows[ij[1]].push_back(ij[0]);
   }
-  for (int j = 0; j < m.grid.per_dim; ++j) {
+  for (int j = 0; j < grid.per_dim; ++j) {
     std::sort(rows[j].begin(), rows[j].end());
     for (std::size_t k = 0; k < rows[j].size(); ++k) {
       if (k == 0 || rows[j][k] != rows[j][k - 1] + 1)
@@ -282,12 +291,11 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   const double z = two_sided_z(s.level);
   const std::vector<double> share = emulator_shares(m);
   const PeakLoads& t = c.targets.model_loads_n;
-  p.uct = predicted(m.uct, peak, t.uct_n, s.lab_uct, m.run_noise[0], share[0], z);
-  p.btt = predicted(m.btt, peak, t.btt_n, s.lab_btt, m.run_noise[1], share[1], z);
+  p.uct = predicted(m.uct, peak, t.uct_n, s.lab_uct, share[0], z);
+  p.btt = predicted(m.btt, peak, t.btt_n, s.lab_btt, share[1], z);
   for (std::size_t k = 0; k < m.further.size(); ++k) {
     const FurtherTarget& f = c.further[k];
-    p.further.push_back(
-        predicted(m.further[k], peak, f.model_n, f.sd, m.run_noise[2 + k], share[2 + k], z));
+    p.further.push_back(predicted(m.further[k], peak, f.model_n, f.sd, share[2 + k], z));
   }
   p.lab_stated = s.lab_stated;
   p.discrepancy = s.discrepancy;

@@ -15,8 +15,6 @@ namespace rockcal::calibration {
 struct Emulators {
   inference::Gp uct, btt;
   std::vector<inference::Gp> further;  // one per further target (campaign.further)
-  // Variance of one run's ln load (each emulator's nugget): UCT, BTT, then the further targets.
-  std::vector<double> run_noise;
   int runs = 0;
   int coarse_runs = 0;  // fine emulators: the coarse runs beneath them (0 for coarse emulators)
   std::vector<BondPoint> points;  // the distinct points run, in first-run order
@@ -62,8 +60,7 @@ std::vector<double> emulator_shares(const Emulators& m);
 BondPoint posterior_estimate(const Emulators& m, const CalibrationCampaign& c);
 
 // Whether p lies in the summary's credible region (one of its cells on the log box).
-bool in_credible_region(const PosteriorSummary& s, const BondPoint& p,
-                        const CalibrationCampaign& c);
+bool in_credible_region(const PosteriorSummary& s, const BondPoint& p);
 
 PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int rounds);
 

@@ -122,8 +122,12 @@ std::optional<Suggestion> next_test(const Emulators& m,
     t.slope = diff / length;
     // Resolved only against the scatter: one packing's sd in ln from the targets' runs when the
     // probes have no standard error.
-    const double se_a = a.se ? *a.se / *a.mean : std::sqrt(m.run_noise[0] + m.run_noise[1]);
-    const double se_b = b.se ? *b.se / *b.mean : std::sqrt(m.run_noise[0] + m.run_noise[1]);
+    const auto scatter = [&](int e) {
+      return std::sqrt(inference::run_noise_at(m.uct.hyper, ends[e]) +
+                       inference::run_noise_at(m.btt.hyper, ends[e]));
+    };
+    const double se_a = a.se ? *a.se / *a.mean : scatter(0);
+    const double se_b = b.se ? *b.se / *b.mean : scatter(1);
     t.resolved = std::abs(diff) > 2 * std::hypot(se_a, se_b);
     measured.push_back(t);
   }

@@ -52,8 +52,12 @@ struct PosteriorSummary {
   // The marginal intervals with the emulators exact: the narrowest more runs can make them at the
   // targets' stated uncertainty (inference::with_exact_emulators).
   Range fr0_exact{0, 0}, fs0_exact{0, 0};
-  int grid_cells = 0;                       // per dimension; the grid spans the log bounds
-  Range grid_fr0{0, 0}, grid_fs0{0, 0};     // those bounds (the fine specimen's when fine)
+  // The strength bounds (the fine specimen's when fine) and the grid the region is drawn on:
+  // grid_cells per dimension, log-spaced over where the posterior's mass lies within the bounds
+  // (inference::zoomed_grid).
+  Range box_fr0{0, 0}, box_fs0{0, 0};
+  int grid_cells = 0;
+  Range grid_fr0{0, 0}, grid_fs0{0, 0};
   std::vector<RegionSpan> region;           // the highest-density cells holding `level`
   std::vector<std::string> bounds_reached;  // e.g. "the upper bound of F_s0 (1000)"
   PredictedLoad uct, btt;

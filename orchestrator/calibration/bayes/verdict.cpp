@@ -74,16 +74,16 @@ std::string failed_check_text(const PosteriorSummary& p) {
                              : "");
 }
 
-// The bound the estimate itself lies at (within two of the grid's cells), as bounds_reached words
-// it; empty when the estimate lies inside. A region that reaches a bound only because it is wide
-// (its emulators unsure, a few fine runs on it) does not press on it: its targets are met or
-// missed inside the box, and widening the bounds would change nothing.
+// The bound the estimate itself lies at (within two cells of a grid of grid_cells over the
+// bounds), as bounds_reached words it; empty when the estimate lies inside. A region that reaches a
+// bound only because it is wide (its emulators unsure, a few fine runs on it) does not press on it:
+// its targets are met or missed inside the box, and widening the bounds would change nothing.
 std::string bound_pressed(const PosteriorSummary& p) {
   if (p.grid_cells <= 0) return "";
   const double margin = 2.0 / p.grid_cells;
   const double at[] = {p.estimate.fr0_n, p.estimate.fs0_n};
   for (int k = 0; k < 2; ++k) {
-    const Range& r = k == 0 ? p.grid_fr0 : p.grid_fs0;
+    const Range& r = k == 0 ? p.box_fr0 : p.box_fs0;
     if (!(r.lo > 0 && r.hi > r.lo && at[k] > 0)) continue;
     const double u = std::log(at[k] / r.lo) / std::log(r.hi / r.lo);
     if (u < margin) return bound_text(k, false, r);

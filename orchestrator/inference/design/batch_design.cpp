@@ -10,22 +10,22 @@
 namespace rockcal::inference {
 namespace {
 
-// One target's emulator with the pending runs added as observations of noise tau^2, one run's
-// variance (their values do not enter the variance).
+// One target's emulator with the pending runs added as observations of one run's variance at
+// their points (their values do not enter the variance).
 struct Conditioned {
   Eigen::MatrixXd x;  // training rows then pending rows
   Eigen::LLT<Eigen::MatrixXd> chol;
 };
 
-Conditioned condition(const Gp& gp, const Eigen::MatrixXd& pending, double tau2) {
+Conditioned condition(const Gp& gp, const Eigen::MatrixXd& pending) {
   Conditioned c{Eigen::MatrixXd(gp.data.x.rows() + pending.rows(), gp.data.x.cols()), {}};
   c.x << gp.data.x, pending;
   Eigen::MatrixXd k = cross_covariance(gp, c.x, c.x);
   const int n = int(gp.data.x.rows());
   for (int i = 0; i < c.x.rows(); ++i) {
     const double runs = i < n && gp.data.runs.size() ? gp.data.runs(i) : 1.0;
-    k(i, i) += (i < n ? gp.data.noise_var(i) + gp.hyper.nugget / runs : tau2) +
-               1e-10 * gp.hyper.signal_var;
+    k(i, i) += (i < n ? gp.data.noise_var(i) : 0.0) +
+               run_noise_at(gp.hyper, c.x.row(i).transpose()) / runs + 1e-10 * gp.hyper.signal_var;
   }
   c.chol.compute(k);
   return c;
@@ -34,9 +34,8 @@ Conditioned condition(const Gp& gp, const Eigen::MatrixXd& pending, double tau2)
 }  // namespace
 
 std::vector<DesignChoice> choose_batch(const DesignInput& in) {
-  if (!in.posterior || in.emulators.size() != in.targets.size() ||
-      in.run_noise.size() != in.targets.size() || in.candidates.rows() == 0)
-    throw std::invalid_argument("design: emulators, targets, noise and candidates must agree");
+  if (!in.posterior || in.emulators.size() != in.targets.size() || in.candidates.rows() == 0)
+    throw std::invalid_argument("design: emulators, targets and candidates must agree");
   const PosteriorGrid& post = *in.posterior;
   const std::vector<int> ref = densest_cells(post, in.reference_cells);
   Eigen::MatrixXd g(ref.size(), post.dims);
@@ -55,7 +54,7 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
     Eigen::VectorXd score = Eigen::VectorXd::Zero(c);
     for (std::size_t j = 0; j < in.emulators.size(); ++j) {
       const Gp& gp = *in.emulators[j];
-      const Conditioned cond = condition(gp, pending, in.run_noise[j]);
+      const Conditioned cond = condition(gp, pending);
       const Eigen::MatrixXd kxg = cross_covariance(gp, cond.x, g);              // n x m
       const Eigen::MatrixXd kxc = cross_covariance(gp, cond.x, in.candidates);  // n x c
       const Eigen::MatrixXd a = cond.chol.solve(kxg);
@@ -71,7 +70,8 @@ std::vector<DesignChoice> choose_batch(const DesignInput& in) {
       // Weight of a variance reduction at reference cell r: w_r / (lab + var_r).
       const Eigen::VectorXd weight = w.array() / (lab + var_g.array());
       for (int k = 0; k < c; ++k) {
-        score(k) += weight.dot(cov.col(k).cwiseAbs2()) / (var_c(k) + in.run_noise[j]);
+        const double tau2 = run_noise_at(gp.hyper, in.candidates.row(k).transpose());
+        score(k) += weight.dot(cov.col(k).cwiseAbs2()) / (var_c(k) + tau2);
       }
     }
     // A run where runs end without a result teaches the emulators nothing: its worth is its

@@ -1,8 +1,8 @@
 // Where to run next: a batch of runs chosen where they most shrink the posterior.
 //
 // Why: the runs are the campaign's cost, and a run is worth what it removes from the answer's
-// uncertainty. A run at c with one run's noise tau_j^2 lowers emulator j's variance at x by
-// cov_j(x, c)^2 / (var_j(c) + tau_j^2); what that does to the posterior at x depends on how much
+// uncertainty. A run at c with one run's noise tau_j^2(c) lowers emulator j's variance at x by
+// cov_j(x, c)^2 / (var_j(c) + tau_j^2(c)); what that does to the posterior at x depends on how much
 // of the likelihood's variance the emulator holds there, var_j(x) / (sd_j^2 + var_j(x)). The value
 // of c is that shrinkage summed over the targets and weighted by the posterior. Runs are picked
 // one at a time, each picked run joining the pending ones (its variance reduction known before its
@@ -22,7 +22,6 @@ namespace rockcal::inference {
 struct DesignInput {
   std::vector<const Gp*> emulators;  // one per target, at their fitted hyperparameters
   std::vector<Target> targets;
-  std::vector<double> run_noise;  // per target: the variance of one more run
   const PosteriorGrid* posterior = nullptr;
   Eigen::MatrixXd candidates;  // c x d: where a run may go (new and existing points)
   Eigen::MatrixXd pending;     // p x d: runs submitted whose values are not yet known

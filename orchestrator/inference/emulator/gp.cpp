@@ -61,6 +61,19 @@ double within_log_likelihood(const GpData& d, double nugget) {
   return ll;
 }
 
+// The restricted likelihood's within-point term for a noise trend: each point's runs about their
+// mean with the point's own variance (no trend: the one nugget, as within_log_likelihood).
+double within_log_likelihood(const GpData& d, const GpHyper& hyper) {
+  if (hyper.noise_slope.size() == 0) return within_log_likelihood(d, hyper.nugget);
+  double ll = 0.0;
+  for (Eigen::Index i = 0; i < d.within_ss.size(); ++i) {
+    const double dof = d.runs(i) - 1.0;
+    const double v = run_noise_at(hyper, d.x.row(i).transpose());
+    if (dof > 0) ll -= 0.5 * (dof * std::log(2.0 * std::numbers::pi * v) + d.within_ss(i) / v);
+  }
+  return ll;
+}
+
 // Factorises at `hyper`; returns false when K is not positive definite.
 bool factorise(Gp& gp) {
   const GpData& d = gp.data;
@@ -68,7 +81,8 @@ bool factorise(Gp& gp) {
   Eigen::MatrixXd k = cross_covariance(gp, d.x, d.x);
   for (int i = 0; i < n; ++i) {
     const double runs = d.runs.size() ? d.runs(i) : 1.0;
-    k(i, i) += d.noise_var(i) + gp.hyper.nugget / runs + 1e-10 * gp.hyper.signal_var;
+    k(i, i) += d.noise_var(i) + run_noise_at(gp.hyper, d.x.row(i).transpose()) / runs +
+               1e-10 * gp.hyper.signal_var;
   }
   gp.chol.compute(k);
   if (gp.chol.info() != Eigen::Success) return false;
@@ -88,29 +102,38 @@ bool factorise(Gp& gp) {
   const int p = gp.trend_terms;
   gp.log_likelihood = -0.5 * (r.dot(gp.alpha) + log_det_k + log_det_hkh +
                               (n - p) * std::log(2.0 * std::numbers::pi)) +
-                      within_log_likelihood(d, gp.hyper.nugget);
+                      within_log_likelihood(d, gp.hyper);
   return std::isfinite(gp.log_likelihood);
 }
 
 struct Search {
   Gp* gp;
   int dims;
+  double slope_prior_sd;
 };
 
-// theta = (ln length_1..d, ln signal_var, ln nugget)
+// theta = (ln length_1..d, ln signal_var, ln nugget[, noise slope_1..d])
 double negative_likelihood(unsigned, const double* theta, double*, void* data) {
   auto* s = static_cast<Search*>(data);
-  for (int k = 0; k < s->dims; ++k) s->gp->hyper.length(k) = std::exp(theta[k]);
-  s->gp->hyper.signal_var = std::exp(theta[s->dims]);
-  s->gp->hyper.nugget = std::exp(theta[s->dims + 1]);
+  GpHyper& h = s->gp->hyper;
+  for (int k = 0; k < s->dims; ++k) h.length(k) = std::exp(theta[k]);
+  h.signal_var = std::exp(theta[s->dims]);
+  h.nugget = std::exp(theta[s->dims + 1]);
+  double prior = 0.0;
+  for (int k = 0; k < int(h.noise_slope.size()); ++k) {
+    h.noise_slope(k) = theta[s->dims + 2 + k];
+    prior += 0.5 * std::pow(h.noise_slope(k) / s->slope_prior_sd, 2);
+  }
   if (!factorise(*s->gp)) return 1e30;
-  return -s->gp->log_likelihood;
+  return -s->gp->log_likelihood + prior;
 }
 
 }  // namespace
 
 Gp condition_gp(GpData data, const GpHyper& hyper) {
   check(data);
+  if (hyper.noise_slope.size() != 0 && hyper.noise_slope.size() != data.x.cols())
+    throw std::invalid_argument("emulator: noise_slope must have one entry per dimension or none");
   Gp gp;
   gp.trend_terms = trend_terms_for(data);
   gp.data = std::move(data);
@@ -141,9 +164,15 @@ Gp fit_gp(GpData data, const GpOptions& options) {
   hi.push_back(std::log(1e2 * spread));
   lo.push_back(std::log(options.min_nugget));
   hi.push_back(std::log(10 * spread));
+  const int slopes = options.noise_trend ? dims : 0;
+  gp.hyper.noise_slope = Eigen::VectorXd::Zero(slopes);
+  for (int k = 0; k < slopes; ++k) {
+    lo.push_back(-options.max_noise_slope);
+    hi.push_back(options.max_noise_slope);
+  }
 
-  Search search{&gp, dims};
-  nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(dims + 2));
+  Search search{&gp, dims, options.noise_slope_prior_sd};
+  nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(dims + 2 + slopes));
   opt.set_lower_bounds(lo);
   opt.set_upper_bounds(hi);
   opt.set_min_objective(negative_likelihood, &search);
@@ -153,7 +182,7 @@ Gp fit_gp(GpData data, const GpOptions& options) {
   std::vector<double> best_theta;
   const double starts[] = {0.5, 0.2, 1.5, 4.0};
   for (int s = 0; s <= std::min(options.restarts, 3); ++s) {
-    std::vector<double> theta(dims + 2);
+    std::vector<double> theta(dims + 2 + slopes, 0.0);
     for (int k = 0; k < dims; ++k) theta[k] = std::clamp(std::log(starts[s]), lo[k], hi[k]);
     theta[dims] = std::log(spread);
     theta[dims + 1] = std::clamp(std::log(1e-2 * spread), lo[dims + 1], hi[dims + 1]);
@@ -169,6 +198,12 @@ Gp fit_gp(GpData data, const GpOptions& options) {
     throw std::runtime_error("emulator: no hyperparameters give a positive-definite covariance");
   negative_likelihood(0, best_theta.data(), nullptr, &search);
   return gp;
+}
+
+double run_noise_at(const GpHyper& hyper, const Eigen::VectorXd& x) {
+  if (hyper.noise_slope.size() == 0) return hyper.nugget;
+  return hyper.nugget *
+         std::exp(hyper.noise_slope.dot(x - Eigen::VectorXd::Constant(x.size(), 0.5)));
 }
 
 Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {

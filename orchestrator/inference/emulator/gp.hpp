@@ -10,14 +10,19 @@
 //          the loads in the strengths (ln load ~ a + sum_k p_k ln F_k), fitted by generalised least
 //          squares and its uncertainty carried into the predictive variance;
 //   f ~ GP(0, s2 * Matern52_ARD(x, x'; lengths)): the departure from it;
-//   noise_i ~ N(0, noise_var_i + nugget / runs_i): the nugget is one run's scatter (the
-//          packings' scatter), over the point's number of runs (a point of many realisations is
-//          known better); noise_var_i a known extra variance of the point (0 for the calibration's
-//          runs).
-// Hyperparameters (lengths, s2, nugget) maximise the restricted likelihood (NLopt, bounded) of
-// the points' means, times, when the data carry within_ss, that of each point's runs about their
-// mean, which depends on the nugget alone (within_ss_i ~ nugget chi^2 with runs_i - 1 degrees of
-// freedom).
+//   noise_i ~ N(0, noise_var_i + nugget(x_i) / runs_i): nugget(x) is one run's scatter (the
+//          packings' scatter) at x, over the point's number of runs (a point of many realisations
+//          is known better); noise_var_i a known extra variance of the point (0 for the
+//          calibration's runs).
+// The scatter is not one number for the box: a bonded specimen whose shear bonds are the weaker
+// fails along them in nearly the same way on every packing (a UCT's ln load scatters by about 2%
+// where F_s0 < F_r0 against 10% beyond), so with GpOptions::noise_trend ln nugget(x) is linear in
+// x, ln nugget(x) = ln nugget + slope . (x - 0.5): one run's variance at the box's centre and how
+// it changes across the box (a heteroscedastic GP with a log-linear noise model). A Gaussian prior
+// on the slope keeps it near 0 where the runs do not show a change. Hyperparameters (lengths, s2,
+// nugget, slope) maximise the restricted likelihood (NLopt, bounded) of the points' means, times,
+// when the data carry within_ss, that of each point's runs about their mean, which depends on the
+// nugget alone (within_ss_i ~ nugget chi^2 with runs_i - 1 degrees of freedom).
 #pragma once
 
 #include <memory>
@@ -42,8 +47,13 @@ struct GpData {
 struct GpHyper {
   Eigen::VectorXd length;  // d correlation lengths, in units of the box
   double signal_var = 1.0;
-  double nugget = 1e-6;  // one run's noise variance
+  double nugget = 1e-6;  // one run's noise variance (at the box's centre when noise_slope is set)
+  // d: d ln nugget / dx (GpOptions::noise_trend); empty: one run's variance is the nugget anywhere.
+  Eigen::VectorXd noise_slope;
 };
+
+// One run's noise variance at x: nugget * exp(noise_slope . (x - 0.5)).
+double run_noise_at(const GpHyper& hyper, const Eigen::VectorXd& x);
 
 struct GpOptions {
   double min_length = 0.2;  // shorter chases the runs' scatter as if it were signal
@@ -59,6 +69,11 @@ struct GpOptions {
   // few replicates' spread (4 degrees of freedom after 14 runs) pulled the nugget down by chance
   // and a formula twin's search stopped sure of a region its check runs then contradicted (z 4.9).
   bool replicate_spread = false;
+  // One run's scatter changes across the box (log-linear in x, see the model above); off: one
+  // nugget for the box (the discrepancy emulator's few points cannot tell a slope).
+  bool noise_trend = false;
+  double max_noise_slope = 5.0;       // |d ln nugget / dx| per axis: e^5 = 150 across the box
+  double noise_slope_prior_sd = 2.0;  // a run's variance 7x apart across the box is 1 sd
 };
 
 struct Prediction {

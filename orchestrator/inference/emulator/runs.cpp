@@ -24,8 +24,4 @@ GpData gp_data(const std::vector<PointRuns>& points) {
   return d;
 }
 
-double per_run_noise(const Gp& gp) {
-  return gp.hyper.nugget;
-}
-
 }  // namespace rockcal::inference

@@ -56,10 +56,17 @@ int default_cells_per_dim(int dims) {
   }
 }
 
+double cell_edge(const PosteriorGrid& grid, int k, double i) {
+  const double lo = grid.lo.size() ? grid.lo(k) : 0.0, hi = grid.hi.size() ? grid.hi(k) : 1.0;
+  return lo + (hi - lo) * i / grid.per_dim;
+}
+
 int cell_of(const PosteriorGrid& grid, const Eigen::VectorXd& x) {
   int cell = 0, stride = 1;
   for (int k = 0; k < grid.dims; ++k) {
-    const int i = std::clamp(int(std::floor(x(k) * grid.per_dim)), 0, grid.per_dim - 1);
+    const double lo = cell_edge(grid, k, 0), hi = cell_edge(grid, k, grid.per_dim);
+    const double f = std::isfinite(x(k)) ? (x(k) - lo) / (hi - lo) : 0.0;
+    const int i = int(std::clamp(std::floor(f * grid.per_dim), 0.0, double(grid.per_dim - 1)));
     cell += i * stride;
     stride *= grid.per_dim;
   }
@@ -76,18 +83,24 @@ std::vector<int> cell_indices(const PosteriorGrid& grid, int cell) {
 }
 
 PosteriorGrid posterior_on_grid(const std::vector<const Gp*>& emulators,
-                                const std::vector<Target>& targets, int per_dim) {
+                                const std::vector<Target>& targets, int per_dim,
+                                const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
   check(emulators, targets);
   PosteriorGrid g;
   g.dims = int(emulators.front()->data.x.cols());
   if (g.dims > 3) throw std::invalid_argument("posterior: at most 3 parameters on a grid");
   g.per_dim = per_dim > 0 ? per_dim : default_cells_per_dim(g.dims);
+  g.lo = lo.size() ? lo : Eigen::VectorXd::Zero(g.dims);
+  g.hi = hi.size() ? hi : Eigen::VectorXd::Ones(g.dims);
+  if (g.lo.size() != g.dims || g.hi.size() != g.dims || !(g.lo.array() >= 0).all() ||
+      !(g.hi.array() <= 1).all() || !(g.lo.array() < g.hi.array()).all())
+    throw std::invalid_argument("posterior: the grid's span must lie inside the unit box");
   int cells = 1;
   for (int k = 0; k < g.dims; ++k) cells *= g.per_dim;
   g.points.resize(cells, g.dims);
   for (int c = 0; c < cells; ++c) {
     const std::vector<int> idx = cell_indices(g, c);
-    for (int k = 0; k < g.dims; ++k) g.points(c, k) = (idx[k] + 0.5) / g.per_dim;
+    for (int k = 0; k < g.dims; ++k) g.points(c, k) = cell_edge(g, k, idx[k] + 0.5);
   }
   const int n_targets = int(targets.size());
   g.mean.resize(cells, n_targets);

@@ -25,6 +25,9 @@ struct Target {
 struct PosteriorGrid {
   int dims = 0;
   int per_dim = 0;
+  // The part of the unit box the cells span, per dimension: the whole box, or where the mass of
+  // a coarser grid lies (zoomed_grid in region.hpp).
+  Eigen::VectorXd lo, hi;
   Eigen::MatrixXd points;       // cells x dims: the cell centres
   Eigen::VectorXd log_density;  // unnormalised
   Eigen::VectorXd weight;       // normalised to sum 1
@@ -38,9 +41,14 @@ struct PosteriorGrid {
 // Cells per dimension that keep the grid near 10^4 cells: 100 in 1-D, 81 in 2-D, 25 in 3-D.
 int default_cells_per_dim(int dims);
 
-// Throws std::invalid_argument when emulators and targets differ in number or dimension.
+// Throws std::invalid_argument when emulators and targets differ in number or dimension. `lo`,
+// `hi`: the span of the cells in the unit box (empty: the whole box).
 PosteriorGrid posterior_on_grid(const std::vector<const Gp*>& emulators,
-                                const std::vector<Target>& targets, int per_dim = 0);
+                                const std::vector<Target>& targets, int per_dim = 0,
+                                const Eigen::VectorXd& lo = {}, const Eigen::VectorXd& hi = {});
+
+// Where the grid's cell edge i (0 .. per_dim) of dimension k lies in the unit box.
+double cell_edge(const PosteriorGrid& grid, int k, double i);
 
 // The same posterior with every emulator's variance set to zero: what the targets' own uncertainty
 // and the stated discrepancy allow if the emulators' means were exact. Its region is the narrowest
@@ -54,7 +62,7 @@ void reweigh(PosteriorGrid& grid, const std::vector<Target>& targets);
 double log_density(const std::vector<const Gp*>& emulators, const std::vector<Target>& targets,
                    const Eigen::VectorXd& x);
 
-// The cell that holds x (the unit box; outside it, the nearest cell).
+// The cell that holds x (outside the grid's span, the nearest cell).
 int cell_of(const PosteriorGrid& grid, const Eigen::VectorXd& x);
 
 // The index of cell (i_1, ..., i_d) and back.

@@ -19,11 +19,11 @@ std::pair<double, double> marginal(const PosteriorGrid& grid, int dim, double le
     for (int i = 0; i < grid.per_dim; ++i) {
       if (cum + mass[i] >= q) {  // linear within the cell
         const double f = mass[i] > 0 ? (q - cum) / mass[i] : 0.0;
-        return (i + f) / grid.per_dim;
+        return cell_edge(grid, dim, i + f);
       }
       cum += mass[i];
     }
-    return 1.0;
+    return cell_edge(grid, dim, grid.per_dim);
   };
   return {edge(tail), edge(1.0 - tail)};
 }
@@ -65,10 +65,11 @@ Region credible_region(const PosteriorGrid& grid, double level) {
   for (int c : r.cells) {
     const std::vector<int> idx = cell_indices(grid, c);
     for (int k = 0; k < grid.dims; ++k) {
-      r.lo(k) = std::min(r.lo(k), double(idx[k]) / grid.per_dim);
-      r.hi(k) = std::max(r.hi(k), double(idx[k] + 1) / grid.per_dim);
-      if (idx[k] == 0) r.at_lower[k] = true;
-      if (idx[k] == grid.per_dim - 1) r.at_upper[k] = true;
+      r.lo(k) = std::min(r.lo(k), cell_edge(grid, k, idx[k]));
+      r.hi(k) = std::max(r.hi(k), cell_edge(grid, k, idx[k] + 1));
+      if (idx[k] == 0 && cell_edge(grid, k, 0) <= 0.0) r.at_lower[k] = true;
+      if (idx[k] == grid.per_dim - 1 && cell_edge(grid, k, grid.per_dim) >= 1.0)
+        r.at_upper[k] = true;
     }
   }
   r.marginal_lo.resize(grid.dims);
@@ -78,8 +79,29 @@ Region credible_region(const PosteriorGrid& grid, double level) {
     r.marginal_lo(k) = lo;
     r.marginal_hi(k) = hi;
   }
-  r.mass_fraction_of_box = double(r.cells.size()) / double(grid.weight.size());
+  double span = 1.0;
+  for (int k = 0; k < grid.dims; ++k)
+    span *= cell_edge(grid, k, grid.per_dim) - cell_edge(grid, k, 0);
+  r.mass_fraction_of_box = span * double(r.cells.size()) / double(grid.weight.size());
   return r;
+}
+
+PosteriorGrid zoomed_grid(const PosteriorGrid& grid, const std::vector<const Gp*>& emulators,
+                          const std::vector<Target>& targets, double mass) {
+  Eigen::VectorXd lo = Eigen::VectorXd::Constant(grid.dims, 1.0);
+  Eigen::VectorXd hi = Eigen::VectorXd::Zero(grid.dims);
+  for (int c : credible_region(grid, mass).cells) {
+    const std::vector<int> idx = cell_indices(grid, c);
+    for (int k = 0; k < grid.dims; ++k) {
+      lo(k) = std::min(lo(k), cell_edge(grid, k, idx[k] - 1));
+      hi(k) = std::max(hi(k), cell_edge(grid, k, idx[k] + 2));
+    }
+  }
+  for (int k = 0; k < grid.dims; ++k) {
+    lo(k) = std::max(lo(k), cell_edge(grid, k, 0));
+    hi(k) = std::min(hi(k), cell_edge(grid, k, grid.per_dim));
+  }
+  return posterior_on_grid(emulators, targets, grid.per_dim, lo, hi);
 }
 
 Eigen::VectorXd density_peak(const PosteriorGrid& grid, const std::vector<const Gp*>& emulators,
@@ -89,8 +111,9 @@ Eigen::VectorXd density_peak(const PosteriorGrid& grid, const std::vector<const 
   std::vector<double> x(grid.dims), lo(grid.dims), hi(grid.dims);
   for (int k = 0; k < grid.dims; ++k) {
     x[k] = grid.points(best, k);
-    lo[k] = std::max(0.0, x[k] - 1.0 / grid.per_dim);
-    hi[k] = std::min(1.0, x[k] + 1.0 / grid.per_dim);
+    const double width = cell_edge(grid, k, 1) - cell_edge(grid, k, 0);
+    lo[k] = std::max(0.0, x[k] - width);
+    hi[k] = std::min(1.0, x[k] + width);
   }
   PeakSearch search{&emulators, &targets};
   nlopt::opt opt(grid.dims == 1 ? nlopt::LN_COBYLA : nlopt::LN_BOBYQA, unsigned(grid.dims));
