@@ -189,7 +189,9 @@ void expect_honest(const Coverage& c, int count, bool upper = true) {
   EXPECT_EQ(c.twins, count);
   const double coverage = double(c.inside) / count;
   EXPECT_GE(coverage, 0.80) << c.inside << " of " << count;
-  if (upper) EXPECT_LE(coverage, 0.97) << c.inside << " of " << count;
+  if (upper) {
+    EXPECT_LE(coverage, 0.97) << c.inside << " of " << count;
+  }
   EXPECT_GE(c.feasible, count / 2);
   // The check runs test the prediction at its 99% level: with honest emulators few disagree.
   EXPECT_EQ(c.checked, 2 * count);

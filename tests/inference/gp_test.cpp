@@ -195,6 +195,16 @@ TEST(Emulator, BadDataAreRefused) {
   spread.runs.resize(0);
   spread.within_ss = Eigen::VectorXd::Zero(5);
   EXPECT_EQ(message(spread), "emulator: within_ss needs the points' runs");
+  // A noise slope whose length is not the data's dimension.
+  GpHyper slope = fit_gp(d).hyper;
+  slope.noise_slope = Eigen::VectorXd::Zero(3);
+  try {
+    condition_gp(d, slope);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "emulator: noise_slope must have one entry per dimension or none");
+  }
 }
 
 }  // namespace

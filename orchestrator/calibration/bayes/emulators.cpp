@@ -159,12 +159,18 @@ inference::FeasibilitySettings feasibility_settings(const CalibrationCampaign& c
 // still has one.
 constexpr double kFineOutcomeReach = 0.1;
 
+// Where runs ended without a peak, the grid's posterior weighed by the runs' outcomes.
+void weigh_by_outcomes(inference::PosteriorGrid& grid, const Emulators& m,
+                       const CalibrationCampaign& c) {
+  if ((m.outcomes.has_value.array() < 0.5).any())
+    inference::apply_feasibility(grid, m.outcomes, m.targets, feasibility_settings(c));
+}
+
 void finish(Emulators& m, inference::RunResults outcomes, const CalibrationCampaign& c) {
   m.targets = inference_targets(c);
   m.grid = inference::posterior_on_grid(m.emulators(), m.targets);
   m.outcomes = std::move(outcomes);
-  if ((m.outcomes.has_value.array() < 0.5).any())
-    inference::apply_feasibility(m.grid, m.outcomes, m.targets, feasibility_settings(c));
+  weigh_by_outcomes(m.grid, m, c);
 }
 
 }  // namespace
@@ -250,8 +256,7 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   const InferenceSettings& s = c.inference;
   // The answer's grid: as fine as the posterior where its mass is (inference::zoomed_grid).
   inference::PosteriorGrid grid = inference::zoomed_grid(m.grid, m.emulators(), m.targets);
-  if ((m.outcomes.has_value.array() < 0.5).any())
-    inference::apply_feasibility(grid, m.outcomes, m.targets, feasibility_settings(c));
+  weigh_by_outcomes(grid, m, c);
   const inference::Region region = inference::credible_region(grid, s.level);
   const Eigen::Vector2d peak = inference::density_peak(grid, m.emulators(), m.targets);
   PosteriorSummary p;

@@ -50,26 +50,15 @@ void check(const GpData& d) {
 }
 
 // The log-likelihood of each point's runs about their mean: sum_i of ln N-chi^2 terms with
-// runs_i - 1 degrees of freedom and variance nugget (the constant in the runs' counts left out).
-double within_log_likelihood(const GpData& d, double nugget) {
-  double ll = 0.0;
-  for (Eigen::Index i = 0; i < d.within_ss.size(); ++i) {
-    const double dof = d.runs(i) - 1.0;
-    if (dof > 0)
-      ll -= 0.5 * (dof * std::log(2.0 * std::numbers::pi * nugget) + d.within_ss(i) / nugget);
-  }
-  return ll;
-}
-
-// The restricted likelihood's within-point term for a noise trend: each point's runs about their
-// mean with the point's own variance (no trend: the one nugget, as within_log_likelihood).
+// runs_i - 1 degrees of freedom and the point's one-run variance (the constant in the runs'
+// counts left out).
 double within_log_likelihood(const GpData& d, const GpHyper& hyper) {
-  if (hyper.noise_slope.size() == 0) return within_log_likelihood(d, hyper.nugget);
   double ll = 0.0;
   for (Eigen::Index i = 0; i < d.within_ss.size(); ++i) {
     const double dof = d.runs(i) - 1.0;
+    if (dof <= 0) continue;
     const double v = run_noise_at(hyper, d.x.row(i).transpose());
-    if (dof > 0) ll -= 0.5 * (dof * std::log(2.0 * std::numbers::pi * v) + d.within_ss(i) / v);
+    ll -= 0.5 * (dof * std::log(2.0 * std::numbers::pi * v) + d.within_ss(i) / v);
   }
   return ll;
 }

@@ -22,7 +22,7 @@
 // on the slope keeps it near 0 where the runs do not show a change. Hyperparameters (lengths, s2,
 // nugget, slope) maximise the restricted likelihood (NLopt, bounded) of the points' means, times,
 // when the data carry within_ss, that of each point's runs about their mean, which depends on the
-// nugget alone (within_ss_i ~ nugget chi^2 with runs_i - 1 degrees of freedom).
+// noise model alone (within_ss_i ~ nugget(x_i) chi^2 with runs_i - 1 degrees of freedom).
 #pragma once
 
 #include <memory>

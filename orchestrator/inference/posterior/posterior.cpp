@@ -57,8 +57,7 @@ int default_cells_per_dim(int dims) {
 }
 
 double cell_edge(const PosteriorGrid& grid, int k, double i) {
-  const double lo = grid.lo.size() ? grid.lo(k) : 0.0, hi = grid.hi.size() ? grid.hi(k) : 1.0;
-  return lo + (hi - lo) * i / grid.per_dim;
+  return grid.lo(k) + (grid.hi(k) - grid.lo(k)) * i / grid.per_dim;
 }
 
 int cell_of(const PosteriorGrid& grid, const Eigen::VectorXd& x) {
