@@ -24,6 +24,13 @@ identified in >= 80% of >= 5 twins; --twins 15 gives 5 per value). A twin the en
 
 On demand only (tens of minutes on 2 cores); it builds nothing. Writes DIR/results.json (one row
 per twin, with the campaign summary's verdict, gap and candidates) and DIR/matrix.md.
+
+Resumable: with --results FILE (one JSON line per twin, meant to be committed, e.g.
+bench/results/diagnosis_matrix_d20.jsonl) every finished twin is appended as it ends, a twin
+already in the file (same request name, effect, value, seed and resolution) is not run again, and
+the matrix is written over every row of the file, so a long matrix runs in parts. Keep --out
+between the parts: its job store answers the runs the twins share (the local design runs on a
+lattice of the template, docs/diagnosis.md).
 """
 import argparse
 import json
@@ -96,6 +103,9 @@ def main():
                     help="the request's decision.gap_budgets (e.g. the threshold a null run printed)")
     ap.add_argument("--min-evidence", type=float, default=None,
                     help="the request's decision.min_evidence (e.g. the threshold a null run printed)")
+    ap.add_argument("--results", default=None,
+                    help="JSON-lines file of finished twins: appended to, and twins already in it "
+                         "are skipped (resume); the matrix is over all its rows")
     ap.add_argument("--reuse-twins", action="store_true",
                     help="keep twin files already in --out (e.g. a copy of an earlier run's, with its job store)")
     a = ap.parse_args()
@@ -112,6 +122,24 @@ def main():
     # another "job") gets twins of its own resolution.
     template = os.path.join(work, "template.json")
     json.dump(base_request["job"], open(template, "w"), indent=1)
+    request_name = os.path.basename(a.request)
+
+    def key_of(r):
+        return (r.get("request"), r["hidden"], r["value"], r["seed"], r["resolution"])
+
+    done = []
+    if a.results and os.path.exists(a.results):
+        done = [json.loads(line) for line in open(a.results) if line.strip()]
+    done_keys = {key_of(r) for r in done}
+
+    def keep(row):
+        row["request"] = request_name
+        rows.append(row)
+        json.dump(rows, open(os.path.join(work, "results.json"), "w"), indent=1)
+        if a.results:
+            with open(a.results, "a") as f:
+                f.write(json.dumps(row) + "\n")
+
     proc, url = start_server(a.build, work)
     rows = []
     t_all = time.time()
@@ -130,6 +158,9 @@ def main():
                               else VALUES[effect])
                     value = values[k % len(values)]
                     cmd += ["--value", str(value)]
+                if (request_name, effect, value, seed, a.resolution) in done_keys:
+                    print(f"{name:26} in {a.results} already", flush=True)
+                    continue
                 t0 = time.time()
                 truth = twin[:-len(".json")] + ".truth.json"
                 if not (a.reuse_twins and os.path.exists(twin) and os.path.exists(truth)):
@@ -139,10 +170,9 @@ def main():
                         # A twin the engine cannot make (a specimen with no peak) is recorded and
                         # left out of the matrix, never replaced by another seed.
                         why = (made.stderr.strip().splitlines() or ["(no message)"])[-1]
-                        rows.append({"hidden": effect, "value": value, "seed": seed,
-                                     "resolution": a.resolution, "twin_error": why})
+                        keep({"hidden": effect, "value": value, "seed": seed,
+                              "resolution": a.resolution, "twin_error": why})
                         print(f"{name:26} twin could not be made: {why}", flush=True)
-                        json.dump(rows, open(os.path.join(work, "results.json"), "w"), indent=1)
                         continue
                 t_twin = time.time() - t0
                 req = dict(base_request)
@@ -178,14 +208,15 @@ def main():
                     "twin_seconds": round(t_twin, 1), "diagnosis_seconds": round(t_diag, 1),
                     "jobs": c.get("progress", {}).get("total"),
                 }
-                rows.append(row)
+                keep(row)
                 print(f"{name:26} verdict {found:22} G {row['gap_closure']} "
                       f"conf {row['confidence']} twin {t_twin:.0f} s diagnosis {t_diag:.0f} s",
                       flush=True)
-                json.dump(rows, open(os.path.join(work, "results.json"), "w"), indent=1)
     finally:
         proc.send_signal(signal.SIGTERM)
         proc.wait(timeout=60)
+    if a.results:
+        rows = [r for r in done if r.get("request") == request_name] + rows
     write_matrix(rows, work, time.time() - t_all)
 
 
@@ -249,7 +280,9 @@ def write_matrix(rows, work, wall):
               + (f"{statistics.median(g):.2f}" if g else "n/a (none)"),
               f"- median G of the hidden effect's own candidate (verdict or not): "
               + (f"{statistics.median(g_all):.2f}" if g_all else "n/a"),
-              f"- wall time: {wall / 60:.1f} min in all; the first diagnosis "
+              f"- time: {sum(r['twin_seconds'] + r['diagnosis_seconds'] for r in rows) / 3600:.2f} h "
+              f"of twins and diagnoses over these {len(rows)} rows (this part's wall "
+              f"{wall / 60:.1f} min); the first diagnosis "
               f"{rows[0]['diagnosis_seconds']:.0f} s (it runs the grids, unless the job store of "
               f"an earlier run in the same --out has them), the others median "
               f"{statistics.median(r['diagnosis_seconds'] for r in rows[1:] or rows):.0f} s"]

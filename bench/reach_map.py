@@ -15,6 +15,7 @@ nu at the material's K_s/K_r (--nu sets it by eq. 3, as a calibration's start do
   bench/reach_map.py [--build build] [--out runs/reach] [--size 20] [--strength 20]
       [--ratios 0.25,0.5,1,2,4,8] [--factors 1,1.5,1.8] [--seeds 1] [--jobs 1]
       [--packing fcc|random] [--radius-ratio 1.5] [--nu 0.2] [--stiffness-exponent 0]
+      [--coupling 1]
       [--auto-transits 10] [--slow-factor 0.25] [--log FILE]
 
 Prints a markdown table (means over the seeds with a peak): UCT and BTT peak loads, the load
@@ -46,9 +47,14 @@ def job(test, a, s, factor, seed):
                         "past_window": a.past_window,
                         "dt": "auto", "slow_factor": a.slow_factor, "max_strain": 0.1},
             "damping": {"local": 0.7}}
+    effects = {}
     if factor != 1.0:
-        spec["effects"] = {"interaction_range": {"factor": factor,
-                                                 "stiffness_exponent": a.stiffness_exponent}}
+        effects["interaction_range"] = {"factor": factor,
+                                        "stiffness_exponent": a.stiffness_exponent}
+    if a.coupling != 1.0:
+        effects["compression_coupling"] = {"coupling": a.coupling}
+    if effects:
+        spec["effects"] = effects
     return spec
 
 
@@ -73,6 +79,9 @@ def main():
     ap.add_argument("--nu", type=float, default=0.2)
     ap.add_argument("--stiffness-exponent", type=float, default=0.0,
                     help="n: bonds beyond touching get stiffnesses x ((R_i + R_j) / L)^n")
+    ap.add_argument("--coupling", type=float, default=1.0,
+                    help="compression_coupling: eq. 2 takes coupling x a compressive f_r"
+                         " (1 = the seed's signed f_r, 0 = clamped at zero)")
     a = ap.parse_args()
     ratios = [float(x) for x in a.ratios.split(",")]
     factors = [float(x) for x in a.factors.split(",")]
@@ -86,12 +95,14 @@ def main():
         for seed in range(1, a.seeds + 1):
             name = "elastic_d%g_range%g_seed%d" % (a.size, f, seed)
             runs.append(((f, None, "elastic", seed), name, job("elastic", a, 1.0, f, seed)))
-    if a.packing != "fcc" or a.nu != 0.2 or a.stiffness_exponent:
+    if a.packing != "fcc" or a.nu != 0.2 or a.stiffness_exponent or a.coupling != 1.0:
         # the FCC map's run names stay those of its cache
         tag = "_%s%s_nu%g" % (a.packing, "_rr%g" % a.radius_ratio if a.packing == "random" else "",
                               a.nu)
         if a.stiffness_exponent:
             tag += "_n%g" % a.stiffness_exponent
+        if a.coupling != 1.0:
+            tag += "_c%g" % a.coupling
         runs = [(key, name + tag, spec) for key, name, spec in runs]
     results = run_all(a, runs, line_of)
 

@@ -3,6 +3,7 @@
 // held-out data only. Milliseconds per diagnosis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -163,6 +164,66 @@ TEST_P(HiddenEffect, TheLocalDesignFindsItFromFewerRuns) {
                 next.model_points * int(plan_runs(all).runs.size()));
   std::printf("%s at s = %.2f, local design: G = %.3f, %d model points (global grids: %d)\n",
               effect, s, v["gap_closure"].get<double>(), local_runs, global_runs);
+}
+
+// Records every request (model point and numerics) it is asked to run, and runs them on `model`.
+class RecordingEvaluator : public Evaluator {
+ public:
+  explicit RecordingEvaluator(SyntheticModel& model) : model_(model) {}
+  std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override {
+    record(requests);
+    return model_.run_batch(requests);
+  }
+  std::vector<RunOutcome> run_on(std::span<const RunRequest> requests,
+                                 const std::vector<Target>& targets) override {
+    record(requests);
+    return model_.run_on(requests, targets);
+  }
+  bool asked(const RunRequest& r) const {
+    return std::any_of(seen.begin(), seen.end(), [&](const RunRequest& q) {
+      return q.point == r.point && q.numerics == r.numerics;
+    });
+  }
+  std::vector<RunRequest> seen;
+
+ private:
+  void record(std::span<const RunRequest> requests) {
+    seen.insert(seen.end(), requests.begin(), requests.end());
+  }
+  SyntheticModel& model_;
+};
+
+// Focus: the local design's runs are a study of the template, not of one dataset. Two twins on one
+// template whose lab draws differ (another noise seed) fit at nearby strengths; on the design's
+// lattice they ask for the same grid, star, budget, screen and surface runs, so a service's job
+// store answers the second twin's design from the first's, and only its confirmations are new.
+TEST(Diagnosis, TwinsOnOneTemplateShareTheLocalDesignsRuns) {
+  const auto local_twin = [](std::uint64_t seed) {
+    DiagnosisCampaign c = twin_campaign("rate", 0.7, 0.01, seed);
+    c.grid.design = Design::local;
+    c.grid.fr0 = c.grid.fs0 = 3;
+    return c;
+  };
+  const DiagnosisCampaign first = local_twin(7), second = local_twin(8);
+  SyntheticModel model_first(first.targets), model_second(second.targets);
+  RecordingEvaluator runs_first(model_first), runs_second(model_second);
+  const DiagnosisResult a = run_diagnosis(first, runs_first);
+  // The second twin's requests before its confirmations: the design (grid, star, budget, screen,
+  // surfaces); the confirmations run at each candidate's own fit.
+  std::size_t design_runs = 0;
+  DiagnosisOptions options;
+  options.on_progress = [&](const json& p) {
+    if (p["phase"] == "confirm") design_runs = runs_second.seen.size();
+  };
+  const DiagnosisResult b = run_diagnosis(second, runs_second, options);
+  ASSERT_NE(a.candidates[0].calibration.z, b.candidates[0].calibration.z);  // the fits differ
+  EXPECT_EQ(a.weight_budget_point, b.weight_budget_point);  // the budget on one lattice node
+  std::size_t shared = 0;
+  for (std::size_t r = 0; r < design_runs; ++r) shared += runs_first.asked(runs_second.seen[r]);
+  EXPECT_GT(design_runs, 30u);
+  EXPECT_EQ(shared, design_runs);
+  std::printf("second twin: %zu of its %zu requests are the design's, all asked by the first\n",
+              design_runs, runs_second.seen.size());
 }
 
 // An effect that jumps at neutral has no base slice to lean on: its own points must determine a

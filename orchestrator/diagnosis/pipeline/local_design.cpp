@@ -1,15 +1,21 @@
 #include "orchestrator/diagnosis/pipeline/local_design.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rockcal::diagnosis {
-namespace {
 
-std::vector<double> inside(std::span<const double> z, double h) {
+std::vector<double> lattice_point(std::span<const double> z, double h) {
+  // Integer multiples of h, so that two fits near one node give the same doubles (and the same job
+  // identities); the last node whose arm still lies in the box is the largest k with (k + 1) h
+  // <= 1.
+  const long last = std::max(1L, static_cast<long>(std::floor((1.0 - h) / h + 1e-9)));
   std::vector<double> c(z.begin(), z.begin() + 2);
-  for (double& x : c) x = std::clamp(x, h, 1.0 - h);
+  for (double& x : c) x = double(std::clamp(std::lround(x / h), 1L, last)) * h;
   return c;
 }
+
+namespace {
 
 // The base model's fit on its runs so far; the centre of the box without one (the driver then
 // refuses the diagnosis with the base runs' first failure).
@@ -42,7 +48,7 @@ void run_into(std::vector<Samples>& samples, const std::vector<Point>& points,
 }  // namespace
 
 std::vector<std::vector<double>> star(std::span<const double> z, double h) {
-  const std::vector<double> c = inside(z, h);
+  const std::vector<double> c = lattice_point(z, h);
   return {c, {c[0] + h, c[1]}, {c[0] - h, c[1]}, {c[0], c[1] + h}, {c[0], c[1] - h}};
 }
 
@@ -66,7 +72,7 @@ void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
   const double h = c.grid.step;
   samples.resize(1 + c.candidates.size());
   // The fit on grid and star: the star's runs pin the surfaces' slope and curvature there.
-  const std::vector<double> z0 = inside(base_fit(c, samples[0]), h);
+  const std::vector<double> z0 = lattice_point(base_fit(c, samples[0]), h);
   std::vector<Point> effects;
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
     const std::size_t owner = k + 1;

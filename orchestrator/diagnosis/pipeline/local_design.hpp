@@ -17,8 +17,14 @@
 
 namespace rockcal::diagnosis {
 
-// z and its four arms z +- h along each strength axis, the centre moved inwards so every arm lies
-// in the unit square.
+// The node of the lattice of spacing h nearest z (its strength coordinates), kept one step inside
+// the unit square. The local design runs on this lattice, not at the fit itself: fits of different
+// datasets on one template (twins, a lab's repeat) that round to one node ask for the same runs,
+// which the job store then answers once. The surfaces are quadratics through the node's star, so a
+// fit up to h / 2 from it is interpolated, not extrapolated.
+std::vector<double> lattice_point(std::span<const double> z, double h);
+
+// The lattice node nearest z and its four arms +- h along each strength axis.
 std::vector<std::vector<double>> star(std::span<const double> z, double h);
 
 // Two batches, each in parallel on the pool: the base grid; the star at the base fit on it.
