@@ -38,14 +38,8 @@ std::vector<Sphere> specimen_spheres(const JobSpec& spec, std::int64_t* floaters
   if (spec.sample.packing == "random") {
     const RandomPackingParams params{r, spec.sample.radius_ratio, spec.sample.seed};
     const auto dir = default_packing_cache_dir();
-    // The cache holds full discs; a flattened disc is the same packing with its flats cut off,
-    // with the lattice's rule for the surface (a particle pokes out by at most half its radius).
-    out = btt ? cached_random_dense(Disc{disc.diameter_m, disc.thickness_m}, params, dir)
-              : cached_random_dense(cylinder, params, dir);
-    if (btt && std::isfinite(disc.flat_z_m))
-      std::erase_if(out, [&](const Sphere& s) {
-        return std::abs(s.centre.z()) + 0.5 * s.radius > disc.flat_z_m;
-      });
+    // A flattened disc is packed against walls on its flats, so its loaded faces are flat.
+    out = btt ? cached_random_dense(disc, params, dir) : cached_random_dense(cylinder, params, dir);
   } else {
     const LatticePlacement place =
         spec.sample.lattice == "aligned" ? aligned_lattice() : seeded_lattice(spec.sample.seed, r);

@@ -47,7 +47,8 @@ std::string key_of(const Cylinder& s, const RandomPackingParams& p) {
   return key_of("cylinder", s.diameter_m, s.height_m, p);
 }
 std::string key_of(const Disc& s, const RandomPackingParams& p) {
-  return key_of("disc", s.diameter_m, s.thickness_m, p);
+  // The flats are where the packing's walls stood (random_dense.hpp): part of its identity.
+  return key_of("disc", s.diameter_m, s.thickness_m, p) + " flat=" + exact(s.flat_z_m);
 }
 
 fs::path file_for(const std::string& key, const fs::path& dir) {

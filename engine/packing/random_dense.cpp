@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -27,15 +28,17 @@ double nearest_image(double d, double length) {
   return d;
 }
 
-// A cell grid over either a periodic box centred at the origin or the bounding box of the points.
-// Cells are at least `cell_m` wide, so every pair closer than that sits in adjacent cells.
+// A cell grid over either a box centred at the origin, periodic in x and y and optionally in z, or
+// the bounding box of the points. Cells are at least `cell_m` wide, so every pair closer than that
+// sits in adjacent cells. Points outside a box that is not periodic along z count into its edge
+// cells, which is still exact: a pair in cells two apart along z is farther than `cell_m`.
 class CellGrid {
  public:
-  CellGrid(const std::vector<Vec3>& x, double cell_m, const Vec3* periodic_box)
-      : periodic_(periodic_box != nullptr) {
-    if (periodic_) {
-      lo_ = -0.5 * *periodic_box;
-      extent_ = *periodic_box;
+  CellGrid(const std::vector<Vec3>& x, double cell_m, const Vec3* box, bool periodic_z = true)
+      : periodic_{box != nullptr, box != nullptr, box != nullptr && periodic_z} {
+    if (box != nullptr) {
+      lo_ = -0.5 * *box;
+      extent_ = *box;
     } else {
       lo_ = x.empty() ? Vec3::Zero() : x[0];
       Vec3 hi = lo_;
@@ -49,7 +52,7 @@ class CellGrid {
     for (int a = 0; a < 3; ++a) {
       dims_[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(extent_[a] / cell_m));
       // A periodic grid needs three cells a side, or one neighbour cell would be visited twice.
-      if (periodic_ && dims_[a] < 3) throw std::invalid_argument("periodic box too small");
+      if (periodic_[a] && dims_[a] < 3) throw std::invalid_argument("periodic box too small");
     }
     const std::size_t ncell = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
     start_.assign(ncell + 1, 0);
@@ -97,7 +100,7 @@ class CellGrid {
   bool neighbour_cell(std::array<std::int64_t, 3>& n) const {
     for (int a = 0; a < 3; ++a) {
       if (n[a] >= 0 && n[a] < dims_[a]) continue;
-      if (!periodic_) return false;
+      if (!periodic_[a]) return false;
       n[a] = (n[a] + dims_[a]) % dims_[a];
     }
     return true;
@@ -106,19 +109,26 @@ class CellGrid {
     return static_cast<std::size_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
   }
 
-  bool periodic_;
+  std::array<bool, 3> periodic_;
   Vec3 lo_, extent_;
   std::array<std::int64_t, 3> dims_;
   std::vector<std::int32_t> start_, members_;
   std::vector<std::int64_t> home_;
 };
 
-// A periodic assembly: centres in a box centred at the origin, radii s * a_k.
+// A periodic assembly: centres in a box centred at the origin, radii s * a_k. With walls, z is not
+// periodic: two flat walls normal to z confine the cloud instead (box z is then unused).
 struct PeriodicCloud {
   std::vector<Vec3> x;
   std::vector<double> a;
   Vec3 box;
   double s;
+  // Half the gap between the walls in units of the drawn radii (the gap is s times this in the
+  // cloud's coordinates, so it ends at exactly this once the radii are rescaled to s = 1);
+  // infinite for a cloud periodic in z.
+  double wall_half_gap = std::numeric_limits<double>::infinity();
+  bool walled() const { return std::isfinite(wall_half_gap); }
+  int periodic_axes() const { return walled() ? 2 : 3; }
 };
 
 // Frictionless soft spheres (unit stiffness and mass) relaxed by FIRE (Bitzek et al. 2006) while
@@ -173,9 +183,14 @@ class Jammer {
   }
   double max_relative_overlap() { return forces().max_relative_overlap; }
 
+  // From here on the walls stay where they are while the radii shrink, so that shrinking the
+  // radii removes wall overlaps exactly as it does pair overlaps.
+  void freeze_walls() { wall_scale_ = c_.s; }
+
   void wrap_positions() {
     for (Vec3& p : c_.x)
-      for (int a = 0; a < 3; ++a) p[a] -= c_.box[a] * std::floor(p[a] / c_.box[a] + 0.5);
+      for (int a = 0; a < c_.periodic_axes(); ++a)
+        p[a] -= c_.box[a] * std::floor(p[a] / c_.box[a] + 0.5);
   }
 
   long iterations() const { return iterations_; }
@@ -194,16 +209,24 @@ class Jammer {
     std::size_t contacts = 0;
   };
 
+  // Walls at z = +-wall_z(). While compressing they move with the radius scale, so the gap ends at
+  // the specimen's length in radii; the price is that only x and y are compressed, which leaves
+  // the interior contact network a little anisotropic (<n_z^2> about 0.31 against 1/3, measured:
+  // docs/packing.md).
+  double wall_z() const { return c_.wall_half_gap * (wall_scale_ > 0.0 ? wall_scale_ : c_.s); }
+
   void build() {
     wrap_positions();
     pairs_.clear();
     const double cutoff = 2.0 * a_max_ * c_.s + skin_;
-    const CellGrid grid(c_.x, cutoff, &c_.box);
+    Vec3 grid_box = c_.box;
+    if (c_.walled()) grid_box.z() = 2.0 * wall_z();
+    const CellGrid grid(c_.x, cutoff, &grid_box, !c_.walled());
     grid.for_each_candidate(c_.x, [&](std::int32_t i, std::int32_t j) {
       const double sum_a = c_.a[i] + c_.a[j], reach = sum_a * c_.s + skin_;
       const Vec3 d = c_.x[j] - c_.x[i];
-      const Vec3 image(nearest_image(d[0], c_.box[0]), nearest_image(d[1], c_.box[1]),
-                       nearest_image(d[2], c_.box[2]));
+      Vec3 image = d;
+      for (int a = 0; a < c_.periodic_axes(); ++a) image[a] = nearest_image(d[a], c_.box[a]);
       if (image.squaredNorm() < reach * reach) pairs_.push_back({i, j, sum_a, image - d});
     });
     ref_ = c_.x;
@@ -236,8 +259,27 @@ class Jammer {
       l.max_relative_overlap = std::max(l.max_relative_overlap, relative);
       ++l.contacts;
     }
+    if (c_.walled()) add_wall_forces(l);
     for (const Vec3& f : f_) l.force2_sum += f.squaredNorm();
     return l;
+  }
+
+  // The walls are frictionless half-spaces with the spheres' unit stiffness; a wall overlap counts
+  // relative to the sphere's radius, the wall's analogue of a pair's radius sum.
+  void add_wall_forces(Load& l) {
+    const double w = wall_z();
+    for (std::size_t k = 0; k < n_; ++k) {
+      const double r = c_.a[k] * c_.s, z = c_.x[k].z();
+      for (const double side : {-1.0, 1.0}) {
+        const double overlap = r - (w - side * z);  // side +1: the top wall, pushing down
+        if (overlap <= 0.0) continue;
+        f_[k].z() -= side * overlap;
+        l.overlap_sum += overlap;
+        l.relative_overlap_sum += overlap / r;
+        l.max_relative_overlap = std::max(l.max_relative_overlap, overlap / r);
+        ++l.contacts;
+      }
+    }
   }
 
   // One FIRE step (semi-implicit Euler, unit masses) with the forces of the last forces() call.
@@ -273,6 +315,7 @@ class Jammer {
   PeriodicCloud& c_;
   std::size_t n_;
   double a_max_ = 0.0, a_mean_ = 0.0, skin_ = 0.0, s_build_ = 0.0;
+  double wall_scale_ = 0.0;  // the radius scale the walls froze at; 0 while they follow it
   std::vector<Vec3> v_, f_, ref_;
   std::vector<Pair> pairs_;
   double dt_ = 0.1, alpha_ = 0.1;
@@ -290,7 +333,9 @@ constexpr double kStartSolidFraction = 0.3;
 // (the job spec's particle limit keeps real specimens far below).
 constexpr double kMaxCloudParticles = 2.0e7;
 
-PeriodicCloud random_cloud(const Vec3& bounding_box, const RandomPackingParams& p) {
+// `wall_half_gap`: walls at z = +-wall_half_gap (infinite: periodic in z as in x and y).
+PeriodicCloud random_cloud(const Vec3& bounding_box, double wall_half_gap,
+                           const RandomPackingParams& p) {
   if (!(p.mean_radius_m > 0.0) || !(p.radius_ratio >= 1.0))
     throw std::invalid_argument("random packing: need mean radius > 0 and radius ratio >= 1");
   const double r_min = 2.0 * p.mean_radius_m / (1.0 + p.radius_ratio),
@@ -300,9 +345,12 @@ PeriodicCloud random_cloud(const Vec3& bounding_box, const RandomPackingParams& 
                              ? (std::pow(r_max, 4) - std::pow(r_min, 4)) / (4.0 * (r_max - r_min))
                              : std::pow(r_min, 3);
   PeriodicCloud c;
+  c.wall_half_gap = wall_half_gap;
   c.box = bounding_box + Vec3::Constant(2.0 * r_max);
   // Three cells a side of at least 2 r_max plus the skin (see CellGrid).
   c.box = c.box.cwiseMax(Vec3::Constant(3.0 * (2.0 * r_max + 0.5 * p.mean_radius_m)));
+  // Between walls the volume to fill is the wall gap, with no margin: the walls are the faces.
+  if (c.walled()) c.box.z() = 2.0 * wall_half_gap;
   const double count = kExpectedSolidFraction * c.box.prod() / (4.0 / 3.0 * kPi * mean_r3);
   if (!(count <= kMaxCloudParticles))  // also a count that is not a number
     throw std::length_error("random packing of " + std::to_string(count) + " particles (limit " +
@@ -318,7 +366,13 @@ PeriodicCloud random_cloud(const Vec3& bounding_box, const RandomPackingParams& 
     c.a[k] =
         r_min + (r_max - r_min) * (static_cast<double>(k) + uniform01(g)) / static_cast<double>(n);
   }
-  c.s = std::cbrt(kStartSolidFraction / kExpectedSolidFraction);
+  // Walls that move with the radius scale leave only x and y to compress: the solid fraction grows
+  // as s^2 between walls, as s^3 in a fully periodic box.
+  const double start = kStartSolidFraction / kExpectedSolidFraction;
+  c.s = c.walled() ? std::sqrt(start) : std::cbrt(start);
+  // The walls start at +-s wall_half_gap, where the cloud's z positions are drawn.
+  if (c.walled())
+    for (Vec3& x : c.x) x.z() *= c.s;
   return c;
 }
 
@@ -339,7 +393,7 @@ void sort_spatially(PeriodicCloud& c, double cell_m) {
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t i, std::size_t j) { return key[i] < key[j]; });
-  PeriodicCloud sorted{{}, {}, c.box, c.s};
+  PeriodicCloud sorted{{}, {}, c.box, c.s, c.wall_half_gap};
   for (std::size_t k : order) {
     sorted.x.push_back(c.x[k]);
     sorted.a.push_back(c.a[k]);
@@ -359,6 +413,8 @@ void jam(PeriodicCloud& c) {
   j.compress(1e-3, 0.15, 20000);
   // Back off by twice the mean overlap (below jamming) and let the contacts open.
   c.s *= 1.0 - 2.0 * j.mean_relative_overlap();
+  // The walls now stay put: the gap ends wider than asked by the last shrink only, < 1e-4 of it.
+  j.freeze_walls();
   j.relax(1e-4, 2000);
   // Whatever overlap is left, shrinking the scale by the largest relative overlap removes it
   // exactly: each pair's radius sum falls by at least its own overlap.
@@ -374,8 +430,9 @@ void jam(PeriodicCloud& c) {
 std::vector<Sphere> crop(const PeriodicCloud& c,
                          const std::function<bool(const Vec3&, double)>& inside) {
   std::vector<Sphere> out;
+  const int images_z = c.walled() ? 0 : 1;  // walls leave no image beyond them
   for (std::size_t k = 0; k < c.x.size(); ++k)
-    for (int iz = -1; iz <= 1; ++iz)
+    for (int iz = -images_z; iz <= images_z; ++iz)
       for (int iy = -1; iy <= 1; ++iy)
         for (int ix = -1; ix <= 1; ++ix) {
           const Vec3 x = c.x[k] + Vec3(ix * c.box[0], iy * c.box[1], iz * c.box[2]);
@@ -388,30 +445,35 @@ std::vector<Sphere> crop(const PeriodicCloud& c,
 constexpr double kCutTolerance = 0.5;
 
 // Both specimens are right circular cylinders; they differ in the axis (z for the UCT cylinder, y
-// for the BTT disc).
-std::vector<Sphere> packed_cylinder(double diameter_m, double length_m, int axis,
+// for the BTT disc). Both are loaded along z by platens on two planes z = +-flat_z (the cylinder's
+// ends, the disc's flats). A packing cropped there out of a periodic cloud has rough faces, whose
+// few protruding spheres crush under the platens long before the bonds inside fail; so the cloud
+// is jammed between flat walls on those planes, as a specimen packed in a mould is, and the layers
+// that packed against them become the loaded faces. Infinite flat_z (the round disc): no walls.
+std::vector<Sphere> packed_cylinder(double diameter_m, double length_m, int axis, double flat_z,
                                     const RandomPackingParams& p) {
   Vec3 bounding_box = Vec3::Constant(diameter_m);
   bounding_box[axis] = length_m;
-  PeriodicCloud c = random_cloud(bounding_box, p);
+  PeriodicCloud c = random_cloud(bounding_box, flat_z, p);
   jam(c);
   return crop(c, [&](const Vec3& x, double r) {
-    const double rho = 0.5 * diameter_m - (1.0 - kCutTolerance) * r,
-                 half = 0.5 * length_m - (1.0 - kCutTolerance) * r;
+    const double inset = (1.0 - kCutTolerance) * r, rho = 0.5 * diameter_m - inset,
+                 half = 0.5 * length_m - inset;
     Vec3 radial = x;
     radial[axis] = 0.0;
-    return radial.squaredNorm() <= rho * rho && std::abs(x[axis]) <= half;
+    return radial.squaredNorm() <= rho * rho && std::abs(x[axis]) <= half &&
+           std::abs(x.z()) <= flat_z - inset;
   });
 }
 
 }  // namespace
 
 std::vector<Sphere> random_dense_spheres(const Cylinder& s, const RandomPackingParams& p) {
-  return packed_cylinder(s.diameter_m, s.height_m, 2, p);
+  return packed_cylinder(s.diameter_m, s.height_m, 2, 0.5 * s.height_m, p);
 }
 
 std::vector<Sphere> random_dense_spheres(const Disc& s, const RandomPackingParams& p) {
-  return packed_cylinder(s.diameter_m, s.thickness_m, 1, p);
+  return packed_cylinder(s.diameter_m, s.thickness_m, 1, s.flat_z_m, p);
 }
 
 namespace {

@@ -1,9 +1,11 @@
 // Random dense polydisperse sphere packings cut to the specimen shapes (the UCT cylinder and the
 // BTT disc of fcc.hpp). The method, after YADE's randomDensePack: a random cloud in a periodic box
-// is compressed isotropically by frictionless soft-sphere relaxation to the jamming point, then
-// cropped. Frictionless jamming is the densest state such a method reaches without crystallising,
-// and it leaves every non-rattler particle with about 6 touching neighbours, which bonding then
-// picks up.
+// is compressed by frictionless soft-sphere relaxation to the jamming point, then cropped. Along
+// z, the loading axis of every test, the box is closed by two flat walls on the planes of the
+// loaded faces (the cylinder's ends, the flattened disc's flats), as a specimen packed in a mould
+// is, so the platens meet flat faces; the round disc, loaded by jaws, stays periodic. Frictionless
+// jamming is the densest state such a method reaches without crystallising, and it leaves every
+// non-rattler particle with about 6 touching neighbours, which bonding then picks up.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +17,7 @@
 namespace rockcal {
 
 // Bumped whenever the generator's output for the same parameters changes, so caches invalidate.
-inline constexpr int kRandomDenseVersion = 1;
+inline constexpr int kRandomDenseVersion = 2;
 
 struct Sphere {
   Vec3 centre;    // m
@@ -35,7 +37,9 @@ struct PackingStats {
   std::size_t particles;
 };
 
-// Same parameters give bit-identical output on the same machine and build.
+// Same parameters give bit-identical output on the same machine and build. The loaded faces (the
+// cylinder's ends, the disc's flats when flat_z_m is finite) are flat: the cloud is jammed between
+// walls on their planes, so the spheres that touch a face are tangent to its plane.
 std::vector<Sphere> random_dense_spheres(const Cylinder& shape, const RandomPackingParams& p);
 std::vector<Sphere> random_dense_spheres(const Disc& shape, const RandomPackingParams& p);
 
