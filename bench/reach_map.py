@@ -15,7 +15,7 @@ nu at the material's K_s/K_r (--nu sets it by eq. 3, as a calibration's start do
   bench/reach_map.py [--build build] [--out runs/reach] [--size 20] [--strength 20]
       [--ratios 0.25,0.5,1,2,4,8] [--factors 1,1.5,1.8] [--seeds 1] [--jobs 1]
       [--packing fcc|random] [--radius-ratio 1.5] [--nu 0.2] [--stiffness-exponent 0]
-      [--coupling 1]
+      [--coupling 1] [--effect NAME:PARAM=X ...]
       [--auto-transits 10] [--slow-factor 0.25] [--log FILE]
 
 Prints a markdown table (means over the seeds with a peak): UCT and BTT peak loads, the load
@@ -30,7 +30,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "bench", "effects"))
-from engine_runs import add_run_options, run_all  # noqa: E402
+from engine_runs import add_run_options, parse_effect, run_all  # noqa: E402
 
 
 def job(test, a, s, factor, seed):
@@ -44,7 +44,7 @@ def job(test, a, s, factor, seed):
             "bond": {"fr0": a.strength / math.sqrt(s), "fs0": a.strength * math.sqrt(s)},
             "contact": {"friction": 0.6},
             "loading": {"platen_velocity": "auto", "auto_transits": a.auto_transits,
-                        "past_window": a.past_window,
+                        "past_window": a.past_window, "follow_transits": a.follow_transits,
                         "dt": "auto", "slow_factor": a.slow_factor, "max_strain": 0.1},
             "damping": {"local": 0.7}}
     effects = {}
@@ -53,6 +53,8 @@ def job(test, a, s, factor, seed):
                                         "stiffness_exponent": a.stiffness_exponent}
     if a.coupling != 1.0:
         effects["compression_coupling"] = {"coupling": a.coupling}
+    for text in a.effect:
+        effects.update(parse_effect(text)[1])
     if effects:
         spec["effects"] = effects
     return spec
@@ -82,6 +84,10 @@ def main():
     ap.add_argument("--coupling", type=float, default=1.0,
                     help="compression_coupling: eq. 2 takes coupling x a compressive f_r"
                          " (1 = the seed's signed f_r, 0 = clamped at zero)")
+    ap.add_argument("--follow-transits", type=float, default=0.0,
+                    help="loading.follow_transits (0: off), as the rock benchmark's templates use 100")
+    ap.add_argument("--effect", action="append", default=[],
+                    help="another engine effect on every run, NAME:PARAM=X;PARAM=Y (repeatable)")
     a = ap.parse_args()
     ratios = [float(x) for x in a.ratios.split(",")]
     factors = [float(x) for x in a.factors.split(",")]
@@ -95,7 +101,8 @@ def main():
         for seed in range(1, a.seeds + 1):
             name = "elastic_d%g_range%g_seed%d" % (a.size, f, seed)
             runs.append(((f, None, "elastic", seed), name, job("elastic", a, 1.0, f, seed)))
-    if a.packing != "fcc" or a.nu != 0.2 or a.stiffness_exponent or a.coupling != 1.0:
+    if a.packing != "fcc" or a.nu != 0.2 or a.stiffness_exponent or a.coupling != 1.0 or a.effect \
+            or a.follow_transits:
         # the FCC map's run names stay those of its cache
         tag = "_%s%s_nu%g" % (a.packing, "_rr%g" % a.radius_ratio if a.packing == "random" else "",
                               a.nu)
@@ -103,6 +110,10 @@ def main():
             tag += "_n%g" % a.stiffness_exponent
         if a.coupling != 1.0:
             tag += "_c%g" % a.coupling
+        if a.follow_transits:
+            tag += "_follow%g" % a.follow_transits
+        for text in a.effect:
+            tag += "_" + text.replace(":", "_").replace(";", "_").replace("=", "")
         runs = [(key, name + tag, spec) for key, name, spec in runs]
     results = run_all(a, runs, line_of)
 

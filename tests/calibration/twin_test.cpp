@@ -172,7 +172,8 @@ TEST_F(Twin, TheBayesRegionHoldsTheEngineOwnBondStrengths) {
 }
 
 // The stiffness stage on the real engine: a random packing, which eq. 3 does not describe (its
-// packings' mean nu at eq. 3's K_s/K_r for nu 0.3 is 0.50), must meet a nu its K_s/K_r reach
+// packings' mean nu at eq. 3's K_s/K_r for nu 0.24 is 0.19; the stage's smallest K_s/K_r, 0.077,
+// gives 0.247 on this specimen), must meet a nu its K_s/K_r reach
 // within 0.03 and the target E within 5% as means of kStiffnessPackings packings, and leave the
 // evaluator's template at the stiffnesses it reports.
 TEST_F(Twin, TheStiffnessStageMeetsAReachableNuAndTheTargetEOnARandomPacking) {
@@ -187,7 +188,7 @@ TEST_F(Twin, TheStiffnessStageMeetsAReachableNuAndTheTargetEOnARandomPacking) {
                                {{"uct", {{"peak_load", 2000}}},
                                 {"btt", {{"peak_load", 300}}},
                                 {"youngs_modulus", 4000},
-                                {"poisson_ratio", 0.3}}},
+                                {"poisson_ratio", 0.24}}},
                               {"bounds", {{"fr0", {10, 400}}, {"fs0", {10, 400}}}},
                               {"strategy", "bayes"}};
   const CalibrationCampaign c = parse_calibration_campaign(campaign_json);
@@ -200,8 +201,8 @@ TEST_F(Twin, TheStiffnessStageMeetsAReachableNuAndTheTargetEOnARandomPacking) {
   std::printf("stiffness twin: %zu elastic runs, K_r %g, K_s/K_r %g, E %g, nu %g\n%s\n",
               s->runs.size(), s->kr_n_m, s->ks_over_kr, *s->youngs_modulus_pa, *s->poisson_ratio,
               s->why.c_str());
-  EXPECT_NEAR(*s->poisson_ratio, 0.3, kStiffnessNuTolerance);
-  EXPECT_GE(s->runs.size(), 3u);  // eq. 3's start measures a mean nu 0.50: the search moved it
+  EXPECT_NEAR(*s->poisson_ratio, 0.24, kStiffnessNuTolerance);
+  EXPECT_GE(s->runs.size(), 3u);  // eq. 3's start measures a mean nu 0.19: the search moved it
   EXPECT_NEAR(*s->youngs_modulus_pa / 4000, 1.0, kStiffnessETolerance);
   EXPECT_TRUE(stiffness_met(*s));
   EXPECT_DOUBLE_EQ(evaluator.job_template()["material"]["kr"].get<double>(), s->kr_n_m);
