@@ -195,8 +195,8 @@ class RecordingEvaluator : public Evaluator {
 
 // Focus: the local design's runs are a study of the template, not of one dataset. Two twins on one
 // template whose lab draws differ (another noise seed) fit at nearby strengths; on the design's
-// lattice they ask for the same grid, star, budget, screen and surface runs, so a service's job
-// store answers the second twin's design from the first's, and only its confirmations are new.
+// lattice they ask for the same grid, star, budget, screen, surface and next-test runs, so a
+// service's job store answers them from the first's, and only its confirmations are new.
 TEST(Diagnosis, TwinsOnOneTemplateShareTheLocalDesignsRuns) {
   const auto local_twin = [](std::uint64_t seed) {
     DiagnosisCampaign c = twin_campaign("rate", 0.7, 0.01, seed);
@@ -210,16 +210,22 @@ TEST(Diagnosis, TwinsOnOneTemplateShareTheLocalDesignsRuns) {
   const DiagnosisResult a = run_diagnosis(first, runs_first);
   // The second twin's requests before its confirmations: the design (grid, star, budget, screen,
   // surfaces); the confirmations run at each candidate's own fit.
-  std::size_t design_runs = 0;
+  // After them, from the next test's phase on, its runs (at the base fit's node too).
+  std::size_t design_runs = 0, next_test_from = 0;
   DiagnosisOptions options;
   options.on_progress = [&](const json& p) {
     if (p["phase"] == "confirm") design_runs = runs_second.seen.size();
+    if (p["phase"] == "next_test") next_test_from = runs_second.seen.size();
   };
   const DiagnosisResult b = run_diagnosis(second, runs_second, options);
   ASSERT_NE(a.candidates[0].calibration.z, b.candidates[0].calibration.z);  // the fits differ
   EXPECT_EQ(a.weight_budget_point, b.weight_budget_point);  // the budget on one lattice node
   std::size_t shared = 0;
   for (std::size_t r = 0; r < design_runs; ++r) shared += runs_first.asked(runs_second.seen[r]);
+  ASSERT_GT(next_test_from, design_runs);
+  ASSERT_GT(runs_second.seen.size(), next_test_from);
+  for (std::size_t r = next_test_from; r < runs_second.seen.size(); ++r)
+    EXPECT_TRUE(runs_first.asked(runs_second.seen[r])) << "next test run " << r;
   EXPECT_GT(design_runs, 30u);
   EXPECT_EQ(shared, design_runs);
   std::printf("second twin: %zu of its %zu requests are the design's, all asked by the first\n",

@@ -8,6 +8,7 @@
 #include "orchestrator/diagnosis/analysis/identifiability.hpp"
 #include "orchestrator/diagnosis/analysis/screen.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
+#include "orchestrator/diagnosis/pipeline/local_design.hpp"
 
 namespace rockcal::diagnosis {
 namespace {
@@ -84,9 +85,12 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
     return out;
   }
 
-  // The base at its fit and one step along each strength (backwards at the box's upper face).
+  // The base at its fit and one step along each strength (backwards at the box's upper face); in
+  // the local design at the fit's lattice node, so that datasets on one template share the runs.
   const Candidate base;
-  const std::vector<double>& z = r.candidates[0].calibration.z;
+  const std::vector<double>& fit = r.candidates[0].calibration.z;
+  const std::vector<double> z =
+      c.grid.design == Design::local ? lattice_point(fit, c.grid.step) : fit;
   std::vector<double> step(2);
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
   out.point = model_point(c, base, z);
