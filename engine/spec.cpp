@@ -630,7 +630,7 @@ nlohmann::json to_json(const JobSpec& s) {
 
 // Part of every job's identity in the job cache: it changes whenever a spec's results could.
 const char* engine_version() {
-  return "rockcal-dem 0.2.1";
+  return "rockcal-dem 0.2.2";
 }
 
 }  // namespace rockcal
