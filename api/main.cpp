@@ -118,6 +118,8 @@ int main(int argc, char** argv) {
   auto* value = twin->add_option("--value", twin_options.value, "the effect's fitted parameter");
   twin->add_option("--seed", twin_options.seed, "draws the truth bond strengths and the noise")
       ->capture_default_str();
+  twin->add_option("--truth-seed", twin_options.truth_seed,
+                   "draws the truth bond strengths instead of --seed (twins of one truth)");
   twin->add_option("--job", twin_options.job, "job template (default: a tiny demo sample)")
       ->check(CLI::ExistingFile);
   twin->add_option("--noise", twin_options.noise, "lognormal sigma of the lab noise")

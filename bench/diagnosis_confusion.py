@@ -12,7 +12,11 @@ docs/effects.md), seeds 1, 2, 3; the null case with seeds 1, 2, 3.
 
   bench/diagnosis_confusion.py [--build build] [--out DIR] [--effects a,b] [--twins 3] [--values x,y]
                                [--request examples/diagnose_twin.json] [--gap-budgets X]
-                               [--min-evidence X]
+                               [--min-evidence X] [--results F.jsonl] [--truth-seed T]
+
+--truth-seed T: every twin hides the truth strengths of seed T (their packings and lab noise still
+follow their own seeds), so their fits land near one node of the local design's lattice and the
+twins after the first take its design runs from the job store.
 
 Also printed: the evidence threshold (nats of held-out log predictive density over the base
 model, verdict.evidence) that at most 10% of the null twins' best contenders exceed, to be set as
@@ -103,6 +107,10 @@ def main():
                     help="the request's decision.gap_budgets (e.g. the threshold a null run printed)")
     ap.add_argument("--min-evidence", type=float, default=None,
                     help="the request's decision.min_evidence (e.g. the threshold a null run printed)")
+    ap.add_argument("--truth-seed", type=int, default=None,
+                    help="every twin hides the truth of this seed (rockcal twin --truth-seed): "
+                         "their packings and noise still follow their own seed, and they share "
+                         "the design's runs")
     ap.add_argument("--results", default=None,
                     help="JSON-lines file of finished twins: appended to, and twins already in it "
                          "are skipped (resume); the matrix is over all its rows")
@@ -125,7 +133,8 @@ def main():
     request_name = os.path.basename(a.request)
 
     def key_of(r):
-        return (r.get("request"), r["hidden"], r["value"], r["seed"], r["resolution"])
+        return (r.get("request"), r["hidden"], r["value"], r["seed"], r["resolution"],
+                r.get("truth_seed"))
 
     done = []
     if a.results and os.path.exists(a.results):
@@ -134,6 +143,7 @@ def main():
 
     def keep(row):
         row["request"] = request_name
+        row["truth_seed"] = a.truth_seed
         rows.append(row)
         json.dump(rows, open(os.path.join(work, "results.json"), "w"), indent=1)
         if a.results:
@@ -147,18 +157,21 @@ def main():
         for effect in a.effects.split(","):
             for k in range(a.twins):
                 seed = a.first_seed + k
-                name = f"{effect}-{seed}" + (f"-x{a.resolution:g}" if a.resolution != 1 else "")
+                name = (f"{effect}-{seed}" + (f"-x{a.resolution:g}" if a.resolution != 1 else "")
+                        + (f"-t{a.truth_seed}" if a.truth_seed is not None else ""))
                 twin = os.path.join(work, f"twin_{name}.json")
                 cmd = [rockcal, "twin", "--effect", effect, "--seed", str(seed), "--out", twin,
                        "--job", template, "--engine", os.path.join(a.build, "engine", "rockcal-dem"),
                        "--resolution", str(a.resolution)]
+                if a.truth_seed is not None:
+                    cmd += ["--truth-seed", str(a.truth_seed)]
                 value = None
                 if effect != "none":
                     values = ([float(x) for x in a.values.split(",")] if a.values
                               else VALUES[effect])
                     value = values[k % len(values)]
                     cmd += ["--value", str(value)]
-                if (request_name, effect, value, seed, a.resolution) in done_keys:
+                if (request_name, effect, value, seed, a.resolution, a.truth_seed) in done_keys:
                     print(f"{name:26} in {a.results} already", flush=True)
                     continue
                 t0 = time.time()
@@ -216,7 +229,8 @@ def main():
         proc.send_signal(signal.SIGTERM)
         proc.wait(timeout=60)
     if a.results:
-        rows = [r for r in done if r.get("request") == request_name] + rows
+        rows = [r for r in done if r.get("request") == request_name
+                and r.get("truth_seed") == a.truth_seed] + rows
     write_matrix(rows, work, time.time() - t_all)
 
 

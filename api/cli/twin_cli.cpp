@@ -48,6 +48,7 @@ int run_twin(const TwinOptions& o, const std::string& argv0) {
   json request = {{"kind", "twin"},   {"effect", o.effect},         {"seed", o.seed},
                   {"noise", o.noise}, {"resolution", o.resolution}, {"job", read_template(o.job)}};
   if (o.value_given) request["value"] = o.value;
+  if (o.truth_seed) request["truth_seed"] = *o.truth_seed;
   parse_twin_campaign(request);  // a request no twin can be made of fails before any run
   // rockcal-dem runs as an MPI singleton; Open MPI refuses root without these.
   setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);

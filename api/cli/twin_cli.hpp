@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace rockcal::api {
@@ -12,6 +13,7 @@ struct TwinOptions {
   double value = 0.0;  // its params[0]; required unless the effect is "none"
   bool value_given = false;
   std::uint64_t seed = 1;
+  std::optional<std::uint64_t> truth_seed;  // draws the truth instead of seed
   std::string job;  // template file; default: the demo sample (twin_cli.cpp)
   double noise = 0.02;
   double resolution = 1.0;        // > 1: a finer-model twin

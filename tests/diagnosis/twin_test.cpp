@@ -157,6 +157,11 @@ TEST(DiagnosisTwin, TwinCampaignsAreRefusedNamingTheField) {
             "colour: unknown field");
   EXPECT_EQ(refusal({{"kind", "twin"}, {"effect", "none"}, {"seed", -1}}),
             "seed: must be in [0, 9223372036854775807]");
+  EXPECT_EQ(refusal({{"kind", "twin"}, {"effect", "none"}, {"truth_seed", -2}}),
+            "truth_seed: must be in [0, 9223372036854775807]");
+  EXPECT_EQ(parse_twin_campaign({{"kind", "twin"}, {"effect", "none"}, {"truth_seed", 7}})
+                .twin.truth_seed,
+            std::optional<std::uint64_t>(7));
   EXPECT_EQ(refusal({{"kind", "twin"}, {"effect", "none"}, {"resolution", 4}}),
             "resolution: must be in [1, 3] (1 = the template's own)");
   json bad = good;
@@ -208,6 +213,37 @@ TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
   EXPECT_EQ(a.truth["parameter"], "weibull_m");
   EXPECT_EQ(truth_file_for("out/twin.json"), "out/twin.truth.json");
   EXPECT_EQ(truth_file_for("twin.csv"), "twin.truth.json");
+}
+
+// Focus: a truth seed. Twins of one truth seed hide the same bond strengths (a matrix of them
+// shares the model's design runs), while their packings and lab noise still follow their own
+// seed, exactly as without it.
+TEST(DiagnosisTwin, ATruthSeedFixesTheTruthAndLeavesTheNoiseToTheSeed) {
+  const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
+  TwinRequest first{"none", 0, 11, 0.05}, second{"none", 0, 12, 0.05};
+  first.truth_seed = second.truth_seed = 5;
+  std::vector<json> jobs_first, jobs_second;
+  const Twin a = make_twin(d, first, formula_engine(&jobs_first));
+  const Twin b = make_twin(d, second, formula_engine(&jobs_second));
+  const TruthBonds truth = draw_truth_bonds(d.model, 5);
+  EXPECT_EQ(a.truth["fr0"], truth.fr0_n);
+  EXPECT_EQ(b.truth["fr0"], truth.fr0_n);
+  EXPECT_EQ(b.truth["fs0"], truth.fs0_n);
+  EXPECT_EQ(a.truth["truth_seed"], 5);
+  EXPECT_EQ(jobs_first[0]["sample"]["seed"], 1 + kTwinSeedOffset + 11);
+  EXPECT_EQ(jobs_second[0]["sample"]["seed"], 1 + kTwinSeedOffset + 12);
+  // The noise is seed 11's with or without the truth seed: each observation's noise factor
+  // (value over its noise-free value) is the same.
+  const Twin plain = make_twin(d, {"none", 0, 11, 0.05}, formula_engine());
+  EXPECT_TRUE(plain.truth["truth_seed"].is_null());
+  ASSERT_EQ(plain.dataset.observations.size(), a.dataset.observations.size());
+  for (std::size_t i = 0; i < a.dataset.observations.size(); ++i) {
+    const double with =
+        a.dataset.observations[i].value / a.truth["observations"][i]["noise_free"].get<double>();
+    const double without = plain.dataset.observations[i].value /
+                           plain.truth["observations"][i]["noise_free"].get<double>();
+    EXPECT_NEAR(with, without, 1e-12) << a.dataset.observations[i].id;
+  }
 }
 
 // A finer-model twin keeps the continuum at a smaller radius (radius / f, K_r / f, strengths / f^2,

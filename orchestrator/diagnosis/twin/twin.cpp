@@ -112,6 +112,10 @@ void check_twin_request(const TwinRequest& request) {
   }
 }
 
+TruthBonds truth_of(const JobSpec& model, const TwinRequest& request) {
+  return draw_truth_bonds(model, request.truth_seed.value_or(request.seed));
+}
+
 TwinJobs twin_jobs(const TwinDesign& design, const TwinRequest& request, const TruthBonds& truth) {
   const json effects = twin_effects(request);
   // Observations measured by the same run (the UCT's peak and its modulus) share one job.
@@ -130,7 +134,10 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
   check_twin_request(request);
   const json effects = twin_effects(request);
   Stream stream(request.seed);
-  const TruthBonds truth = draw_from(design.model, stream);
+  // u1, u2 are drawn from the seed's stream whatever the truth, so the noise that follows is the
+  // same with and without a truth seed.
+  const TruthBonds drawn = draw_from(design.model, stream);
+  const TruthBonds truth = request.truth_seed ? truth_of(design.model, request) : drawn;
   const auto [jobs, job_of] = twin_jobs(design, request, truth);
   const std::vector<json> results = run(jobs);
 
@@ -160,6 +167,7 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
       {"fr0", truth.fr0_n},
       {"fs0", truth.fs0_n},
       {"seed", request.seed},
+      {"truth_seed", request.truth_seed ? json(*request.truth_seed) : json()},
       {"noise", request.noise},
       {"resolution", request.resolution},
       {"design",

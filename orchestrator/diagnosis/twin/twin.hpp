@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,11 +18,15 @@ namespace rockcal::diagnosis {
 struct TwinRequest {
   std::string effect = "none";  // an effect of engine/effects, or "none" (the null case)
   double value = 0.0;           // the effect's params[0]; ignored for "none"
-  std::uint64_t seed = 1;
-  double noise = 0.02;  // sigma of the lognormal lab noise; > 0
+  std::uint64_t seed = 1;       // the twin's packings, its lab noise and, by default, its truth
+  double noise = 0.02;          // sigma of the lognormal lab noise; > 0
   // 1: a same-resolution twin (it tests identification); > 1: made by a model this many times
   // finer (engine Refinement), which tests that a resolution difference is not called an effect.
   double resolution = 1.0;
+  // Draws the truth bond strengths instead of `seed`: twins of one truth seed differ in their
+  // packings and lab noise only, so a matrix of them asks the model for the same design runs
+  // (the local design's lattice) and spends its runs on what the twins differ in.
+  std::optional<std::uint64_t> truth_seed;
 };
 
 // The twin's specimens are drawn with their own packing seed (template seed + kTwinSeedOffset +
@@ -37,6 +42,8 @@ struct TruthBonds {
   double fs0_n;
 };
 TruthBonds draw_truth_bonds(const JobSpec& model, std::uint64_t seed);
+// The request's truth: drawn from its truth_seed if it has one, else from its seed.
+TruthBonds truth_of(const JobSpec& model, const TwinRequest& request);
 
 // Throws orch::RequestError for a request no twin can be made of, naming the field: an unknown
 // "effect" or a "value" outside its range, a "noise" that is not positive, a "resolution" outside

@@ -29,6 +29,8 @@ TwinCampaign parse_twin_campaign(const json& request) {
   c.twin.value = value.value_or(0.0);
   c.twin.seed =
       std::uint64_t(f.integer("seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(1));
+  if (const auto t = f.integer("truth_seed", 0, std::numeric_limits<std::int64_t>::max()))
+    c.twin.truth_seed = std::uint64_t(*t);
   c.twin.noise = f.number("noise").value_or(c.twin.noise);
   c.twin.resolution = f.number("resolution").value_or(c.twin.resolution);
   const json* job = f.get("job");
@@ -62,7 +64,7 @@ std::vector<orch::BudgetPart> planned_twin_job_parts(const TwinCampaign& c) {
     return std::vector<json>(jobs.size(), json{{"strength", 1.0}});
   };
   const TwinDesign design = make_twin_design(c.job_template, lay_out);
-  const TruthBonds truth = draw_truth_bonds(design.model, c.twin.seed);
+  const TruthBonds truth = truth_of(design.model, c.twin);
   return {{"design", 1}, {"observations", int(twin_jobs(design, c.twin, truth).jobs.size())}};
 }
 
