@@ -345,12 +345,16 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
     c.max_evaluations = left;
     report = {};
     const bool another = i + 1 < ranges.size();
-    const bool moved = calibrate_at(c, evaluator, options, report,
-                                    [&](const std::optional<RatioRange>& ratio, int runs) {
-                                      return leave_range(ratio, another, left - runs);
-                                    });
+    bool moved = calibrate_at(c, evaluator, options, report,
+                              [&](const std::optional<RatioRange>& ratio, int runs) {
+                                return leave_range(ratio, another, left - runs);
+                              });
     left -= int(report.history.size());
     reach.tried.push_back({ranges[i], report.history, report.ratio});
+    // A search can end before its probe's runs (a bayes search whose emulators soon hold little
+    // variance converges and checks): its ratios then decide as the probe's would have.
+    moved = moved || (report.stop_reason != StopReason::cancelled &&
+                      leave_range(report.ratio, another, left));
     if (moved) continue;
     reach.evaluations_left = left;
     reach.cancelled = report.stop_reason == StopReason::cancelled;

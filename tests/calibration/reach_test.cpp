@@ -248,6 +248,24 @@ TEST(Reach, TheBayesStrategyLeavesARangeOnceItsRunsShowTheRatioOutOfReach) {
       << r.verdict_reason;
 }
 
+// A search that ends before a quarter of its budget (noise-free runs: its emulators soon hold
+// little variance, so it converges and checks) at a range whose runs did not reach the target ratio
+// still moves on: the probe's count is what lets a long search leave early, not a reason to stay.
+// Measured on the engine: a basalt (UCS/BTS 18) ended at range 1 after 14 runs of 100 and its
+// reason said range 1.5 was not tried for want of budget, with 82 evaluations left.
+TEST(Reach, ASearchThatEndsEarlyAtARangeThatMissesTheRatioMovesOn) {
+  RangedEvaluator e;
+  const CalibrationReport r =
+      run_calibration(beyond_range_1({{"strategy", "bayes"}, {"max_evaluations", 100}}), e);
+  ASSERT_EQ(r.reach ? r.reach->tried.size() : 0u, 2u) << r.verdict_reason;
+  const ReachAttempt& first = r.reach->tried[0];
+  EXPECT_LT(first.history.size(), std::size_t(reach_probe_runs(100)));  // ended early
+  EXPECT_FALSE(first.ratio->target_inside());
+  EXPECT_TRUE(r.reach->tried[1].ratio->target_inside());
+  EXPECT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
+  EXPECT_EQ(r.verdict_reason.find("not tried"), std::string::npos) << r.verdict_reason;
+}
+
 // The decision to leave is taken once, on the runs the search had then. The runs in flight, read
 // after, may bring the ratio back (noise); asked again, the range would end with neither a move
 // nor a posterior, a false "failed".
