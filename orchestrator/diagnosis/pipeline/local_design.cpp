@@ -7,8 +7,7 @@ namespace rockcal::diagnosis {
 
 std::vector<double> lattice_point(std::span<const double> z, double h) {
   // Integer multiples of h, so that two fits near one node give the same doubles (and the same job
-  // identities); the last node whose arm still lies in the box is the largest k with (k + 1) h
-  // <= 1.
+  // identities); the last node is the largest k h whose arm (k + 1) h still lies in the box.
   const long last = std::max(1L, static_cast<long>(std::floor((1.0 - h) / h + 1e-9)));
   std::vector<double> c(z.begin(), z.begin() + 2);
   for (double& x : c) x = double(std::clamp(std::lround(x / h), 1L, last)) * h;
