@@ -136,6 +136,7 @@ def main():
         return (r.get("request"), r["hidden"], r["value"], r["seed"], r["resolution"],
                 r.get("truth_seed"))
 
+    rows = []  # this part's
     done = []
     if a.results and os.path.exists(a.results):
         done = [json.loads(line) for line in open(a.results) if line.strip()]
@@ -151,7 +152,6 @@ def main():
                 f.write(json.dumps(row) + "\n")
 
     proc, url = start_server(a.build, work)
-    rows = []
     t_all = time.time()
     try:
         for effect in a.effects.split(","):

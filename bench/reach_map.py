@@ -15,7 +15,7 @@ nu at the material's K_s/K_r (--nu sets it by eq. 3, as a calibration's start do
   bench/reach_map.py [--build build] [--out runs/reach] [--size 20] [--strength 20]
       [--ratios 0.25,0.5,1,2,4,8] [--factors 1,1.5,1.8] [--seeds 1] [--jobs 1]
       [--packing fcc|random] [--radius-ratio 1.5] [--nu 0.2] [--stiffness-exponent 0]
-      [--coupling 1] [--effect NAME:PARAM=X ...]
+      [--follow-transits 0] [--effect NAME:PARAM=X ...]
       [--auto-transits 10] [--slow-factor 0.25] [--log FILE]
 
 Prints a markdown table (means over the seeds with a peak): UCT and BTT peak loads, the load
@@ -51,8 +51,6 @@ def job(test, a, s, factor, seed):
     if factor != 1.0:
         effects["interaction_range"] = {"factor": factor,
                                         "stiffness_exponent": a.stiffness_exponent}
-    if a.coupling != 1.0:
-        effects["compression_coupling"] = {"coupling": a.coupling}
     for text in a.effect:
         effects.update(parse_effect(text)[1])
     if effects:
@@ -81,9 +79,6 @@ def main():
     ap.add_argument("--nu", type=float, default=0.2)
     ap.add_argument("--stiffness-exponent", type=float, default=0.0,
                     help="n: bonds beyond touching get stiffnesses x ((R_i + R_j) / L)^n")
-    ap.add_argument("--coupling", type=float, default=1.0,
-                    help="compression_coupling: eq. 2 takes coupling x a compressive f_r"
-                         " (1 = the seed's signed f_r, 0 = clamped at zero)")
     ap.add_argument("--follow-transits", type=float, default=0.0,
                     help="loading.follow_transits (0: off), as the rock benchmark's templates use 100")
     ap.add_argument("--effect", action="append", default=[],
@@ -101,15 +96,12 @@ def main():
         for seed in range(1, a.seeds + 1):
             name = "elastic_d%g_range%g_seed%d" % (a.size, f, seed)
             runs.append(((f, None, "elastic", seed), name, job("elastic", a, 1.0, f, seed)))
-    if a.packing != "fcc" or a.nu != 0.2 or a.stiffness_exponent or a.coupling != 1.0 or a.effect \
-            or a.follow_transits:
+    if a.packing != "fcc" or a.nu != 0.2 or a.stiffness_exponent or a.effect or a.follow_transits:
         # the FCC map's run names stay those of its cache
         tag = "_%s%s_nu%g" % (a.packing, "_rr%g" % a.radius_ratio if a.packing == "random" else "",
                               a.nu)
         if a.stiffness_exponent:
             tag += "_n%g" % a.stiffness_exponent
-        if a.coupling != 1.0:
-            tag += "_c%g" % a.coupling
         if a.follow_transits:
             tag += "_follow%g" % a.follow_transits
         for text in a.effect:

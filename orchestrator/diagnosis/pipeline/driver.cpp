@@ -319,15 +319,9 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
         first_error(samples[0]) + ")");
   }
   const SurfaceCalibration& base_first = *fitted_first;
-  // The local design measures the budget on its lattice (local_design.hpp), so that datasets on
-  // one template share these runs too; the global design at the fit.
-  const auto budget_at = [&](const std::vector<double>& z) {
-    if (!local) return z;
-    std::vector<double> node = lattice_point(z, campaign.grid.step);
-    node.insert(node.end(), z.begin() + 2, z.end());
-    return node;
-  };
-  const std::vector<double> first_budget_z = budget_at(base_first.z);
+  // The local design measures the budget on its lattice, so that datasets on one template share
+  // these runs too (study_point).
+  const std::vector<double> first_budget_z = study_point(campaign, base_first.z);
   report.weight_budget_point =
       model_point(campaign, report.candidates[0].candidate, first_budget_z);
   const int runs_per_point = int(budget_runs_per_point(campaign.budget, campaign.dataset.origin));
@@ -379,13 +373,12 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   }
   // The budget of the model the residuals come from: re-measured at the confirmed base fit unless
   // that kept the first fit's points (on the demo twins the fit moved up to x7 along F_r0).
-  const std::vector<double> base_z = budget_at(report.candidates[0].calibration.z);
+  const std::vector<double> base_z = study_point(c, report.candidates[0].calibration.z);
   report.budget = report.weight_budget;
   report.budget_point = report.weight_budget_point;
   if (budget_points(base_z, c.budget.points) != budget_points(first_budget_z, c.budget.points)) {
     report.budget = measure_budget(c, report.candidates[0], base_z, evaluator);
-    report.budget_point =
-        local ? model_point(c, report.candidates[0].candidate, base_z) : report.candidates[0].point;
+    report.budget_point = model_point(c, report.candidates[0].candidate, base_z);
     report.model_points += report.budget.points * runs_per_point;
   }
   const std::vector<double>& judged = report.budget.per_target;

@@ -14,6 +14,13 @@ std::vector<double> lattice_point(std::span<const double> z, double h) {
   return c;
 }
 
+std::vector<double> study_point(const DiagnosisCampaign& c, const std::vector<double>& z) {
+  if (c.grid.design != Design::local) return z;
+  std::vector<double> node = lattice_point(z, c.grid.step);
+  node.insert(node.end(), z.begin() + 2, z.end());
+  return node;
+}
+
 namespace {
 
 // The base model's fit on its runs so far; the centre of the box without one (the driver then

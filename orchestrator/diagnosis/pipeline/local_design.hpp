@@ -24,6 +24,11 @@ namespace rockcal::diagnosis {
 // fit up to h / 2 from it is interpolated, not extrapolated.
 std::vector<double> lattice_point(std::span<const double> z, double h);
 
+// Where a diagnosis runs what it runs "at the fit" z (the budget, the next test): with the local
+// design the fit's lattice node (the coordinates beyond the strengths kept), with the global grids
+// the fit itself.
+std::vector<double> study_point(const DiagnosisCampaign& c, const std::vector<double>& z);
+
 // The lattice node nearest z and its four arms +- h along each strength axis.
 std::vector<std::vector<double>> star(std::span<const double> z, double h);
 

@@ -88,9 +88,7 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
   // The base at its fit and one step along each strength (backwards at the box's upper face); in
   // the local design at the fit's lattice node, so that datasets on one template share the runs.
   const Candidate base;
-  const std::vector<double>& fit = r.candidates[0].calibration.z;
-  const std::vector<double> z =
-      c.grid.design == Design::local ? lattice_point(fit, c.grid.step) : fit;
+  const std::vector<double> z = study_point(c, r.candidates[0].calibration.z);
   std::vector<double> step(2);
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
   out.point = model_point(c, base, z);

@@ -5,8 +5,8 @@
 // at the point (the emulator's nugget and its trend over the box, learned from every residual at
 // once, which a handful of replicates alone would pin poorly), and a point's mean of m runs
 // carries it over m: a point run on several packings is known better, the same rule that lets the
-// design value a further realisation. The runs' spread about each mean is kept too (within_ss), for an emulator
-// whose few points cannot tell misfit from scatter (GpOptions::replicate_spread).
+// design value a further realisation. The runs' spread about each mean is kept too (within_ss),
+// for an emulator whose few points cannot tell misfit from scatter (GpOptions::replicate_spread).
 #pragma once
 
 #include <vector>
