@@ -152,6 +152,7 @@ def main():
                 f.write(json.dumps(row) + "\n")
 
     proc, url = start_server(a.build, work)
+    engine = get(f"{url}/healthz").get("engine_version")
     t_all = time.time()
     try:
         for effect in a.effects.split(","):
@@ -219,7 +220,7 @@ def main():
                                      for x in s.get("candidates", [])[1:]},
                     "base_gap": s.get("gap"), "reason": v.get("reason"),
                     "twin_seconds": round(t_twin, 1), "diagnosis_seconds": round(t_diag, 1),
-                    "jobs": c.get("progress", {}).get("total"),
+                    "jobs": c.get("progress", {}).get("total"), "engine": engine,
                 }
                 keep(row)
                 print(f"{name:26} verdict {found:22} G {row['gap_closure']} "

@@ -1,12 +1,13 @@
 // Focus: the held-out log predictive density and the evidence that ranks the candidates
 // (evidence.hpp), with exact numbers: which observations count, the variance each term uses (lab
-// uncertainty, budget, a surface's own error, the floor), charged residuals, and the evidence of
-// an effect as its density minus the base model's over the observations both predict, each
-// candidate's from its real runs or its surfaces, and the ranking by it.
+// uncertainty, budget, the surface emulator's variance, the floor), charged residuals, and the
+// evidence of an effect as its density minus the base model's over the observations both predict,
+// each candidate's from its real runs or its surfaces, and the ranking by it.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "orchestrator/diagnosis/analysis/evidence.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
@@ -54,7 +55,7 @@ TEST(HeldOutDensity, SumsTheHeldOutTermsWithBudgetAndLabVariance) {
 }
 
 TEST(HeldOutDensity, APredictionFromSurfacesAddsTheirErrorAndOneWithoutItIsLeftOut) {
-  // held-1: v = 0.0025 + 0.0075 = 0.01; held-2's surface has no leave-one-out error: left out.
+  // held-1: v = 0.0025 + 0.0075 = 0.01; held-2 has no surface (NaN): left out.
   const HeldOutDensity d =
       held_out_density({0.5, 0.1, -0.05, kNan}, four(), kBudget, {0.0, 0.0075, kNan, 0.0});
   ASSERT_EQ(d.terms.size(), 1u);
@@ -105,35 +106,65 @@ CandidateResult candidate(const char* effect, bool confirmed, std::vector<double
   return c;
 }
 
-// Real runs for the base and a confirmed effect; surfaces with their leave-one-out error for the
-// others. Lab values 1 (ln 0), so ln(sim) is the residual.
+// A 2-D surface through a 4 x 4 grid of a plane, with run scatter `scatter` (0: exact runs).
+Surface plane_surface(double scatter) {
+  std::vector<std::vector<double>> z;
+  std::vector<double> y;
+  int k = 0;
+  for (double a : {0.0, 1.0 / 3, 2.0 / 3, 1.0})
+    for (double b : {0.0, 1.0 / 3, 2.0 / 3, 1.0}) {
+      z.push_back({a, b});
+      y.push_back(0.3 * a - 0.2 * b + scatter * ((k++ * 7) % 5 - 2) / 2.0);
+    }
+  return *fit_surface(z, y);
+}
+
+double lpd_term(double r, double v) {
+  return -0.5 * (r * r / v + std::log(2.0 * std::numbers::pi * v));
+}
+
+// Real runs for the base and a confirmed effect; surfaces with the emulator's variance at their
+// fitted point for the others. Lab values 1 (ln 0), so ln(sim) is the residual.
 TEST(Evidence, EachCandidateFromItsRunsOrItsSurfacesRanksTheEffects) {
   std::vector<CandidateResult> c = {
       candidate("", true, {0.5, 0.1, -0.05, kNan}),
       candidate("from-surfaces", false, {0.0, 0.1, -0.05, 0.0}),
-      candidate("without-error", false, {0.0, 0.0, 0.0, 0.0}),
+      candidate("without-surfaces", false, {0.0, 0.0, 0.0, 0.0}),
       candidate("confirmed", true, {0.0, 0.02, -0.05, 0.3}),
   };
-  Surface exact, rough, thin;
-  rough.rms = std::sqrt(0.0075);
-  thin.rms = kNan;  // too few runs to leave one out
-  c[1].surfaces.per_target = {exact, rough, thin, exact};
-  c[2].surfaces.per_target = {thin, thin, thin, thin};
+  const Surface exact = plane_surface(0.0), rough = plane_surface(0.1);
+  c[1].surfaces.per_target = {exact, rough, std::nullopt, exact};
+  c[1].calibration.z = {0.5, 0.5};
+  c[2].surfaces.per_target = {std::nullopt, std::nullopt, std::nullopt, std::nullopt};
+  c[2].calibration.z = {0.5, 0.5};
   c[1].g_surface = 0.1;
   c[2].g_surface = 0.9;  // a larger G, but no evidence to rank by
   mark_evidence(c, four(), {0, 0, 0, 0}, kBudget);
   ASSERT_TRUE(c[0].density && c[1].density && c[3].density);
   EXPECT_FALSE(c[0].evidence);
-  // held-1 with v = 0.0025 + 0.0075, held-2 left out (no surface error), held-3 exact: r = 0.
+  // held-1 with v = 0.0025 + the rough surface's variance at the fit, held-2 left out (no
+  // surface), held-3 with the exact one's: r = 0.
+  const double v_rough = variance_at(rough, c[1].calibration.z);
+  const double v_exact = variance_at(exact, c[1].calibration.z);
+  EXPECT_GT(v_rough, 1e-4) << "scattered runs leave the emulator unsure";
+  EXPECT_LT(v_exact, 0.1 * v_rough);
   ASSERT_EQ(c[1].density->terms.size(), 2u);
-  EXPECT_NEAR(c[1].density->lpd, 2.960440300138691, 1e-12);
-  EXPECT_NEAR(*c[1].evidence, 0.8068528194400552, 1e-12);  // on held-1, the one both predict
+  EXPECT_DOUBLE_EQ(c[1].density->terms[0].variance, 0.0025 + v_rough);
+  EXPECT_NEAR(c[1].density->lpd,
+              lpd_term(0.1, 0.0025 + v_rough) +
+                  lpd_term(0.0, std::max(0.0025 + v_exact, kMinNoiseScale * kMinNoiseScale)),
+              1e-12);
+  // On held-1, the one both predict: the base's real run has no emulator variance.
+  EXPECT_NEAR(*c[1].evidence, lpd_term(0.1, 0.0025 + v_rough) - lpd_term(0.1, 0.0025), 1e-12);
   EXPECT_FALSE(c[2].density) << "no held-out observation scored: no density, not an lpd of 0";
   EXPECT_FALSE(c[2].evidence);
   EXPECT_NEAR(*c[3].evidence, 1.92, 1e-12);
   EXPECT_EQ(rank_effects(c), (std::vector<int>{3, 1, 2}));
   EXPECT_EQ(c[3].rank, 1);
   EXPECT_EQ(c[2].rank, 3);
+  // The variance is the emulator's at the fitted point: beyond the runs it is larger.
+  c[1].calibration.z = {2.0, 2.0};
+  EXPECT_GT(surface_variance(c[1])[1], 10.0 * v_rough);
 }
 
 // The rule names the contender with the most evidence when it exceeds the threshold.

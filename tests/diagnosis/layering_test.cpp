@@ -109,6 +109,18 @@ TEST(DiagnosisLayering, EachLayerIncludesOnlyTheLayersBelowIt) {
   EXPECT_EQ(reaches_above("report", {"dataset", "analysis", "pipeline", "report"}), Chains{});
 }
 
+TEST(DiagnosisLayering, TheSurfacesAreTheInferenceCoresEmulators) {
+  // One emulator for calibration and diagnosis: the analysis's surfaces are the inference core's
+  // Gaussian process, and the core reaches nothing of the diagnosis.
+  std::map<std::string, std::string> seen;
+  reach("orchestrator/diagnosis/analysis/surface.hpp", "surface.hpp", seen);
+  EXPECT_TRUE(seen.count("orchestrator/inference/emulator/gp.hpp"));
+  std::map<std::string, std::string> core;
+  reach("orchestrator/inference/emulator/gp.cpp", "gp.cpp", core);
+  for (const auto& [header, chain] : core)
+    EXPECT_EQ(header.rfind("orchestrator/diagnosis/", 0), std::string::npos) << chain;
+}
+
 TEST(DiagnosisLayering, TheCheckSeesAnInclusionAbove) {
   // The test of the test: the report reaches the pipeline's request, which the analysis may not.
   const Chains found = reaches_above("report", {"dataset", "analysis", "report"});

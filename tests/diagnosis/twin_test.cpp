@@ -173,7 +173,7 @@ TEST(DiagnosisTwin, TwinCampaignsAreRefusedNamingTheField) {
 TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
   const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
   std::vector<json> jobs;
-  const TwinRequest request{"heterogeneity", 3, 11, 0.05};
+  const TwinRequest request{.effect = "heterogeneity", .value = 3, .seed = 11, .noise = 0.05};
   const Twin a = make_twin(d, request, formula_engine(&jobs));
   const Twin b = make_twin(d, request, formula_engine());
   EXPECT_EQ(to_json(a.dataset), to_json(b.dataset));
@@ -251,7 +251,7 @@ TEST(DiagnosisTwin, ATruthSeedFixesTheTruthAndLeavesTheNoiseToTheSeed) {
 TEST(DiagnosisTwin, AFinerModelTwinRefinesItsSpecimens) {
   const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
   std::vector<json> jobs;
-  TwinRequest request{"none", 0, 5, 0.02};
+  TwinRequest request{.effect = "none", .value = 0, .seed = 5, .noise = 0.02};
   request.resolution = 1.5;
   const Twin t = make_twin(d, request, formula_engine(&jobs));
   EXPECT_EQ(t.dataset.origin, Origin::finer_model);

@@ -7,6 +7,7 @@
 
 #include "orchestrator/inference/emulator/gp.hpp"
 #include "orchestrator/inference/emulator/runs.hpp"
+#include "orchestrator/inference/emulator/two_level.hpp"
 #include "test_functions.hpp"
 
 namespace rockcal::inference {
@@ -65,6 +66,21 @@ TEST(Emulator, VarianceShrinksWhereThereAreRuns) {
   Eigen::VectorXd near = gp.data.x.row(0).transpose();
   const Eigen::VectorXd far = Eigen::VectorXd::Constant(2, 2.0);  // outside the box: extrapolation
   EXPECT_LT(predict(gp, near).var, predict(gp, far).var);
+}
+
+TEST(Emulator, TheMeanAloneIsThePredictionsMeanWithItsBase) {
+  // predict_mean is what searches call thousands of times; it must be the same number.
+  const Gp coarse = fit_gp(noisy(20, 0.02, 5));
+  GpData fine = noisy(8, 0.02, 6);
+  fine.y.array() += 0.1;
+  const Gp two = fit_two_level(coarse, fine);
+  for (const Gp* gp : {&coarse, &two}) {
+    for (const Eigen::VectorXd& x : {Eigen::VectorXd(Eigen::Vector2d(0.3, 0.8)),
+                                     Eigen::VectorXd(Eigen::Vector2d(1.4, -0.2))}) {
+      EXPECT_NEAR(predict_mean(*gp, std::span<const double>(x.data(), 2)), predict(*gp, x).mean,
+                  1e-12);
+    }
+  }
 }
 
 TEST(Emulator, OneRunsScatterIsLearnedAndAPointOfManyRunsIsKnownBetter) {

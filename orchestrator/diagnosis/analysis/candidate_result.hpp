@@ -62,7 +62,7 @@ struct CandidateResult {
   std::vector<double> surface_offset;
   std::vector<RefineStep> refinement;  // the real runs at successive fits, first = surface fit
   // The held-out log predictive density of its real runs if confirmed, else of its surfaces with
-  // their leave-one-out error (evidence.hpp); and, for an effect, its lpd minus the base model's.
+  // their emulator variance (evidence.hpp); and, for an effect, its lpd minus the base model's.
   std::optional<HeldOutDensity> density;
   std::optional<double> evidence;  // nats
   int rank = 0;                    // 1 = best effect; 0 for the base

@@ -2,8 +2,9 @@
 // (the held-out log predictive density), and how much more probable than the base model does.
 // Each held-out charged residual r_i = ln(sim / lab) (gap.hpp) is read as a draw from
 // N(0, v_i), v_i = budget_i^2 + sigma_i^2 (the observation's numerical budget and lab uncertainty),
-// plus the squared leave-one-out rms of the candidate's surface when its prediction comes from
-// its surfaces and not from real runs: lpd = sum_i -0.5 (r_i^2 / v_i + ln(2 pi v_i)), in nats.
+// plus the emulator's variance at the candidate's fitted point when its prediction comes from its
+// surfaces and not from real runs (surface.hpp):
+// lpd = sum_i -0.5 (r_i^2 / v_i + ln(2 pi v_i)), in nats.
 // An effect's evidence is its lpd minus the base model's over the held-out observations both
 // predict: a log Bayes factor on held-out data, where the effect's parameter was fitted on the
 // calibration observations only. Each candidate carries its own (CandidateResult::density,
@@ -33,7 +34,7 @@ struct HeldOutDensity {
 
 // Over the held-out targets whose residual is finite (residuals: ln(sim / lab), NaN where a run
 // gave no value; charged here, as every rms is). `surface_variance` per target adds to v_i; empty
-// adds nothing, and a NaN entry (a surface too thin to leave a run out) leaves that target out.
+// adds nothing, and a NaN entry (no surface for the target) leaves that target out.
 HeldOutDensity held_out_density(const std::vector<double>& residuals,
                                 const std::vector<Target>& targets,
                                 const std::vector<double>& budget,

@@ -1,12 +1,15 @@
 // Response surfaces: ln(observable) as a function of the unit-cube coordinates z (ln F_r0 and
 // ln F_s0 mapped to [0, 1] over the bounds, plus the effect's s for a candidate), built from the
-// grid runs. A global quadratic is too stiff for a box spanning a factor of 16 in each strength
-// (its misfit at the grid points was as large as the effects it should resolve; docs/diagnosis.md),
-// so the surface is a cubic radial basis function interpolant on top of a
-// quadratic polynomial: s(z) = sum_k w_k |z - z_k|^3 + quadratic(z), with sum_k w_k q(z_k) = 0
-// for every quadratic q. It reproduces quadratics exactly and passes through the runs; a
-// smoothing term, chosen by leave-one-out cross-validation, lets it average over run-to-run
-// scatter instead (at large smoothing it tends to the least-squares quadratic).
+// design's runs by the inference core's Gaussian-process emulator (inference/emulator/gp.hpp): a
+// linear trend (the loads' homogeneity in the strengths), a Matern 5/2 departure from it and a
+// nugget for the runs' scatter, hyperparameters by restricted likelihood. A global quadratic was
+// too stiff for a box spanning a factor of 16 in each strength, and an interpolant passes through
+// the scatter; the emulator follows a smooth response, averages the scatter by its likelihood and
+// says how well the runs pin the surface at a point: its variance there, the emulator's share of
+// the held-out evidence's predictive variance (evidence.hpp).
+// The emulator works in the runs' own box (their bounding box mapped to [0, 1]^d), so its
+// correlation lengths are in units of what the design spans: a local design's star a tenth of the
+// box wide is resolved as a global grid over the whole box is.
 #pragma once
 
 #include <optional>
@@ -21,32 +24,33 @@
 #include <Eigen/Dense>
 #pragma GCC diagnostic pop
 
+#include "orchestrator/inference/emulator/gp.hpp"
+
 namespace rockcal::diagnosis {
 
 struct Surface {
   int dims = 0;
-  Eigen::MatrixXd centres;  // one run's z per column
-  Eigen::VectorXd weights;  // of |z - z_k|^3, per centre
-  Eigen::VectorXd coef;     // quadratic part: 1, t_i, then t_i t_j for i <= j (t = 2z - 1)
-  double smoothing = 0.0;   // added to the kernel matrix's diagonal; 0 = interpolation
-  // Leave-one-out rms (ln units): each run predicted by the surface built without it. The error
-  // to expect between the runs; NaN with too few runs to leave one out.
+  Eigen::VectorXd lo, span;  // the runs' box: the emulator's x = (z - lo) / span
+  inference::Gp gp;
+  // Leave-one-out rms (ln units): each run predicted by the emulator conditioned on the others
+  // (at the fitted hyperparameters). The error to expect between the runs, their scatter included.
   double rms = 0.0;
   int points = 0;
 };
 
-// 1 + d + d (d + 1) / 2.
-int quadratic_term_count(int dims);
-Eigen::VectorXd quadratic_terms(std::span<const double> z);
+// The fewest runs a surface is fitted to: what the emulator's linear trend needs to leave its
+// departure anything, 2 (d + 1).
+int minimum_surface_points(int dims);
 
-// The surface through the points (z[k], y[k]); nullopt with fewer points than quadratic terms or
-// points that do not determine a quadratic (too many failed runs on one line of the grid).
-// `smoothing`: the kernel diagonal term; by default the one of a fixed ladder (0 to 1000) with the
-// smallest leave-one-out rms.
+// The surface through the points (z[k], y[k]); nullopt with fewer than minimum_surface_points,
+// with an axis the points do not span (nothing says how the observable moves along it), or when
+// the emulator cannot be fitted.
 std::optional<Surface> fit_surface(const std::vector<std::vector<double>>& z,
-                                   const std::vector<double>& y,
-                                   std::optional<double> smoothing = std::nullopt);
+                                   const std::vector<double>& y);
 
+// The emulator's mean at z (no allocation: what the calibrations on the surfaces call).
 double evaluate(const Surface& surface, std::span<const double> z);
+// The emulator's variance at z: how far the mean may be from the noise-free response there.
+double variance_at(const Surface& surface, std::span<const double> z);
 
 }  // namespace rockcal::diagnosis

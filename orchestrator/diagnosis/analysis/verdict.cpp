@@ -77,7 +77,8 @@ void mark_calibration_fits(std::vector<CandidateResult>& candidates, double comb
 std::vector<double> surface_variance(const CandidateResult& c) {
   if (c.confirmed) return {};
   std::vector<double> v;
-  for (const auto& s : c.surfaces.per_target) v.push_back(s ? s->rms * s->rms : NAN);
+  for (const auto& s : c.surfaces.per_target)
+    v.push_back(s && !c.calibration.z.empty() ? variance_at(*s, c.calibration.z) : NAN);
   return v;
 }
 

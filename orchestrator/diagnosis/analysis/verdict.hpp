@@ -75,13 +75,14 @@ inline constexpr double kCalibrationFitBudgets = 4.0;
 void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration);
 
 // Every fitted candidate's held-out density from its real runs if confirmed, else from its
-// surfaces with their leave-one-out error added (none without a term); each effect's evidence
+// surfaces with their emulator variance added (none without a term); each effect's evidence
 // over the (confirmed) base.
 void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<Target>& targets,
                    const std::vector<double>& ln_lab, const std::vector<double>& budget);
 
 // The variance a candidate's prediction adds to each held-out observation's: none from real runs
-// (confirmed; empty), the squared leave-one-out rms of each surface otherwise (NaN without one).
+// (confirmed; empty), each surface's emulator variance at the fitted point otherwise (NaN without
+// one).
 std::vector<double> surface_variance(const CandidateResult& c);
 
 // Ranks the effects (candidates[1..]) and sets their `rank` (1 = best): confirmed identifiable

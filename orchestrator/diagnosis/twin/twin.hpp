@@ -26,7 +26,7 @@ struct TwinRequest {
   // Draws the truth bond strengths instead of `seed`: twins of one truth seed differ in their
   // packings and lab noise only, so a matrix of them asks the model for the same design runs
   // (the local design's lattice) and spends its runs on what the twins differ in.
-  std::optional<std::uint64_t> truth_seed;
+  std::optional<std::uint64_t> truth_seed = std::nullopt;
 };
 
 // The twin's specimens are drawn with their own packing seed (template seed + kTwinSeedOffset +

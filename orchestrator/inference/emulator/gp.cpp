@@ -229,6 +229,23 @@ void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& 
   }
 }
 
+double predict_mean(const Gp& gp, std::span<const double> x) {
+  const Eigen::Index n = gp.data.x.rows(), dims = gp.data.x.cols();
+  double mean = gp.beta(0);
+  for (int k = 1; k < gp.trend_terms; ++k) mean += gp.beta(k) * x[k - 1];
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double r2 = 0.0;
+    for (Eigen::Index d = 0; d < dims; ++d) {
+      const double e = (x[d] - gp.data.x(i, d)) / gp.hyper.length(d);
+      r2 += e * e;
+    }
+    const double s5r = std::sqrt(5.0 * r2);
+    mean += gp.alpha(i) * gp.hyper.signal_var * (1.0 + s5r + (5.0 / 3.0) * r2) * std::exp(-s5r);
+  }
+  if (gp.base) mean += predict_mean(*gp.base, x);
+  return mean;
+}
+
 Prediction predict(const Gp& gp, const Eigen::VectorXd& x) {
   Eigen::VectorXd mean, var;
   predict_many(gp, x.transpose(), mean, var);

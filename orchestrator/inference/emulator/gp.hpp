@@ -26,6 +26,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -108,6 +109,9 @@ Prediction predict(const Gp& gp, const Eigen::VectorXd& x);
 // the base emulator's when the GP has one.
 void predict_many(const Gp& gp, const Eigen::MatrixXd& points, Eigen::VectorXd& mean,
                   Eigen::VectorXd& var);
+// The mean alone at x (d coordinates), without allocating: what a search over the emulator's mean
+// calls thousands of times.
+double predict_mean(const Gp& gp, std::span<const double> x);
 // The prior covariance matrix between the rows of a (m x d) and of b (p x d).
 Eigen::MatrixXd cross_covariance(const Gp& gp, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
 
