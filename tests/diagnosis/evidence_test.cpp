@@ -167,6 +167,37 @@ TEST(Evidence, EachCandidateFromItsRunsOrItsSurfacesRanksTheEffects) {
   EXPECT_GT(surface_variance(c[1])[1], 10.0 * v_rough);
 }
 
+// An effect fitted where it does nothing (an interaction range below the FCC's next neighbours
+// is the base model) can still gain evidence, from its strengths' re-fit: measured against the
+// base model at the same strengths it moves nothing beyond noise, and it is not named.
+TEST(Evidence, AnEffectInertAtItsFittedValueIsNeverTheVerdict) {
+  std::vector<CandidateResult> c = {candidate("", true, {0.0, 0.2, 0.0, 0.0}),
+                                    candidate("interaction_range", true, {0.0, 0.05, 0.0, 0.0}),
+                                    candidate("rate", true, {0.0, 0.15, 0.0, 0.0})};
+  c[0].confirmed_rms.held_out = 0.2;
+  c[1].confirmed_rms.held_out = 0.05;
+  c[2].confirmed_rms.held_out = 0.15;
+  c[1].evidence = 9.25;
+  c[2].evidence = 2.5;
+  c[1].mark_at_fit = 0.4;  // its run against the base model's at the same strengths
+  c[2].mark_at_fit = 3.0;
+  const DecisionRule rule;
+  Verdict v = decide(rule, c, {1, 2}, 2.3, 0.177);
+  EXPECT_EQ(v.candidate, 2) << v.reason;
+  c[2].mark_at_fit = 1.0;  // at most its noise: inert too
+  v = decide(rule, c, {1, 2}, 2.3, 0.177);
+  EXPECT_EQ(v.candidate, -1);
+  EXPECT_NE(v.reason.find("interaction_range (evidence 9.25 nats) is not the explanation: at its "
+                          "fitted value it changes no observation beyond its noise against the "
+                          "base model at the same strengths (largest change 0.40 of its noise), so "
+                          "what it gained is the strengths' re-fit, not the effect"),
+            std::string::npos)
+      << v.reason;
+  // Without the check's run (an older report, a base candidate) nothing is assumed inert.
+  c[1].mark_at_fit.reset();
+  EXPECT_EQ(decide(rule, c, {1, 2}, 2.3, 0.177).candidate, 1);
+}
+
 // The rule names the contender with the most evidence when it exceeds the threshold.
 TEST(Evidence, TheDecisionRuleNamesTheBestContenderAboveItsThreshold) {
   const DecisionRule rule;  // the default threshold

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 
 #include "api/cli/diagnosis_text.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
@@ -51,7 +52,13 @@ TEST(EvidenceThreshold, AtMostOneNullTwinInTenNamesAnEffect) {
     const json v = diagnose("", 0, seed)["verdict"];
     const json& e = v["evidence"];
     EXPECT_EQ(e["threshold"], threshold);
-    ASSERT_TRUE(e["value"].is_number()) << "seed " << seed << ": no contender\n" << v.dump(2);
+    if (!e["value"].is_number()) {
+      // No contender: every confirmed effect was inert at its fitted value (its evidence the
+      // strengths' re-fit) or none was confirmed; nothing can be named.
+      EXPECT_FALSE(v["effect"].is_string()) << v.dump(2);
+      best.push_back(-std::numeric_limits<double>::infinity());
+      continue;
+    }
     best.push_back(e["value"].get<double>());
     // Named exactly when the best contender's evidence exceeds the threshold, and then it is.
     EXPECT_EQ(v["effect"].is_string(), best.back() > threshold) << v.dump(2);
@@ -134,16 +141,34 @@ TEST(EvidenceReport, TheVerdictSentenceAndTheTermsAreTheReportsFields) {
   EXPECT_NE(api::diagnosis_text(named).find("evidence " + evidence + " nats (threshold 2.00)"),
             std::string::npos);
 
-  // Nothing named: the sentence gives the best contender's evidence against the threshold.
+  // Nothing named: the sentence gives the best contender's evidence against the threshold, and
+  // each confirmed effect inert at its fitted value with its evidence and its mark there.
   const json null = diagnose("", 0, 1);
   expect_terms_from_fields(null);
   const json& n = null["verdict"];
-  const std::string best = n["evidence"]["effect"].get<std::string>();
-  EXPECT_NE(n["reason"].get<std::string>().find(
-                "no gap to explain; the best effect, " + best + ", has evidence " +
-                two(n["evidence"]["value"].get<double>()) + " nats over the base (threshold 2.00)"),
-            std::string::npos)
-      << n["reason"];
+  const std::string reason = n["reason"].get<std::string>();
+  if (n["evidence"]["value"].is_number()) {
+    const std::string best = n["evidence"]["effect"].get<std::string>();
+    EXPECT_NE(reason.find("no gap to explain; the best effect, " + best + ", has evidence " +
+                          two(n["evidence"]["value"].get<double>()) +
+                          " nats over the base (threshold 2.00)"),
+              std::string::npos)
+        << reason;
+  }
+  int inert = 0;
+  for (const json& c : null["candidates"]) {
+    if (!c["effect"].is_string() || !c["mark_at_fit"]["inert"].get<bool>()) continue;
+    ++inert;
+    EXPECT_NE(reason.find(c["effect"].get<std::string>() + " (evidence " +
+                          two(c["evidence"]["value"].get<double>()) +
+                          " nats) is not the explanation: at its fitted value it changes no "
+                          "observation beyond its noise against the base model at the same "
+                          "strengths (largest change " +
+                          two(c["mark_at_fit"]["in_noise"].get<double>()) + " of its noise)"),
+              std::string::npos)
+        << reason;
+  }
+  EXPECT_TRUE(inert > 0 || n["evidence"]["value"].is_number()) << reason;
 }
 
 class EffectAtTheDetectionLimit : public ::testing::TestWithParam<const char*> {};

@@ -57,6 +57,12 @@ struct CandidateResult {
   RmsByRole confirmed_rms;
   std::optional<double> g_confirmed;
   std::vector<std::vector<double>> seed_ln;  // real runs with each budget seed (confirmed only)
+  // Confirmed effects only: the effect's own mark at its fitted value, the largest
+  // |ln(its run / the base model's run at the same strengths)| over the observations, in units of
+  // each one's noise (budget + lab uncertainty). At most 1: the effect changes nothing there (an
+  // interaction range below the packing's next neighbours, say), so its evidence is the
+  // strengths' re-fit, not the effect, and it is never the verdict (inert_at_fit).
+  std::optional<double> mark_at_fit;
   // Confirmed only: real minus surface ln values at the fitted point (0 where either is missing).
   // The surfaces plus this offset pass through the real run; the refinement re-fits on them.
   std::vector<double> surface_offset;
@@ -67,6 +73,7 @@ struct CandidateResult {
   std::optional<double> evidence;  // nats
   int rank = 0;                    // 1 = best effect; 0 for the base
 
+  bool inert_at_fit() const { return mark_at_fit && *mark_at_fit <= 1.0; }
   std::optional<double> g() const { return confirmed ? g_confirmed : g_surface; }
   const std::vector<double>& ln_sim() const { return confirmed ? confirmed_ln : predicted; }
   RmsByRole rms() const { return confirmed ? confirmed_rms : surface_rms; }

@@ -19,7 +19,24 @@ std::string fixed(double x, int digits = 3) {
 
 bool eligible(const CandidateResult& c) {
   return c.fitted && c.confirmed && c.identifiability && c.identifiability->identifiable &&
-         c.fits_calibration && c.evidence.has_value();
+         c.fits_calibration && c.evidence.has_value() && !c.inert_at_fit();
+}
+
+// The confirmed effects whose evidence came from the strengths' re-fit alone: at their fitted
+// value they change no observation beyond its noise against the base model at the same strengths.
+std::string inert_note(const std::vector<CandidateResult>& candidates,
+                       const std::vector<int>& order) {
+  std::string out;
+  for (int i : order) {
+    const CandidateResult& c = candidates[i];
+    if (!c.inert_at_fit() || !c.evidence) continue;
+    out += "; " + c.candidate.effect + " (evidence " + fixed(*c.evidence, 2) +
+           " nats) is not the explanation: at its fitted value it changes no observation beyond "
+           "its noise against the base model at the same strengths (largest change " +
+           fixed(*c.mark_at_fit, 2) +
+           " of its noise), so what it gained is the strengths' re-fit, not the effect";
+  }
+  return out;
 }
 
 // The effects that would need a calibration observation to be judged: they move held-out ones
@@ -167,12 +184,12 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
     v.reason = size + gap_text +
                "no candidate effect is both identifiable from these observations and able to fit "
                "the calibration observations" +
-               unfixed_note(candidates, order);
+               unfixed_note(candidates, order) + inert_note(candidates, order);
   } else {
     v.reason = size + gap_text + "the best effect, " + candidates[v.best].candidate.effect +
                ", has " + evidence_text(v.best) +
                (no_gap ? "" : ": none of the candidates explains the gap") +
-               unfixed_note(candidates, order);
+               unfixed_note(candidates, order) + inert_note(candidates, order);
   }
   return v;
 }

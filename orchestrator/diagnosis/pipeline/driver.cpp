@@ -180,12 +180,24 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
     const std::vector<double> res = residuals(r.confirmed_ln, lab);
     r.confirmed_rms = {rms(res, c.targets, Role::calibration), rms(res, c.targets, Role::held_out)};
     for (std::uint64_t seed : c.budget.seeds) seed_requests.push_back({r.point, {seed, 1.0, 1.0}});
+    // The effect's own mark at its fitted value: the base model at the same strengths.
+    if (!r.candidate.is_base()) {
+      const std::vector<double> strengths(st.best_z.begin(), st.best_z.begin() + 2);
+      seed_requests.push_back({model_point(c, candidates[0].candidate, strengths), nominal});
+    }
   }
   const std::vector<RunOutcome> outcomes = evaluator.run_batch(seed_requests);
   std::size_t k = 0;
   for (int i : chosen) {
-    for (std::size_t s = 0; s < c.budget.seeds.size(); ++s) {
-      candidates[i].seed_ln.push_back(ln_values(outcomes[k++]));
+    CandidateResult& r = candidates[i];
+    for (std::size_t s = 0; s < c.budget.seeds.size(); ++s)
+      r.seed_ln.push_back(ln_values(outcomes[k++]));
+    if (r.candidate.is_base()) continue;
+    const std::vector<double> base_ln = ln_values(outcomes[k++]);
+    for (std::size_t t = 0; t < c.targets.size(); ++t) {
+      if (!std::isfinite(base_ln[t]) || !std::isfinite(r.confirmed_ln[t])) continue;
+      const double m = std::abs(r.confirmed_ln[t] - base_ln[t]) / (budget[t] + c.targets[t].sigma);
+      r.mark_at_fit = std::max(r.mark_at_fit.value_or(0.0), m);
     }
   }
   for (int i : chosen) {

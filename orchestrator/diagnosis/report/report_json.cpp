@@ -97,6 +97,8 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
                         {"confirmed", num(c.g_confirmed)},
                         {"value", num(c.g())},
                         {"basis", c.confirmed ? "confirmed" : "surface"}};
+    // In noise units, against the base model at the same strengths (confirmed effects only).
+    j["mark_at_fit"] = {{"in_noise", num(c.mark_at_fit)}, {"inert", c.inert_at_fit()}};
     const Identifiability& id = *c.identifiability;
     json moved = json::array();
     for (std::size_t i : id.moved) moved.push_back(targets[i].id);
