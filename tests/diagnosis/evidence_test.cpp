@@ -187,7 +187,9 @@ TEST(Evidence, AnEffectInertAtItsFittedValueIsNeverTheVerdict) {
   c[2].mark_at_fit = 1.0;  // at most its noise: inert too
   v = decide(rule, c, {1, 2}, 2.3, 0.177);
   EXPECT_EQ(v.candidate, -1);
-  EXPECT_NE(v.reason.find("interaction_range (evidence 9.25 nats) is not the explanation: at its "
+  EXPECT_NE(v.reason.find("no candidate effect is identifiable from these observations, able to "
+                          "fit the calibration observations and active at its fitted value; "
+                          "interaction_range (evidence 9.25 nats) is not the explanation: at its "
                           "fitted value it changes no observation beyond its noise against the "
                           "base model at the same strengths (largest change 0.40 of its noise), so "
                           "what it gained is the strengths' re-fit, not the effect"),

@@ -181,10 +181,14 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
     v.reason += "; the base model's held-out residuals are " + fixed(*gap, 2) +
                 " budgets (combined budget " + fixed(combined_held_out) + ")";
   } else if (contenders.empty()) {
+    const std::string inert = inert_note(candidates, order);
     v.reason = size + gap_text +
-               "no candidate effect is both identifiable from these observations and able to fit "
-               "the calibration observations" +
-               unfixed_note(candidates, order) + inert_note(candidates, order);
+               (inert.empty() ? "no candidate effect is both identifiable from these observations "
+                                "and able to fit the calibration observations"
+                              : "no candidate effect is identifiable from these observations, "
+                                "able to fit the calibration observations and active at its "
+                                "fitted value") +
+               unfixed_note(candidates, order) + inert;
   } else {
     v.reason = size + gap_text + "the best effect, " + candidates[v.best].candidate.effect +
                ", has " + evidence_text(v.best) +
