@@ -9,6 +9,8 @@ namespace {
 
 // A span below this (in unit-cube coordinates) is no span: the runs sit on one value of the axis.
 constexpr double kMinSpan = 1e-9;
+// The most coordinates a surface takes (a candidate has 3), so evaluate needs no allocation.
+constexpr int kMaxDims = 8;
 
 Eigen::VectorXd to_box(const Surface& s, std::span<const double> z) {
   Eigen::VectorXd x(s.dims);
@@ -53,7 +55,7 @@ std::optional<Surface> fit_surface(const std::vector<std::vector<double>>& z,
   if (z.empty() || z.size() != y.size()) return std::nullopt;
   const int dims = int(z[0].size());
   const int n = int(z.size());
-  if (dims == 0 || n < minimum_surface_points(dims)) return std::nullopt;
+  if (dims == 0 || dims > kMaxDims || n < minimum_surface_points(dims)) return std::nullopt;
   Surface s;
   s.dims = dims;
   s.points = n;
@@ -86,11 +88,9 @@ std::optional<Surface> fit_surface(const std::vector<std::vector<double>>& z,
 }
 
 double evaluate(const Surface& surface, std::span<const double> z) {
-  double x[8];
-  const int dims = surface.dims;
-  if (dims > 8) return inference::predict(surface.gp, to_box(surface, z)).mean;
-  for (int d = 0; d < dims; ++d) x[d] = (z[d] - surface.lo(d)) / surface.span(d);
-  return inference::predict_mean(surface.gp, std::span<const double>(x, std::size_t(dims)));
+  double x[kMaxDims];
+  for (int d = 0; d < surface.dims; ++d) x[d] = (z[d] - surface.lo(d)) / surface.span(d);
+  return inference::predict_mean(surface.gp, std::span<const double>(x, std::size_t(surface.dims)));
 }
 
 double variance_at(const Surface& surface, std::span<const double> z) {

@@ -42,9 +42,9 @@ struct Surface {
 // departure anything, 2 (d + 1).
 int minimum_surface_points(int dims);
 
-// The surface through the points (z[k], y[k]); nullopt with fewer than minimum_surface_points,
-// with an axis the points do not span (nothing says how the observable moves along it), or when
-// the emulator cannot be fitted.
+// The surface through the points (z[k], y[k]); nullopt with fewer than minimum_surface_points or
+// more than 8 coordinates, with an axis the points do not span (nothing says how the observable
+// moves along it), or when the emulator cannot be fitted.
 std::optional<Surface> fit_surface(const std::vector<std::vector<double>>& z,
                                    const std::vector<double>& y);
 
