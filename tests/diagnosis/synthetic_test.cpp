@@ -16,6 +16,7 @@
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
+#include "orchestrator/diagnosis/pipeline/local_design.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "synthetic_model.hpp"
 
@@ -149,8 +150,9 @@ TEST_P(HiddenEffect, TheLocalDesignFindsItFromFewerRuns) {
   EXPECT_GE(v["gap_closure"].get<double>(), 0.6);
   EXPECT_NEAR(std::log(v["fr0"].get<double>() / 60), 0, 0.25);
   EXPECT_NEAR(std::log(v["fs0"].get<double>() / 120), 0, 0.25);
-  // 3 x 3 + 5 base runs, 4 per effect (5 effects): 34 before budget and confirmation.
-  EXPECT_EQ(grid_points(r.campaign), 34);
+  // 3 x 3 + 5 base runs (planned: up to 4 more per move of the star), 4 per effect (5 effects):
+  // 34 before budget and confirmation.
+  EXPECT_EQ(grid_points(r.campaign), 34 + 4 * kStarMoves);
   EXPECT_EQ(r.summary["grid"]["design"], "local");
   const int local_runs = r.summary["runs"]["model_points"].get<int>();
   const int global_runs = global.summary["runs"]["model_points"].get<int>();
@@ -232,6 +234,60 @@ TEST(Diagnosis, TwinsOnOneTemplateShareTheLocalDesignsRuns) {
               design_runs, runs_second.seen.size());
 }
 
+// A model whose response bends where a coarse grid cannot see it, as the bonded model's does: the
+// UCT follows F_s0 only up to 3 F_r0 (beyond, its bonds fail in tension first), and no test has a
+// peak when both strengths are large (the runs reach the strain limit).
+struct KinkedModel : Evaluator {
+  explicit KinkedModel(std::vector<Target> t) : model(std::move(t)) {}
+  std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override {
+    std::vector<RunOutcome> out = model.run_batch(requests);
+    for (std::size_t r = 0; r < requests.size(); ++r) {
+      const ModelPoint& p = requests[r].point;
+      ++asked;
+      if (p.fr0_n > 500 && p.fs0_n > 500) {
+        out[r] = {std::vector<std::optional<double>>(model.targets.size()), "no peak"};
+        continue;
+      }
+      const double cap = std::pow(p.fr0_n, 0.3) * std::pow(3 * p.fr0_n, 0.7) * 300;
+      for (std::size_t i = 0; i < model.targets.size(); ++i) {
+        if (model.targets[i].conditions.test == TestKind::uct && out[r].values[i])
+          out[r].values[i] = std::min(*out[r].values[i], cap);
+      }
+    }
+    return out;
+  }
+  std::vector<RunOutcome> run_on(std::span<const RunRequest> requests,
+                                 const std::vector<Target>& targets) override {
+    return model.run_on(requests, targets);
+  }
+  SyntheticModel model;
+  std::size_t asked = 0;
+};
+
+// Focus: the local design's star ends where the base model's fit is. Over a wide box a 3 x 3 grid
+// misplaces the fit (its corners have no peak, the cap bends the UCT between its nodes); the
+// star's runs then move it, and the star follows to the new node, so the effects' runs and the
+// budget sit where the calibration looks, not where the grid guessed.
+TEST(Diagnosis, TheLocalDesignsStarFollowsTheFitItsRunsGive) {
+  DiagnosisCampaign c = twin_campaign("", 0.0, 0.0);
+  c.fr0_n = c.fs0_n = {4, 1024};
+  c.grid.design = Design::local;
+  c.grid.fr0 = c.grid.fs0 = 3;
+  c.grid.step = 0.05;
+  KinkedModel model(c.targets);
+  const Samples base = run_local_base(c, model);
+  const auto fit = fit_base_on_lab(c, fit_surfaces(base, 2, c.targets.size()));
+  ASSERT_TRUE(fit.has_value());
+  const std::size_t grid = 9, stars = base.z.size() - grid;
+  std::printf("star points %zu, fit (%.4f, %.4f)\n", stars, fit->z[0], fit->z[1]);
+  EXPECT_GT(stars, 5u);  // the first star did not hold the fit: it moved
+  EXPECT_LE(stars, std::size_t(5 + 4 * kStarMoves));
+  EXPECT_LE(int(base.z.size()), base_grid_points(c));  // within the plan
+  // Every point of the star at the fit's node has been run (none twice).
+  for (const std::vector<double>& z : star(fit->z, c.grid.step))
+    EXPECT_EQ(std::count(base.z.begin(), base.z.end(), z), 1) << z[0] << ", " << z[1];
+}
+
 // An effect that jumps at neutral has no base slice to lean on: its own points must determine a
 // full quadratic, the strengths' cross term included (a star alone leaves it undetermined).
 TEST(Diagnosis, TheLocalDesignFitsAnEffectThatJumpsAtNeutral) {
@@ -241,7 +297,7 @@ TEST(Diagnosis, TheLocalDesignFitsAnEffectThatJumpsAtNeutral) {
   for (Candidate& k : r.campaign.candidates) {
     if (k.effect == "size") k.s_floor = kDiscontinuousFloor;
   }
-  EXPECT_EQ(grid_points(r.campaign), 9 + 5 + 4 * 4 + 3 * 5 + 1);
+  EXPECT_EQ(grid_points(r.campaign), 9 + 5 + 4 * kStarMoves + 4 * 4 + 3 * 5 + 1);
   SyntheticModel model(r.campaign.targets);
   r.report = run_diagnosis(r.campaign, model);
   const CandidateResult& size = candidate(r.report, "size");

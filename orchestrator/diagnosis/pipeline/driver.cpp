@@ -317,7 +317,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
                                      : run_base_grid(campaign, evaluator)};
   report.candidates.resize(1);
   report.candidates[0].surfaces = fit_surfaces(samples[0], 2, n);
-  report.model_points = base_grid_points(campaign);
+  report.model_points = int(samples[0].z.size());
 
   // 2. The budget, at the base model's fit with lab uncertainties alone (the budget is not known
   // yet); later fits weight each residual by lab uncertainty and budget together. The screen's

@@ -29,8 +29,9 @@ int grid_levels(const Candidate& candidate, int s_values) {
 }
 
 int base_grid_points(const DiagnosisCampaign& c) {
-  // The local design adds a star at the base fit.
-  return c.grid.fr0 * c.grid.fs0 + (c.grid.design == Design::local ? 5 : 0);
+  // The local design adds a star at the base fit, and at most kStarMoves more (each shares at
+  // least its centre's arm with the last): an upper bound, as every plan is.
+  return c.grid.fr0 * c.grid.fs0 + (c.grid.design == Design::local ? 5 + 4 * kStarMoves : 0);
 }
 
 int effect_grid_points(const DiagnosisCampaign& c, const Candidate& k) {

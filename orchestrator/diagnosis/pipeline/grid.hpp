@@ -22,8 +22,11 @@ ModelPoint model_point(const DiagnosisCampaign& c, const Candidate& candidate,
 
 // The s levels a candidate's own grid runs: all but u = 0 when it shares the base grid.
 int grid_levels(const Candidate& candidate, int s_values);
-// Model points of the base model's surface runs, of one effect's, and of every candidate's
-// together (the base grid counted once), under the campaign's design.
+// How often the local design's star around the base fit may move to the node of the fit its runs
+// gave (run_local_base).
+inline constexpr int kStarMoves = 2;
+// Model points of the base model's surface runs (at most, under the local design), of one effect's,
+// and of every candidate's together (the base grid counted once), under the campaign's design.
 int base_grid_points(const DiagnosisCampaign& c);
 int effect_grid_points(const DiagnosisCampaign& c, const Candidate& effect);
 int grid_points(const DiagnosisCampaign& c);

@@ -66,10 +66,21 @@ Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator) {
   }
   run_into(samples, grid, c, evaluator);
 
-  std::vector<Point> around;
-  for (std::vector<double>& z : star(base_fit(c, samples[0]), c.grid.step))
-    around.push_back({0, z});
-  run_into(samples, around, c, evaluator);
+  // The grid's surfaces can place the fit far from where its star's runs then put it (a coarse
+  // grid over a wide box, corners without a peak): the star walks to the new node, at most
+  // kStarMoves times, re-running no point it has, until the fit's node is one it centred a star on.
+  std::vector<std::vector<double>> centres;
+  for (int move = 0; move <= kStarMoves; ++move) {
+    const std::vector<double> centre = lattice_point(base_fit(c, samples[0]), c.grid.step);
+    if (std::find(centres.begin(), centres.end(), centre) != centres.end()) break;
+    centres.push_back(centre);
+    std::vector<Point> around;
+    for (std::vector<double>& z : star(centre, c.grid.step)) {
+      if (std::find(samples[0].z.begin(), samples[0].z.end(), z) == samples[0].z.end())
+        around.push_back({0, std::move(z)});
+    }
+    run_into(samples, around, c, evaluator);
+  }
   return samples[0];
 }
 

@@ -32,7 +32,8 @@ std::vector<double> study_point(const DiagnosisCampaign& c, const std::vector<do
 // The lattice node nearest z and its four arms +- h along each strength axis.
 std::vector<std::vector<double>> star(std::span<const double> z, double h);
 
-// Two batches, each in parallel on the pool: the base grid; the star at the base fit on it.
+// Batches, each in parallel on the pool: the base grid; the star at the base fit on it; while the
+// fit on grid and stars lies at another node (at most kStarMoves times), the star there.
 Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator);
 // One batch: every effect's points at the base fit on grid and star (samples[0], the base's).
 // As run_effect_grids, the result has one more Samples per campaign candidate.
