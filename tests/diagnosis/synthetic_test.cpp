@@ -12,6 +12,7 @@
 
 #include "api/cli/diagnosis_text.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/trust_region.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
@@ -286,6 +287,41 @@ TEST(Diagnosis, TheLocalDesignsStarFollowsTheFitItsRunsGive) {
   // Every point of the star at the fit's node has been run (none twice).
   for (const std::vector<double>& z : star(fit->z, c.grid.step))
     EXPECT_EQ(std::count(base.z.begin(), base.z.end(), z), 1) << z[0] << ", " << z[1];
+}
+
+// Focus: over a wide box, on runs that bend between the grid's nodes, the null twin's base model is
+// confirmed at its truth (the star walked there, the refinement kept it).
+TEST(Diagnosis, OverAWideBoxTheNullTwinIsConfirmedAtItsTruth) {
+  DiagnosisCampaign c = twin_campaign("", 0.0, 0.0);
+  c.fr0_n = c.fs0_n = {4, 1024};
+  c.grid.design = Design::local;
+  c.grid.fr0 = c.grid.fs0 = 3;
+  c.grid.step = 0.05;
+  KinkedModel model(c.targets);
+  const CandidateResult base = run_diagnosis(c, model).candidates[0];
+  EXPECT_NEAR(std::log(base.point.fr0_n / 60), 0, 0.25);
+  EXPECT_NEAR(std::log(base.point.fs0_n / 120), 0, 0.25);
+  EXPECT_LT(base.confirmed_rms.calibration, 0.05);
+}
+
+// Focus: the refinement starts from the best real run the candidate has, the design's included. A
+// surface fit far from every run that the real run refutes (the real-engine null twin over [4,
+// 1024] N: surfaces 1.2, the run 18.5, against 0.16 near the truth) is not kept because it was the
+// only trial: the next one goes back from the best run, half as far.
+TEST(Refinement, ADesignRunBetterThanTheSurfaceFitIsTheStart) {
+  TrustRegion t{0.25};
+  t.start_from({0.5, 0.5}, 0.16, {1.0});
+  t.start_from({0.2, 0.2}, 3.0, {2.0});  // a worse design run changes nothing
+  EXPECT_EQ(t.best_z, (std::vector<double>{0.5, 0.5}));
+  EXPECT_EQ(t.radius, 0.25);
+  EXPECT_FALSE(t.record({0.95, 0.5}, 18.5, {3.0}));  // the surface fit, refuted
+  EXPECT_EQ(t.best_z, (std::vector<double>{0.5, 0.5}));
+  EXPECT_EQ(t.best_ln, (std::vector<double>{1.0}));
+  EXPECT_DOUBLE_EQ(t.radius, 0.225);
+  const auto next = t.next({0.95, 0.5}, 0.01);  // the re-fit still points there
+  ASSERT_TRUE(next.has_value());
+  EXPECT_DOUBLE_EQ((*next)[0], 0.725);
+  EXPECT_TRUE(t.record(*next, 0.1, {4.0}));
 }
 
 // An effect that jumps at neutral has no base slice to lean on: its own points must determine a

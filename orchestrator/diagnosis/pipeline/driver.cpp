@@ -108,10 +108,14 @@ std::vector<double> offset_of(const std::vector<double>& real, const std::vector
 // and the real residuals there mix fit error into the gap. Each chosen candidate is therefore run
 // at its surface fit, its surfaces are shifted to pass through that run, re-fitted, and run again
 // (`refine` times, or until the fit stops moving); the run with the smallest real calibration
-// misfit is the candidate's confirmed point. Then the replicate seeds run there.
+// misfit is the candidate's confirmed point. The design's own runs of the candidate count as runs
+// made: a surface fit far from them (a wide box, a coarse grid) that the real run refutes is then
+// left for the best of them, not kept because it was the only trial. Then the replicate seeds run
+// there.
 void confirm_candidates(std::vector<CandidateResult>& candidates, const DiagnosisCampaign& c,
-                        const std::vector<int>& chosen, Evaluator& evaluator,
-                        const std::vector<double>& lab, const std::vector<double>& budget) {
+                        const std::vector<int>& chosen, const std::vector<Samples>& samples,
+                        Evaluator& evaluator, const std::vector<double>& lab,
+                        const std::vector<double>& budget) {
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
   constexpr double kSettled = 0.01;  // unit-cube step below which a re-fit counts as settled
   constexpr double kMaxStep = 0.25;  // first trust radius: the longest unit-cube step of a re-fit
@@ -121,7 +125,16 @@ void confirm_candidates(std::vector<CandidateResult>& candidates, const Diagnosi
     TrustRegion trust{kMaxStep};
   };
   std::vector<State> state(chosen.size());
-  for (std::size_t j = 0; j < chosen.size(); ++j) state[j].z = candidates[chosen[j]].calibration.z;
+  for (std::size_t j = 0; j < chosen.size(); ++j) {
+    const CandidateResult& r = candidates[chosen[j]];
+    state[j].z = r.calibration.z;
+    const Objective objective = calibration_objective(c.targets, budget, r.surfaces, lab);
+    const Samples& made = samples[std::size_t(chosen[j])];
+    for (std::size_t t = 0; t < made.z.size(); ++t) {
+      const std::vector<double> ln = ln_values(made.outcomes[t]);
+      state[j].trust.start_from(made.z[t], real_misfit(objective, ln), ln);
+    }
+  }
   for (int step = 0; step <= c.refine; ++step) {
     std::vector<RunRequest> requests;
     std::vector<std::size_t> who;
@@ -379,7 +392,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   phase(options, campaign, "confirm", 4,
         int(chosen.size() * (1 + c.refine + c.budget.seeds.size())) +
             int(budget_offsets(c.budget.points).size()) * runs_per_point);
-  confirm_candidates(report.candidates, c, chosen, evaluator, lab, budget);
+  confirm_candidates(report.candidates, c, chosen, samples, evaluator, lab, budget);
   for (int i : chosen) {
     report.model_points += int(report.candidates[i].refinement.size() + c.budget.seeds.size());
   }
