@@ -265,16 +265,22 @@ struct KinkedModel : Evaluator {
   std::size_t asked = 0;
 };
 
-// Focus: the local design's star ends where the base model's fit is. Over a wide box a 3 x 3 grid
-// misplaces the fit (its corners have no peak, the cap bends the UCT between its nodes); the
-// star's runs then move it, and the star follows to the new node, so the effects' runs and the
-// budget sit where the calibration looks, not where the grid guessed.
-TEST(Diagnosis, TheLocalDesignsStarFollowsTheFitItsRunsGive) {
+// The noise-free null twin (truth (60, 120) N) over [4, 1024] N, local design, a 3 x 3 grid.
+DiagnosisCampaign wide_box_null() {
   DiagnosisCampaign c = twin_campaign("", 0.0, 0.0);
   c.fr0_n = c.fs0_n = {4, 1024};
   c.grid.design = Design::local;
   c.grid.fr0 = c.grid.fs0 = 3;
   c.grid.step = 0.05;
+  return c;
+}
+
+// Focus: the local design's star ends where the base model's fit is. Over a wide box a 3 x 3 grid
+// misplaces the fit (its corners have no peak, the cap bends the UCT between its nodes); the
+// star's runs then move it, and the star follows to the new node, so the effects' runs and the
+// budget sit where the calibration looks, not where the grid guessed.
+TEST(Diagnosis, TheLocalDesignsStarFollowsTheFitItsRunsGive) {
+  const DiagnosisCampaign c = wide_box_null();
   KinkedModel model(c.targets);
   const Samples base = run_local_base(c, model);
   const auto fit = fit_base_on_lab(c, fit_surfaces(base, 2, c.targets.size()));
@@ -292,11 +298,7 @@ TEST(Diagnosis, TheLocalDesignsStarFollowsTheFitItsRunsGive) {
 // Focus: over a wide box, on runs that bend between the grid's nodes, the null twin's base model is
 // confirmed at its truth (the star walked there, the refinement kept it).
 TEST(Diagnosis, OverAWideBoxTheNullTwinIsConfirmedAtItsTruth) {
-  DiagnosisCampaign c = twin_campaign("", 0.0, 0.0);
-  c.fr0_n = c.fs0_n = {4, 1024};
-  c.grid.design = Design::local;
-  c.grid.fr0 = c.grid.fs0 = 3;
-  c.grid.step = 0.05;
+  const DiagnosisCampaign c = wide_box_null();
   KinkedModel model(c.targets);
   const CandidateResult base = run_diagnosis(c, model).candidates[0];
   EXPECT_NEAR(std::log(base.point.fr0_n / 60), 0, 0.25);
