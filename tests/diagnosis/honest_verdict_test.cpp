@@ -79,7 +79,9 @@ TEST(HonestVerdict, TheSeedLabCaseIsUndeterminedWithItsMissStated) {
       j,
       "undetermined: no held-out observations, so no effect can be judged; the base model's "
       "fit lies on the search box (fs0 upper): its strengths are the bounds', not the data's "
-      "(widen the bounds); the base model misses uct-1 (calibration) by -0.93 in ln (61% "
+      "(widen the bounds, unless the base model fits these data at no strengths: it misses the "
+      "calibration observations there by 5.9 noise budgets); the base model misses uct-1 "
+      "(calibration) by -0.93 in ln (61% "
       "below the lab), 8.3 times its noise 0.112 (budget 0.100, lab uncertainty 0.050), and "
       "btt-1 (calibration) by -0.93 in ln (61% below the lab), 1.2 times its noise 0.752 "
       "(budget 0.750, lab uncertainty 0.050): rms 5.9 noise budgets over the calibration "

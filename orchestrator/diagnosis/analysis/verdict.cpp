@@ -284,8 +284,17 @@ void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Con
   if (!e.base_on_bounds.empty()) {
     std::string where;
     for (const std::string& b : e.base_on_bounds) where += (where.empty() ? "" : ", ") + b;
-    causes.push_back("the base model's fit lies on the search box (" + where +
-                     "): its strengths are the bounds', not the data's (widen the bounds)");
+    std::string cause = "the base model's fit lies on the search box (" + where +
+                        "): its strengths are the bounds', not the data's (widen the bounds";
+    // A miss there beyond what any fitting candidate may leave: the bound may not be the cause
+    // (a random packing's twin on the FCC model misses its modulus, which no strength sets).
+    if (e.base.calibration && *e.base.calibration > kCalibrationFitBudgets) {
+      cause +=
+          ", unless the base model fits these data at no strengths: it misses the "
+          "calibration observations there by " +
+          fixed(*e.base.calibration, 1) + " noise budgets";
+    }
+    causes.push_back(cause + ")");
   }
   if (!causes.empty()) {
     v.undetermined = true;
