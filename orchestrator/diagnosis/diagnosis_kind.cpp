@@ -20,9 +20,10 @@ std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
   const int budget = 2 * int(budget_offsets(c.budget.points).size()) *
                          int(budget_runs_per_point(c.budget, c.dataset.origin)) +
                      (c.screen ? int(c.candidates.size()) : 0);
-  // Effects are designed and confirmed only when held-out observations can judge them.
+  // Effects are designed and confirmed only when held-out observations can judge them; each
+  // confirmed effect also runs the base model at its strengths (its mark at its fitted value).
   const bool judged = judges_effects(c);
-  const int confirm = (1 + (judged ? c.confirm : 0)) * (1 + c.refine + seeds);
+  const int confirm = (1 + c.refine + seeds) + (judged ? c.confirm * (2 + c.refine + seeds) : 0);
   const int grid = judged ? grid_points(c) : base_grid_points(c);
   std::vector<orch::BudgetPart> parts{
       {"grid", grid * runs}, {"budget", budget * runs}, {"confirm", confirm * runs}};

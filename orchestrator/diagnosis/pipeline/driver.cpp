@@ -390,11 +390,14 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   mark_calibration_fits(report.candidates, report.combined_calibration);
   const std::vector<int> chosen = to_confirm(report.candidates, c.confirm);
   phase(options, campaign, "confirm", 4,
-        int(chosen.size() * (1 + c.refine + c.budget.seeds.size())) +
+        int(chosen.size() * (1 + c.refine + c.budget.seeds.size()) + chosen.size() - 1) +
             int(budget_offsets(c.budget.points).size()) * runs_per_point);
   confirm_candidates(report.candidates, c, chosen, samples, evaluator, lab, budget);
   for (int i : chosen) {
-    report.model_points += int(report.candidates[i].refinement.size() + c.budget.seeds.size());
+    const CandidateResult& r = report.candidates[i];
+    // The effects' base run at their strengths (mark_at_fit) is a model point too.
+    report.model_points +=
+        int(r.refinement.size() + c.budget.seeds.size()) + !r.candidate.is_base();
   }
   // The budget of the model the residuals come from: re-measured at the confirmed base fit unless
   // that kept the first fit's points (on the demo twins the fit moved up to x7 along F_r0).
