@@ -107,6 +107,73 @@ TEST(RegisteredEffectTwins, TheNullTwinNamesNoEffect) {
       << summary["screen"].dump(2);
 }
 
+// A random packing's peaks lie far below the FCC's at the same bond strengths (its bonds are fewer
+// and carry the load unevenly): its fit's strengths are several lattice steps from the base
+// model's. Every peak of a packing run here is a fifth of the formula's.
+struct WeakPackingModel : Evaluator {
+  explicit WeakPackingModel(std::vector<Target> t) : model(std::move(t)) {
+    model.marks = testing::measured_marks();
+  }
+  std::vector<RunOutcome> run_batch(std::span<const RunRequest> requests) override {
+    return run_on(requests, model.targets);
+  }
+  std::vector<RunOutcome> run_on(std::span<const RunRequest> requests,
+                                 const std::vector<Target>& on) override {
+    std::vector<RunOutcome> out = model.run_on(requests, on);
+    for (std::size_t r = 0; r < requests.size(); ++r) {
+      const ModelPoint& p = requests[r].point;
+      if (p.effect != "packing" || !effect_on(p)) continue;
+      runs.push_back(p);
+      for (std::size_t i = 0; i < on.size(); ++i) {
+        if (on[i].observable == Observable::peak_load && out[r].values[i])
+          *out[r].values[i] *= std::exp(-1.6);
+      }
+    }
+    return out;
+  }
+  testing::SyntheticModel model;
+  std::vector<ModelPoint> runs;  // the packing runs asked for
+};
+
+// Focus: an effect that changes what the strengths must be is designed where its own fit lies. The
+// screen's strong run, its strengths re-fitted linearly on the base model's sensitivity, says
+// where; the effect's runs are centred there, so its surfaces interpolate its fit instead of
+// extrapolating from the base model's (the real-engine packing twin: its candidate fitted on a
+// bound of [4, 1024] N, 784 nats, while its runs sat at the base fit). The formula is linear in the
+// ln strengths, so here an extrapolation is exact and the confirmation's real runs would find the
+// truth from the base fit too: the design's place is what is asserted, then the verdict.
+TEST(RegisteredEffectTwins, AnEffectThatMovesTheStrengthsIsDesignedAtItsOwnFit) {
+  DiagnosisCampaign c = testing::registry_twin_campaign("packing", kHiddenS, 0.0);
+  c.fr0_n = c.fs0_n = {4, 1024};
+  c.grid.design = Design::local;
+  c.grid.fr0 = c.grid.fs0 = 3;
+  c.grid.step = 0.05;
+  WeakPackingModel truth(c.targets);
+  truth.model.numerical_noise = 0;
+  const RunRequest at_truth{{60.0, 120.0, "packing", kHiddenS}, {1, 1.0, 1.0}};
+  const std::vector<RunOutcome> lab = truth.run_batch({&at_truth, 1});
+  for (std::size_t i = 0; i < c.targets.size(); ++i) c.targets[i].value = *lab[0].values[i];
+
+  WeakPackingModel model(c.targets);
+  const json summary = to_json(run_diagnosis(c, model), c);
+  // Within two lattice steps of the truth in the unit square of ln strengths over the box.
+  const double h = c.grid.step, span = std::log(1024.0 / 4.0);
+  int near = 0;
+  for (const ModelPoint& p : model.runs) {
+    near += std::abs(std::log(p.fr0_n / 60) / span) <= 2 * h + 1e-9 &&
+            std::abs(std::log(p.fs0_n / 120) / span) <= 2 * h + 1e-9;
+  }
+  const json& v = summary["verdict"];
+  std::printf("packing runs %zu, %d near the truth; verdict %s at (%.1f, %.1f) N, s %s\n",
+              model.runs.size(), near, v["label"].get<std::string>().c_str(),
+              v["fr0"].get<double>(), v["fs0"].get<double>(), v["parameter"].dump().c_str());
+  EXPECT_GE(near, 3 * 5 + 1);  // its whole design: a star at each level and a corner
+  ASSERT_EQ(v["effect"], "packing") << v.dump(2);
+  EXPECT_NEAR(v["parameter"]["s"].get<double>(), kHiddenS, 0.15) << v.dump(2);
+  EXPECT_NEAR(std::log(v["fr0"].get<double>() / 60), 0, 0.25);
+  EXPECT_NEAR(std::log(v["fs0"].get<double>() / 120), 0, 0.25);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     MeasuredMarks, RegisteredEffectTwin,
     ::testing::Values(RegisteredTwin{"packing", Mark::named}, RegisteredTwin{"rate", Mark::named},

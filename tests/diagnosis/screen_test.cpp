@@ -65,6 +65,27 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
   EXPECT_FALSE(failed.largest);
 }
 
+// Focus: where the effect's design is centred. The base run fits the lab; the effect at s = 1
+// raises the first calibration peak by 0.2 and the second by 0.1 in ln, which the strengths undo by
+// moving -0.2 along F_r0 and -0.1 along F_s0 (d ln / dz = 1 on each).
+TEST(Screen, TheStrongRunsReFitSaysWhereTheEffectFits) {
+  const std::vector<std::array<double, 2>> jacobian{{1.0, 0.0}, {0.0, 1.0}, {0.5, 0.5}};
+  const std::vector<double> weight{2500, 2500, 0}, budget{0.01, 0.01, 0.01};
+  std::vector<Target> targets = three_targets();
+  const double lab[] = {100.0, 50.0, 70.0};
+  for (std::size_t i = 0; i < 3; ++i) targets[i].value = lab[i];
+  const ScreenedEffect e = screen_effect("rate", run({100.0, 50.0, 70.0}),
+                                         run({100 * std::exp(0.2), 50 * std::exp(0.1), 90.0}),
+                                         jacobian, weight, targets, budget);
+  EXPECT_NEAR(e.fit_shift[0], -0.2, 1e-12);
+  EXPECT_NEAR(e.fit_shift[1], -0.1, 1e-12);
+  // Without lab values to fit (a value-less strong run) it stays where the base fit is.
+  const ScreenedEffect failed = screen_effect("packing", run({100.0, 50.0, 70.0}),
+                                              run({std::nullopt, std::nullopt, std::nullopt}),
+                                              jacobian, weight, targets, budget);
+  EXPECT_EQ(failed.fit_shift, (std::array<double, 2>{0.0, 0.0}));
+}
+
 struct Diagnosed {
   DiagnosisCampaign campaign;
   DiagnosisResult report;

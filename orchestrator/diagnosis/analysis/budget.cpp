@@ -103,19 +103,22 @@ StrengthResponse strength_response(const SurfaceSet& base, const std::vector<Tar
   return r;
 }
 
-std::vector<double> change_after_refit(const std::vector<double>& change,
-                                       const std::vector<std::array<double, 2>>& jacobian,
-                                       const std::vector<double>& weight) {
-  const std::size_t n = change.size();
-  auto usable = [&](std::size_t i) {
-    return std::isfinite(change[i]) && std::isfinite(jacobian[i][0]) &&
-           std::isfinite(jacobian[i][1]);
-  };
-  // Normal equations of min sum_i w_i (change_i - J_i dz)^2 over the calibration targets:
-  // [p q; q r] dz = b.
+namespace {
+
+bool usable(const std::vector<double>& change, const std::vector<std::array<double, 2>>& jacobian,
+            std::size_t i) {
+  return std::isfinite(change[i]) && std::isfinite(jacobian[i][0]) && std::isfinite(jacobian[i][1]);
+}
+
+}  // namespace
+
+std::array<double, 2> refit_shift(const std::vector<double>& change,
+                                  const std::vector<std::array<double, 2>>& jacobian,
+                                  const std::vector<double>& weight) {
+  // Normal equations: [p q; q r] dz = b.
   double p = 0, q = 0, r = 0, b0 = 0, b1 = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(weight[i] > 0) || !usable(i)) continue;
+  for (std::size_t i = 0; i < change.size(); ++i) {
+    if (!(weight[i] > 0) || !usable(change, jacobian, i)) continue;
     const auto& j = jacobian[i];
     p += weight[i] * j[0] * j[0];
     q += weight[i] * j[0] * j[1];
@@ -124,24 +127,29 @@ std::vector<double> change_after_refit(const std::vector<double>& change,
     b1 += weight[i] * change[i] * j[1];
   }
   const double det = p * r - q * q, trace = p + r;
-  double dz0 = 0, dz1 = 0;
   if (trace > 0 && det > 1e-9 * trace * trace) {
-    dz0 = (r * b0 - q * b1) / det;
-    dz1 = (p * b1 - q * b0) / det;
-  } else if (trace > 0) {
-    // One calibration direction (e.g. a single calibration condition): the minimum-norm re-fit
-    // along it, the matrix's one non-zero eigenvector.
-    double v0 = p >= r ? p : q, v1 = p >= r ? q : r;
-    const double norm = std::hypot(v0, v1);
-    v0 /= norm;
-    v1 /= norm;
-    const double along = (v0 * b0 + v1 * b1) / trace;
-    dz0 = along * v0;
-    dz1 = along * v1;
+    return {(r * b0 - q * b1) / det, (p * b1 - q * b0) / det};
   }
+  if (!(trace > 0)) return {0.0, 0.0};
+  // One calibration direction (e.g. a single calibration condition): the minimum-norm re-fit
+  // along it, the matrix's one non-zero eigenvector.
+  double v0 = p >= r ? p : q, v1 = p >= r ? q : r;
+  const double norm = std::hypot(v0, v1);
+  v0 /= norm;
+  v1 /= norm;
+  const double along = (v0 * b0 + v1 * b1) / trace;
+  return {along * v0, along * v1};
+}
+
+std::vector<double> change_after_refit(const std::vector<double>& change,
+                                       const std::vector<std::array<double, 2>>& jacobian,
+                                       const std::vector<double>& weight) {
+  const std::size_t n = change.size();
+  const auto [dz0, dz1] = refit_shift(change, jacobian, weight);
   std::vector<double> out(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i) {
-    if (usable(i)) out[i] = change[i] - jacobian[i][0] * dz0 - jacobian[i][1] * dz1;
+    if (usable(change, jacobian, i))
+      out[i] = change[i] - jacobian[i][0] * dz0 - jacobian[i][1] * dz1;
   }
   return out;
 }

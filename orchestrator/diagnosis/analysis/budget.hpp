@@ -89,8 +89,14 @@ struct StrengthResponse {
 StrengthResponse strength_response(const SurfaceSet& base, const std::vector<Target>& targets,
                                    const std::vector<std::vector<double>>& points);
 
-// The change of each target left after the strengths' best linear re-fit to the calibration
-// targets' changes (weighted least squares; NaN changes are left out and stay NaN).
+// The strengths' best linear re-fit to the calibration targets' changes: the unit-cube dz of
+// min sum_i w_i (change_i - J_i dz)^2 (NaN changes left out; the minimum-norm dz along the one
+// direction the targets see when they see one).
+std::array<double, 2> refit_shift(const std::vector<double>& change,
+                                  const std::vector<std::array<double, 2>>& jacobian,
+                                  const std::vector<double>& weight);
+
+// The change of each target left after that re-fit (NaN changes stay NaN).
 std::vector<double> change_after_refit(const std::vector<double>& change,
                                        const std::vector<std::array<double, 2>>& jacobian,
                                        const std::vector<double>& weight);

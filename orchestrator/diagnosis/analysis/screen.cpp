@@ -31,6 +31,13 @@ ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const R
     }
   }
   out.visible = !out.largest || out.largest_in_noise > 1.0;
+  std::vector<double> strong_residual(n, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (strong.values[i] && *strong.values[i] > 0 && targets[i].value > 0)
+      strong_residual[i] = std::log(*strong.values[i] / targets[i].value);
+  }
+  const std::array<double, 2> dz = refit_shift(strong_residual, jacobian, weight);
+  out.fit_shift = {-dz[0], -dz[1]};
   return out;
 }
 

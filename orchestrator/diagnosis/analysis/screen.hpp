@@ -29,6 +29,12 @@ struct ScreenedEffect {
   // Some target moves beyond its noise. An effect with no value to compare is kept: unknown is
   // not nothing.
   bool visible = true;
+  // Where the effect's fit lies from the screen's point, in the unit cube of (ln F_r0, ln F_s0):
+  // the strengths' linear re-fit of the strong run to the calibration observations, with the base
+  // model's sensitivity there. The local design centres the effect's runs on it: an effect that
+  // changes what the strengths must be (a random packing against the FCC base) is fitted where
+  // its runs are, not extrapolated from the base fit's. Zero when nothing was measured.
+  std::array<double, 2> fit_shift{0.0, 0.0};
 };
 
 // One effect's mark: `strong` is its run at s = 1, `base` the base model's at the same strengths;

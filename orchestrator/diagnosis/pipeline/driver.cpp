@@ -282,14 +282,19 @@ Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base
 }
 
 // The campaign with only the effects it designs: those the screen kept, none when nothing is held
-// out (no evidence could judge them; the next test names what would).
-DiagnosisCampaign kept_effects(const DiagnosisCampaign& c, const ScreenResult& screen) {
+// out (no evidence could judge them; the next test names what would). `shifts` gets the kept
+// effects' fit_shift (empty when not screened).
+DiagnosisCampaign kept_effects(const DiagnosisCampaign& c, const ScreenResult& screen,
+                               std::vector<std::array<double, 2>>& shifts) {
   DiagnosisCampaign kept = c;
+  shifts.clear();
   if (!screen.enabled && judges_effects(c)) return kept;
   kept.candidates.clear();
   if (!judges_effects(c)) return kept;
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
-    if (screen.effects[k].visible) kept.candidates.push_back(c.candidates[k]);
+    if (!screen.effects[k].visible) continue;
+    kept.candidates.push_back(c.candidates[k]);
+    shifts.push_back(screen.effects[k].fit_shift);
   }
   return kept;
 }
@@ -359,10 +364,11 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   const std::vector<double>& budget = report.weight_budget.per_target;
 
   // 3. The surfaces' runs of every effect the screen kept; from here on the campaign is theirs.
-  const DiagnosisCampaign c = kept_effects(campaign, report.screen);
+  std::vector<std::array<double, 2>> fit_shifts;
+  const DiagnosisCampaign c = kept_effects(campaign, report.screen, fit_shifts);
   phase(options, campaign, "surfaces", 3, grid_points(c) - base_grid_points(c));
   if (local) {
-    run_local_effects(c, evaluator, samples);
+    run_local_effects(c, evaluator, samples, fit_shifts);
   } else {
     run_effect_grids(c, evaluator, samples);
   }

@@ -85,7 +85,8 @@ Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator) {
 }
 
 void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
-                       std::vector<Samples>& samples) {
+                       std::vector<Samples>& samples,
+                       const std::vector<std::array<double, 2>>& fit_shifts) {
   const double h = c.grid.step;
   samples.resize(1 + c.candidates.size());
   // The fit on grid and star: the star's runs pin the surfaces' slope and curvature there.
@@ -93,21 +94,31 @@ void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
   std::vector<Point> effects;
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
     const std::size_t owner = k + 1;
+    const std::array<double, 2> shift = k < fit_shifts.size() ? fit_shifts[k] : std::array{0., 0.};
+    auto node = [&](double s) {
+      const std::vector<double> z{z0[0] + s * shift[0], z0[1] + s * shift[1]};
+      return lattice_point(z, h);
+    };
     if (c.candidates[k].shares_base_grid()) {
       for (double s : grid_axis(c.grid.s)) {
-        if (s > kEffectOffBelow) effects.push_back({owner, {z0[0], z0[1], s}});
+        if (s <= kEffectOffBelow) continue;
+        const std::vector<double> z = node(s);
+        effects.push_back({owner, {z[0], z[1], s}});
       }
-      effects.push_back({owner, {z0[0] + h, z0[1], 1.0}});
-      effects.push_back({owner, {z0[0], z0[1] + h, 1.0}});
+      const std::vector<double> z1 = node(1.0);
+      effects.push_back({owner, {z1[0] + h, z1[1], 1.0}});
+      effects.push_back({owner, {z1[0], z1[1] + h, 1.0}});
     } else {
       // No base slice to lean on (its u = 0 is not the base model): a star at every level, and
       // one corner, without which the strengths' cross term is undetermined (on a star's points
-      // (x - x0)(y - y0) is 0 throughout).
+      // (x - x0)(y - y0) is 0 throughout). Its jump is there from the floor on: every level is
+      // centred on the full shift.
+      const std::vector<double> z1 = node(1.0);
       for (double u : grid_axis(c.grid.s)) {
-        for (const std::vector<double>& z : star(z0, h))
+        for (const std::vector<double>& z : star(z1, h))
           effects.push_back({owner, {z[0], z[1], u}});
       }
-      effects.push_back({owner, {z0[0] + h, z0[1] + h, 0.5}});
+      effects.push_back({owner, {z1[0] + h, z1[1] + h, 0.5}});
     }
   }
   run_into(samples, effects, c, evaluator);

@@ -1,4 +1,5 @@
 // to_json of the diagnosis report. JSON has no NaN: quantities that do not exist are null.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -361,10 +362,17 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
                  {"noise", e.noise[i]},
                  {"in_noise", e.largest_in_noise}};
     }
+    // The strengths the linear re-fit gives the effect at s = 1 (where its design is centred).
+    auto shifted = [](double at, const calibration::Range& bounds, double dz) {
+      return std::clamp(at * std::pow(bounds.hi / bounds.lo, dz), bounds.lo, bounds.hi);
+    };
     effects.push_back({{"effect", e.effect},
                        {"visible", e.visible},
                        {"largest", largest},
-                       {"change", by_target(c.targets, e.change)}});
+                       {"change", by_target(c.targets, e.change)},
+                       {"refitted_strengths",
+                        {{"fr0_n", shifted(screen.point.fr0_n, c.fr0_n, e.fit_shift[0])},
+                         {"fs0_n", shifted(screen.point.fs0_n, c.fs0_n, e.fit_shift[1])}}}});
     if (e.visible) continue;
     invisible.push_back(e.effect);
     std::snprintf(line, sizeof line,
