@@ -19,7 +19,7 @@ std::vector<orch::BudgetPart> planned_job_parts(const DiagnosisCampaign& c) {
   // confirmed fit.
   const int budget = 2 * int(budget_offsets(c.budget.points).size()) *
                          int(budget_runs_per_point(c.budget, c.dataset.origin)) +
-                     (c.screen ? int(c.candidates.size()) : 0);
+                     screen_model_points(c);
   // Effects are designed and confirmed only when held-out observations can judge them; each
   // confirmed effect also runs the base model at its strengths (its mark at its fitted value).
   const bool judged = judges_effects(c);

@@ -43,15 +43,16 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
   const RunOutcome base = run({100.0, 50.0, 70.0});
   const double e = std::exp(0.2);
   // Every value up by e^0.2: a change of both strengths, nothing left once they are re-fitted.
-  const ScreenedEffect absorbed = screen_effect("uniform", base, run({100 * e, 50 * e, 70 * e}),
-                                                jacobian, weight, three_targets(), budget);
+  const ScreenedEffect absorbed =
+      screen_effect("uniform", base, run({100 * e, 50 * e, 70 * e}), jacobian, weight,
+                    three_targets(), budget, jacobian);
   EXPECT_FALSE(absorbed.visible);
   EXPECT_LT(absorbed.largest_in_noise, 1e-9);
   EXPECT_NEAR(absorbed.noise[2], 0.03, 1e-12);
   // The held-out value moves by 0.1 beyond what the re-fit explains: 3.3 noise budgets.
   const ScreenedEffect marked =
       screen_effect("rate", base, run({100 * e, 50 * e, 70 * e * std::exp(0.1)}), jacobian, weight,
-                    three_targets(), budget);
+                    three_targets(), budget, jacobian);
   EXPECT_TRUE(marked.visible);
   ASSERT_TRUE(marked.largest);
   EXPECT_EQ(*marked.largest, 2u);
@@ -60,30 +61,45 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
   // A strong run without values cannot show that the effect moves nothing: it is kept.
   const ScreenedEffect failed =
       screen_effect("packing", base, run({std::nullopt, std::nullopt, std::nullopt}), jacobian,
-                    weight, three_targets(), budget);
+                    weight, three_targets(), budget, jacobian);
   EXPECT_TRUE(failed.visible);
   EXPECT_FALSE(failed.largest);
 }
 
-// Focus: where the effect's design is centred. The base run fits the lab; the effect at s = 1
-// raises the first calibration peak by 0.2 and the second by 0.1 in ln, which the strengths undo by
-// moving -0.2 along F_r0 and -0.1 along F_s0 (d ln / dz = 1 on each).
-TEST(Screen, TheStrongRunsReFitSaysWhereTheEffectFits) {
+// Focus: where the effect's design is centred, on the effect's own sensitivity. The base run fits
+// the lab; the effect at s = 1 raises the first calibration peak by 0.2 and the second by 0.1 in
+// ln. Its peaks answer the strengths the other way round from the base's (the first on F_s0, the
+// second on F_r0, as a random packing's tension-controlled peaks against the FCC's), measured by
+// one run a step along each: the strengths undo the change by moving -0.1 along F_r0 and -0.2
+// along F_s0 (the base's sensitivity would say -0.2 and -0.1).
+TEST(Screen, TheStrongRunsReFitOnItsOwnSensitivitySaysWhereTheEffectFits) {
   const std::vector<std::array<double, 2>> jacobian{{1.0, 0.0}, {0.0, 1.0}, {0.5, 0.5}};
   const std::vector<double> weight{2500, 2500, 0}, budget{0.01, 0.01, 0.01};
   std::vector<Target> targets = three_targets();
   const double lab[] = {100.0, 50.0, 70.0};
   for (std::size_t i = 0; i < 3; ++i) targets[i].value = lab[i];
-  const ScreenedEffect e = screen_effect("rate", run({100.0, 50.0, 70.0}),
-                                         run({100 * std::exp(0.2), 50 * std::exp(0.1), 90.0}),
-                                         jacobian, weight, targets, budget);
-  EXPECT_NEAR(e.fit_shift[0], -0.2, 1e-12);
-  EXPECT_NEAR(e.fit_shift[1], -0.1, 1e-12);
-  // Without lab values to fit (a value-less strong run) it stays where the base fit is.
-  const ScreenedEffect failed = screen_effect("packing", run({100.0, 50.0, 70.0}),
-                                              run({std::nullopt, std::nullopt, std::nullopt}),
-                                              jacobian, weight, targets, budget);
-  EXPECT_EQ(failed.fit_shift, (std::array<double, 2>{0.0, 0.0}));
+  const double a = 100 * std::exp(0.2), b = 50 * std::exp(0.1), h = 0.05;
+  const RunOutcome strong = run({a, b, 90.0});
+  // A step h along F_r0 moves the second peak by h, along F_s0 the first.
+  const std::vector<std::array<double, 2>> own = secant_jacobian(
+      strong, {run({a, b * std::exp(h), 90.0}), run({a * std::exp(h), b, 90.0})}, {h, h});
+  EXPECT_NEAR(own[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(own[0][1], 1.0, 1e-9);
+  EXPECT_NEAR(own[1][0], 1.0, 1e-9);
+  const ScreenedEffect e = screen_effect("packing", run({100.0, 50.0, 70.0}), strong, jacobian,
+                                         weight, targets, budget, own);
+  EXPECT_NEAR(e.fit_shift[0], -0.1, 1e-9);
+  EXPECT_NEAR(e.fit_shift[1], -0.2, 1e-9);
+  // A step whose run gave no value leaves no sensitivity: with none, the fit stays at the point.
+  const std::vector<std::array<double, 2>> none =
+      secant_jacobian(strong,
+                      {run({std::nullopt, std::nullopt, std::nullopt}),
+                       run({std::nullopt, std::nullopt, std::nullopt})},
+                      {h, h});
+  EXPECT_TRUE(std::isnan(none[0][0]));
+  const ScreenedEffect blind = screen_effect("packing", run({100.0, 50.0, 70.0}), strong, jacobian,
+                                             weight, targets, budget, none);
+  EXPECT_EQ(blind.fit_shift, (std::array<double, 2>{0.0, 0.0}));
 }
 
 struct Diagnosed {
@@ -155,13 +171,14 @@ TEST(Screen, AnEffectThatLeavesNoMarkIsNamedInvisibleAndNotDesigned) {
   // The kept effect with the mark is still the verdict.
   EXPECT_EQ(on.summary["verdict"]["effect"], "size");
   EXPECT_EQ(off.summary["verdict"]["effect"], "size");
-  // uniform's 2 x 16 grid points are not run; the screen ran one point per effect (5).
+  // uniform's 2 x 16 grid points are not run; the screen ran three points per effect (15: its
+  // strong run and a step along each strength).
   EXPECT_EQ(screen["skipped_model_points"], 32);
-  EXPECT_EQ(screen["model_points"], 5);
-  EXPECT_EQ(off.runs - on.runs, 32 - 5);
+  EXPECT_EQ(screen["model_points"], 3 * 5);
+  EXPECT_EQ(off.runs - on.runs, 32 - 3 * 5);
   EXPECT_EQ(off.summary["runs"]["model_points"].get<int>() -
                 on.summary["runs"]["model_points"].get<int>(),
-            32 - 5);
+            32 - 3 * 5);
   EXPECT_EQ(off.summary["screen"]["reason"], "not screened (\"screen\": false)");
   std::printf("screen: %d model points without it, %d with it; %s\n", off.runs, on.runs,
               reason.c_str());

@@ -520,8 +520,8 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   const Diagnosed a = diagnose("rate", 0.7);
   const Diagnosed b = diagnose("rate", 0.7);
   EXPECT_EQ(a.summary.dump(), b.summary.dump());
-  // Grids, screen, budget and confirmations: the base's 16 grid points, one screen point per
-  // effect (5), the 32 grid points of each effect the screen kept (all but uniform), 5 x 5 budget
+  // Grids, screen, budget and confirmations: the base's 16 grid points, three screen points per
+  // effect (15), the 32 grid points of each effect the screen kept (all but uniform), 5 x 5 budget
   // points at the first fit and again at the confirmed one if it moved; per confirmed candidate
   // (3) 1 to 3 refinement runs and 2 seed runs, and per confirmed effect (2) the base model at its
   // strengths (its mark at the fit); the next test's base at its fit and two steps, and
@@ -540,7 +540,7 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   // Here the confirmed fit moved off the first fit, so the budget ran twice and the one judged is
   // the one measured around the confirmed fit.
   EXPECT_NE(report.budget_point.fr0_n, report.weight_budget_point.fr0_n);
-  EXPECT_EQ(model.runs, 16 + 5 + 4 * 32 + 2 * 5 * 5 + refinement_runs + 3 * 2 + 2 + 3 + 3);
+  EXPECT_EQ(model.runs, 16 + 3 * 5 + 4 * 32 + 2 * 5 * 5 + refinement_runs + 3 * 2 + 2 + 3 + 3);
   EXPECT_EQ(report.budget_point.fr0_n, report.candidates[0].point.fr0_n);
   EXPECT_EQ(report.budget_point.fs0_n, report.candidates[0].point.fs0_n);
 }

@@ -9,7 +9,8 @@ namespace rockcal::diagnosis {
 ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
                              const std::vector<std::array<double, 2>>& jacobian,
                              const std::vector<double>& weight, const std::vector<Target>& targets,
-                             const std::vector<double>& budget) {
+                             const std::vector<double>& budget,
+                             const std::vector<std::array<double, 2>>& strong_jacobian) {
   const std::size_t n = targets.size();
   std::vector<double> raw(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i) {
@@ -36,8 +37,26 @@ ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const R
     if (strong.values[i] && *strong.values[i] > 0 && targets[i].value > 0)
       strong_residual[i] = std::log(*strong.values[i] / targets[i].value);
   }
-  const std::array<double, 2> dz = refit_shift(strong_residual, jacobian, weight);
+  const std::array<double, 2> dz = refit_shift(strong_residual, strong_jacobian, weight);
   out.fit_shift = {-dz[0], -dz[1]};
+  return out;
+}
+
+std::vector<std::array<double, 2>> secant_jacobian(const RunOutcome& at,
+                                                   const std::array<RunOutcome, 2>& along,
+                                                   const std::array<double, 2>& step) {
+  const std::size_t n = at.values.size();
+  std::vector<std::array<double, 2>> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int d = 0; d < 2; ++d) {
+      const RunOutcome& o = along[std::size_t(d)];
+      const std::optional<double> a = at.values[i];
+      const std::optional<double> b = i < o.values.size() ? o.values[i] : std::nullopt;
+      out[i][std::size_t(d)] = a && b && *a > 0 && *b > 0
+                                   ? std::log(*b / *a) / step[std::size_t(d)]
+                                   : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
   return out;
 }
 

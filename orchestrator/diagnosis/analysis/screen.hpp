@@ -1,4 +1,4 @@
-// Screening: before any effect's surfaces are run, each candidate is run once at its strong value
+// Screening: before any effect's surfaces are run, each candidate is run at its strong value
 // (s = 1) at the base model's first fit, on every condition of the dataset, and compared with the
 // base model's run there. The strengths' re-fit is removed linearly with the base model's local
 // sensitivity (change_after_refit, as the budget's resolution term), and what is left is judged as
@@ -30,18 +30,31 @@ struct ScreenedEffect {
   // not nothing.
   bool visible = true;
   // Where the effect's fit lies from the screen's point, in the unit cube of (ln F_r0, ln F_s0):
-  // the strengths' linear re-fit of the strong run to the calibration observations, with the base
-  // model's sensitivity there. The local design centres the effect's runs on it: an effect that
-  // changes what the strengths must be (a random packing against the FCC base) is fitted where
+  // the strengths' linear re-fit of the strong run to the calibration observations, with the
+  // effect's own sensitivity there (an effect can change which strength sets a peak: a random
+  // packing's fail by the bonds' tension where the FCC's fail in shear). The local design centres
+  // the effect's runs on it, so an effect that changes what the strengths must be is fitted where
   // its runs are, not extrapolated from the base fit's. Zero when nothing was measured.
   std::array<double, 2> fit_shift{0.0, 0.0};
 };
 
+// The screen's runs of one effect, all at s = 1: at the screen's point, and one step along each
+// strength (the effect's own sensitivity).
+inline constexpr int kScreenRunsPerEffect = 3;
+
 // One effect's mark: `strong` is its run at s = 1, `base` the base model's at the same strengths;
-// jacobian and weight as StrengthResponse at that point (budget.hpp).
+// jacobian and weight as StrengthResponse at that point (budget.hpp); `strong_jacobian` the
+// effect's own d ln / dz there (NaN where a run gave no value), for its fit_shift.
 ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
                              const std::vector<std::array<double, 2>>& jacobian,
                              const std::vector<double>& weight, const std::vector<Target>& targets,
-                             const std::vector<double>& budget);
+                             const std::vector<double>& budget,
+                             const std::vector<std::array<double, 2>>& strong_jacobian);
+
+// d ln / dz per target from a run at a point and one run a step `step[d]` along each strength
+// (NaN where either run has no value).
+std::vector<std::array<double, 2>> secant_jacobian(const RunOutcome& at,
+                                                   const std::array<RunOutcome, 2>& along,
+                                                   const std::array<double, 2>& step);
 
 }  // namespace rockcal::diagnosis

@@ -262,22 +262,31 @@ Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base
   if (!screen.enabled) return measure_budget(c, base, z, evaluator);
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
   screen.point = model_point(c, base.candidate, z);
+  // The steps of the effect's own sensitivity: the local design's arms (so an effect designed
+  // where it was screened re-uses these runs), inward at the box's upper face.
+  std::array<double, 2> step{};
+  for (std::size_t d = 0; d < 2; ++d)
+    step[d] = z[d] + c.grid.step <= 1.0 ? c.grid.step : -c.grid.step;
   std::vector<RunRequest> requests;
   for (const Candidate& k : c.candidates) {
-    requests.push_back({model_point(c, k, std::vector<double>{z[0], z[1], 1.0}), nominal});
+    for (const std::vector<double>& at :
+         {std::vector<double>{z[0], z[1], 1.0}, std::vector<double>{z[0] + step[0], z[1], 1.0},
+          std::vector<double>{z[0], z[1] + step[1], 1.0}})
+      requests.push_back({model_point(c, k, at), nominal});
   }
   std::vector<RunOutcome> outcomes;
   Budget budget = measure_budget(c, base, z, evaluator, requests, &outcomes);
   const StrengthResponse response = strength_response(base.surfaces, c.targets, {z});
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
-    screen.effects.push_back(screen_effect(c.candidates[k].effect, outcomes[0], outcomes[k + 1],
-                                           response.jacobian[0], response.weight, c.targets,
-                                           budget.per_target));
+    const RunOutcome* runs = &outcomes[1 + kScreenRunsPerEffect * k];
+    screen.effects.push_back(screen_effect(
+        c.candidates[k].effect, outcomes[0], runs[0], response.jacobian[0], response.weight,
+        c.targets, budget.per_target, secant_jacobian(runs[0], {runs[1], runs[2]}, step)));
     if (!screen.effects.back().visible && judges_effects(c)) {
       screen.skipped_model_points += effect_grid_points(c, c.candidates[k]);
     }
   }
-  screen.model_points = int(c.candidates.size());
+  screen.model_points = screen_model_points(c);
   return budget;
 }
 
@@ -357,7 +366,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   const int runs_per_point = int(budget_runs_per_point(campaign.budget, campaign.dataset.origin));
   phase(options, campaign, "budget", 2,
         int(budget_offsets(campaign.budget.points).size()) * runs_per_point +
-            (campaign.screen ? int(campaign.candidates.size()) : 0));
+            screen_model_points(campaign));
   report.weight_budget =
       budget_and_screen(campaign, report.candidates[0], first_budget_z, evaluator, report.screen);
   report.model_points += report.weight_budget.points * runs_per_point + report.screen.model_points;

@@ -5,6 +5,7 @@
 
 #include "orchestrator/diagnosis/analysis/bootstrap.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
+#include "orchestrator/diagnosis/analysis/screen.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -47,6 +48,10 @@ int grid_points(const DiagnosisCampaign& c) {
   int points = base_grid_points(c);
   for (const Candidate& k : c.candidates) points += effect_grid_points(c, k);
   return points;
+}
+
+int screen_model_points(const DiagnosisCampaign& c) {
+  return c.screen ? kScreenRunsPerEffect * int(c.candidates.size()) : 0;
 }
 
 Samples run_base_grid(const DiagnosisCampaign& c, Evaluator& evaluator) {

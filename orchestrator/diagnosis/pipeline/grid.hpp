@@ -30,6 +30,8 @@ inline constexpr int kStarMoves = 2;
 int base_grid_points(const DiagnosisCampaign& c);
 int effect_grid_points(const DiagnosisCampaign& c, const Candidate& effect);
 int grid_points(const DiagnosisCampaign& c);
+// Model points of the screen (screen.hpp): kScreenRunsPerEffect per candidate when it screens.
+int screen_model_points(const DiagnosisCampaign& c);
 
 // The runs behind one candidate's surfaces.
 struct Samples {
