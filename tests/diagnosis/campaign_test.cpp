@@ -97,14 +97,16 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + 3 * 2 + 3 * 5 + 2) * 4u + kNextTest);
   EXPECT_EQ(budget_runs_per_point(c2.budget), 6u);  // reference, 2 seeds, speed, 2 resolutions
   // The local design: the 3 x 3 base grid, its star and its moves, 4 points per effect (both
-  // continuous at neutral); the step is read.
+  // continuous at neutral) and as many per move of its design; the step is read.
   json local = request();
   local["grid"] = {{"design", "local"}, {"fr0", 3}, {"fs0", 3}, {"step", 0.15}};
   const DiagnosisCampaign c3 = parse_diagnosis_campaign(local);
   EXPECT_EQ(c3.grid.design, Design::local);
   EXPECT_EQ(c3.grid.step, 0.15);
-  EXPECT_EQ(planned_jobs(c3),
-            (9 + 5 + 4 * kStarMoves + 2 * 4 + 2 * 5 * 5 + 3 * 2 + 3 * 5 + 2) * 4u + kNextTest);
+  EXPECT_EQ(
+      planned_jobs(c3),
+      (9 + 5 + 4 * kStarMoves + 2 * 4 * (1 + kEffectMoves) + 2 * 5 * 5 + 3 * 2 + 3 * 5 + 2) * 4u +
+          kNextTest);
   // Without the next test, its part is not planned.
   json off = request();
   off["next_test"] = false;

@@ -151,9 +151,9 @@ TEST_P(HiddenEffect, TheLocalDesignFindsItFromFewerRuns) {
   EXPECT_GE(v["gap_closure"].get<double>(), 0.6);
   EXPECT_NEAR(std::log(v["fr0"].get<double>() / 60), 0, 0.25);
   EXPECT_NEAR(std::log(v["fs0"].get<double>() / 120), 0, 0.25);
-  // 3 x 3 + 5 base runs (planned: up to 4 more per move of the star), 4 per effect (5 effects):
-  // 34 before budget and confirmation.
-  EXPECT_EQ(grid_points(r.campaign), 34 + 4 * kStarMoves);
+  // 3 x 3 + 5 base runs (planned: up to 4 more per move of the star), 4 per effect (5 effects;
+  // planned: as many again per move of its design): 34 before budget and confirmation.
+  EXPECT_EQ(grid_points(r.campaign), 14 + 4 * kStarMoves + 5 * 4 * (1 + kEffectMoves));
   EXPECT_EQ(r.summary["grid"]["design"], "local");
   const int local_runs = r.summary["runs"]["model_points"].get<int>();
   const int global_runs = global.summary["runs"]["model_points"].get<int>();
@@ -283,7 +283,7 @@ TEST(Diagnosis, TheLocalDesignsStarFollowsTheFitItsRunsGive) {
   const DiagnosisCampaign c = wide_box_null();
   KinkedModel model(c.targets);
   const Samples base = run_local_base(c, model);
-  const auto fit = fit_base_on_lab(c, fit_surfaces(base, 2, c.targets.size()));
+  const auto fit = fit_on_lab(c, fit_surfaces(base, 2, c.targets.size()));
   ASSERT_TRUE(fit.has_value());
   const std::size_t grid = 9, stars = base.z.size() - grid;
   std::printf("star points %zu, fit (%.4f, %.4f)\n", stars, fit->z[0], fit->z[1]);
@@ -335,7 +335,8 @@ TEST(Diagnosis, TheLocalDesignFitsAnEffectThatJumpsAtNeutral) {
   for (Candidate& k : r.campaign.candidates) {
     if (k.effect == "size") k.s_floor = kDiscontinuousFloor;
   }
-  EXPECT_EQ(grid_points(r.campaign), 9 + 5 + 4 * kStarMoves + 4 * 4 + 3 * 5 + 1);
+  EXPECT_EQ(grid_points(r.campaign),
+            9 + 5 + 4 * kStarMoves + (4 * 4 + 3 * 5 + 1) * (1 + kEffectMoves));
   SyntheticModel model(r.campaign.targets);
   r.report = run_diagnosis(r.campaign, model);
   const CandidateResult& size = candidate(r.report, "size");

@@ -350,7 +350,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   // yet); later fits weight each residual by lab uncertainty and budget together. The screen's
   // runs go in its batch.
   const std::optional<SurfaceCalibration> fitted_first =
-      fit_base_on_lab(campaign, report.candidates[0].surfaces);
+      fit_on_lab(campaign, report.candidates[0].surfaces);
   if (!fitted_first) {
     throw std::runtime_error(
         "the base model has no response surface for any calibration "
@@ -387,7 +387,10 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
     r.candidate = c.candidates[k - 1];
     r.surfaces = fit_surfaces(samples[k], r.candidate.dims(), n);
   }
-  report.model_points += grid_points(c) - base_grid_points(c);
+  for (std::size_t k = 1; k < samples.size(); ++k) {
+    const bool shared = c.candidates[k - 1].shares_base_grid();
+    report.model_points += int(samples[k].z.size() - (shared ? samples[0].z.size() : 0));
+  }
   report.combined_calibration = combined_budget(c.targets, budget, Role::calibration);
 
   // 3. Every candidate calibrated on its surfaces; held-out predicted; identifiability.

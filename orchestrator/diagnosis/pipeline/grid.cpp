@@ -45,8 +45,9 @@ int effect_grid_points(const DiagnosisCampaign& c, const Candidate& k) {
 }
 
 int grid_points(const DiagnosisCampaign& c) {
+  const int places = c.grid.design == Design::local ? 1 + kEffectMoves : 1;
   int points = base_grid_points(c);
-  for (const Candidate& k : c.candidates) points += effect_grid_points(c, k);
+  for (const Candidate& k : c.candidates) points += places * effect_grid_points(c, k);
   return points;
 }
 
@@ -124,15 +125,15 @@ SurfaceSet fit_surfaces(const Samples& samples, int dims, std::size_t targets) {
   return set;
 }
 
-std::optional<SurfaceCalibration> fit_base_on_lab(const DiagnosisCampaign& c,
-                                                  const SurfaceSet& base) {
+std::optional<SurfaceCalibration> fit_on_lab(const DiagnosisCampaign& c,
+                                             const SurfaceSet& surfaces) {
   const Objective objective = calibration_objective(
-      c.targets, std::vector<double>(c.targets.size(), 0.0), base, ln_lab(c.targets));
+      c.targets, std::vector<double>(c.targets.size(), 0.0), surfaces, ln_lab(c.targets));
   if (std::none_of(objective.weight.begin(), objective.weight.end(),
                    [](double w) { return w > 0; })) {
     return std::nullopt;
   }
-  return calibrate_on_surfaces(base, objective, lattice_starts(2, 3));
+  return calibrate_on_surfaces(surfaces, objective, lattice_starts(surfaces.dims, 3));
 }
 
 }  // namespace rockcal::diagnosis

@@ -23,10 +23,12 @@ ModelPoint model_point(const DiagnosisCampaign& c, const Candidate& candidate,
 // The s levels a candidate's own grid runs: all but u = 0 when it shares the base grid.
 int grid_levels(const Candidate& candidate, int s_values);
 // How often the local design's star around the base fit may move to the node of the fit its runs
-// gave (run_local_base).
+// gave (run_local_base), and how often an effect's design may (run_local_effects).
 inline constexpr int kStarMoves = 2;
-// Model points of the base model's surface runs (at most, under the local design), of one effect's,
-// and of every candidate's together (the base grid counted once), under the campaign's design.
+inline constexpr int kEffectMoves = 2;
+// Model points of the base model's surface runs (at most, under the local design), of one effect's
+// design at one place, and of every candidate's together at most (the base grid counted once; the
+// local design's moves included), under the campaign's design.
 int base_grid_points(const DiagnosisCampaign& c);
 int effect_grid_points(const DiagnosisCampaign& c, const Candidate& effect);
 int grid_points(const DiagnosisCampaign& c);
@@ -55,10 +57,10 @@ void share_base_slice(std::vector<Samples>& samples, const DiagnosisCampaign& c)
 // One response surface per target through the successful runs.
 SurfaceSet fit_surfaces(const Samples& samples, int dims, std::size_t targets);
 
-// The base model calibrated on its surfaces with lab uncertainties alone (before the budget is
-// known): where the budget is measured first, and where the local design centres its runs.
-// nullopt when no calibration observation has a surface (the base runs failed).
-std::optional<SurfaceCalibration> fit_base_on_lab(const DiagnosisCampaign& c,
-                                                  const SurfaceSet& base);
+// A model calibrated on its surfaces with lab uncertainties alone (before the budget is known):
+// for the base, where the budget is measured first; for every model, where the local design
+// centres its runs. nullopt when no calibration observation has a surface (the runs failed).
+std::optional<SurfaceCalibration> fit_on_lab(const DiagnosisCampaign& c,
+                                             const SurfaceSet& surfaces);
 
 }  // namespace rockcal::diagnosis

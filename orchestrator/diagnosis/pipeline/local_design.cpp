@@ -26,7 +26,7 @@ namespace {
 // The base model's fit on its runs so far; the centre of the box without one (the driver then
 // refuses the diagnosis with the base runs' first failure).
 std::vector<double> base_fit(const DiagnosisCampaign& c, const Samples& base) {
-  const auto fit = fit_base_on_lab(c, fit_surfaces(base, 2, c.targets.size()));
+  const auto fit = fit_on_lab(c, fit_surfaces(base, 2, c.targets.size()));
   return fit ? fit->z : std::vector<double>{0.5, 0.5};
 }
 
@@ -84,6 +84,52 @@ Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator) {
   return samples[0];
 }
 
+namespace {
+
+// One effect's design points with its strengths at `at` (nodes): a continuous effect's level s at
+// at(s), its arms at s = 1 around at(1); a jumping effect's star at each level and a corner, all
+// around at(1).
+template <typename At>
+std::vector<std::vector<double>> effect_design(const DiagnosisCampaign& c, const Candidate& k,
+                                               At at) {
+  const double h = c.grid.step;
+  std::vector<std::vector<double>> out;
+  const std::vector<double> z1 = at(1.0);
+  if (k.shares_base_grid()) {
+    for (double s : grid_axis(c.grid.s)) {
+      if (s <= kEffectOffBelow) continue;
+      const std::vector<double> z = at(s);
+      out.push_back({z[0], z[1], s});
+    }
+    out.push_back({z1[0] + h, z1[1], 1.0});
+    out.push_back({z1[0], z1[1] + h, 1.0});
+  } else {
+    // No base slice to lean on (its u = 0 is not the base model): a star at every level, and
+    // one corner, without which the strengths' cross term is undetermined (on a star's points
+    // (x - x0)(y - y0) is 0 throughout).
+    for (double u : grid_axis(c.grid.s)) {
+      for (const std::vector<double>& z : star(z1, h)) out.push_back({z[0], z[1], u});
+    }
+    out.push_back({z1[0] + h, z1[1] + h, 0.5});
+  }
+  return out;
+}
+
+// An effect's fit on its runs so far, with the base slice when it shares it.
+std::optional<SurfaceCalibration> effect_fit(const DiagnosisCampaign& c, const Candidate& k,
+                                             Samples runs, const Samples& base) {
+  if (k.shares_base_grid()) {
+    for (std::size_t r = 0; r < base.z.size(); ++r) {
+      runs.z.push_back(base.z[r]);
+      runs.z.back().push_back(0.0);
+      runs.outcomes.push_back(base.outcomes[r]);
+    }
+  }
+  return fit_on_lab(c, fit_surfaces(runs, k.dims(), c.targets.size()));
+}
+
+}  // namespace
+
 void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
                        std::vector<Samples>& samples,
                        const std::vector<std::array<double, 2>>& fit_shifts) {
@@ -91,37 +137,48 @@ void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
   samples.resize(1 + c.candidates.size());
   // The fit on grid and star: the star's runs pin the surfaces' slope and curvature there.
   const std::vector<double> z0 = lattice_point(base_fit(c, samples[0]), h);
-  std::vector<Point> effects;
+  // First at the screen's re-fit: a continuous effect's level s at the node of the base fit +
+  // s x its shift (the path its fit takes as the effect grows); a jumping effect's at the full
+  // shift, its jump being there from the floor on.
+  std::vector<std::vector<std::vector<double>>> centres(c.candidates.size());
+  std::vector<Point> points;
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
-    const std::size_t owner = k + 1;
     const std::array<double, 2> shift = k < fit_shifts.size() ? fit_shifts[k] : std::array{0., 0.};
-    auto node = [&](double s) {
-      const std::vector<double> z{z0[0] + s * shift[0], z0[1] + s * shift[1]};
-      return lattice_point(z, h);
+    const bool path = c.candidates[k].shares_base_grid();
+    auto at = [&](double s) {
+      const double f = path ? s : 1.0;
+      return lattice_point(std::vector<double>{z0[0] + f * shift[0], z0[1] + f * shift[1]}, h);
     };
-    if (c.candidates[k].shares_base_grid()) {
-      for (double s : grid_axis(c.grid.s)) {
-        if (s <= kEffectOffBelow) continue;
-        const std::vector<double> z = node(s);
-        effects.push_back({owner, {z[0], z[1], s}});
-      }
-      const std::vector<double> z1 = node(1.0);
-      effects.push_back({owner, {z1[0] + h, z1[1], 1.0}});
-      effects.push_back({owner, {z1[0], z1[1] + h, 1.0}});
-    } else {
-      // No base slice to lean on (its u = 0 is not the base model): a star at every level, and
-      // one corner, without which the strengths' cross term is undetermined (on a star's points
-      // (x - x0)(y - y0) is 0 throughout). Its jump is there from the floor on: every level is
-      // centred on the full shift.
-      const std::vector<double> z1 = node(1.0);
-      for (double u : grid_axis(c.grid.s)) {
-        for (const std::vector<double>& z : star(z1, h))
-          effects.push_back({owner, {z[0], z[1], u}});
-      }
-      effects.push_back({owner, {z1[0] + h, z1[1] + h, 0.5}});
-    }
+    // The nodes its strengths have runs at (the base slice's at s = 0 included): a fit there is
+    // interpolated.
+    if (path) centres[k].push_back(z0);
+    for (double s : grid_axis(c.grid.s)) centres[k].push_back(at(s));
+    for (std::vector<double>& z : effect_design(c, c.candidates[k], at))
+      points.push_back({k + 1, std::move(z)});
   }
-  run_into(samples, effects, c, evaluator);
+  run_into(samples, points, c, evaluator);
+  // Then, as the base's star, the design follows the fit its runs give: while an effect's fit lies
+  // at a node it has not been designed at (at most kEffectMoves times), its design there, no
+  // point it has re-run. The linear re-fit is a guess where an effect changes how the peaks
+  // follow the strengths (a random packing's fit from an FCC base fit on a bound).
+  for (int move = 0; move < kEffectMoves; ++move) {
+    points.clear();
+    for (std::size_t k = 0; k < c.candidates.size(); ++k) {
+      const auto fit = effect_fit(c, c.candidates[k], samples[k + 1], samples[0]);
+      if (!fit) continue;
+      const std::vector<double> node = lattice_point(fit->z, h);
+      if (std::find(centres[k].begin(), centres[k].end(), node) != centres[k].end()) continue;
+      centres[k].push_back(node);
+      const Samples& made = samples[k + 1];
+      for (std::vector<double>& z :
+           effect_design(c, c.candidates[k], [&](double) { return node; })) {
+        if (std::find(made.z.begin(), made.z.end(), z) == made.z.end())
+          points.push_back({k + 1, std::move(z)});
+      }
+    }
+    if (points.empty()) break;
+    run_into(samples, points, c, evaluator);
+  }
   share_base_slice(samples, c);
 }
 

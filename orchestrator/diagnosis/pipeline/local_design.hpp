@@ -36,12 +36,13 @@ std::vector<std::vector<double>> star(std::span<const double> z, double h);
 // Batches, each in parallel on the pool: the base grid; the star at the base fit on it; while the
 // fit on grid and stars lies at another node (at most kStarMoves times), the star there.
 Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator);
-// One batch: every effect's points around the base fit on grid and star (samples[0], the base's),
-// moved by the effect's fit_shift (one per campaign candidate, or none when not screened): an
-// effect continuous at neutral runs each level s at the node of the base fit + s x its shift (the
-// path its fit takes as the effect grows), its arms at s = 1; one that jumps at neutral runs its
-// stars at the node of the full shift. As run_effect_grids, the result has one more Samples per
-// campaign candidate.
+// Every effect's points, first around the base fit on grid and star (samples[0], the base's) moved
+// by the effect's fit_shift (one per campaign candidate, or none when not screened): an effect
+// continuous at neutral runs each level s at the node of the base fit + s x its shift (the path its
+// fit takes as the effect grows), its arms at s = 1; one that jumps at neutral runs its stars at
+// the node of the full shift. Then, while an effect's fit on its runs lies at a node it has no runs
+// at (at most kEffectMoves times), its design there. A batch per step, every effect's in it. As
+// run_effect_grids, the result has one more Samples per campaign candidate.
 void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
                        std::vector<Samples>& samples,
                        const std::vector<std::array<double, 2>>& fit_shifts);
