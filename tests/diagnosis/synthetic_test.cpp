@@ -378,16 +378,22 @@ TEST(Diagnosis, ABaseFitOnTheBoundsIsReported) {
   // Strengths the bounds chose judge nothing: the verdict is undetermined, never "no effect
   // needed", its miss stated from the report's own fields, its confidence none.
   EXPECT_EQ(r.summary["verdict"]["label"], "undetermined");
-  // With a miss there beyond what a fitting candidate may leave, the bound may not be its cause.
-  const double miss = r.summary["verdict"]["miss"]["rms_budgets"]["calibration"];
-  ASSERT_GT(miss, kCalibrationFitBudgets);
-  char rms[32];
-  std::snprintf(rms, sizeof rms, "%.1f", miss);
+  // The bound holds the fit: re-fitted beyond it, the base model would meet the calibration.
+  const json& bound = r.summary["verdict"]["bound"];
+  EXPECT_TRUE(bound["holds"].get<bool>()) << bound.dump();
+  EXPECT_EQ(bound["on_bounds"], json::array({"fr0 lower"}));
+  const double miss = bound["calibration_budgets"],
+               refitted = bound["refitted_calibration_budgets"];
+  EXPECT_EQ(miss, r.summary["verdict"]["miss"]["rms_budgets"]["calibration"]);
+  EXPECT_GT(miss, kCalibrationFitBudgets);
+  EXPECT_LT(refitted, 1.0);
+  char figures[64];
+  std::snprintf(figures, sizeof figures, "%.1f noise budgets would be %.1f", miss, refitted);
   EXPECT_EQ(r.summary["verdict"]["reason"],
             "undetermined: the base model's fit lies on the search box (fr0 lower): its strengths "
-            "are the bounds', not the data's (widen the bounds, unless the base model fits these "
-            "data at no strengths: it misses the calibration observations there by " +
-                std::string(rms) + " noise budgets); " + base_miss_from_fields(r.summary));
+            "are the bounds', not the data's (widen the bounds: re-fitted beyond it linearly on "
+            "its sensitivity there, its calibration miss of " +
+                std::string(figures) + "); " + base_miss_from_fields(r.summary));
   EXPECT_EQ(r.summary["verdict"]["confidence"]["level"], "none");
   EXPECT_EQ(r.summary["verdict"]["miss"]["model"], "the base model");
   std::printf("fit on the bounds: %s\n", r.summary["verdict"]["reason"].get<std::string>().c_str());

@@ -281,31 +281,40 @@ void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Con
   } else if (!e.base_has_held_out) {
     causes.push_back("the base model has no held-out residual (its runs failed)");
   }
+  std::string bound_note;
   if (!e.base_on_bounds.empty()) {
     std::string where;
     for (const std::string& b : e.base_on_bounds) where += (where.empty() ? "" : ", ") + b;
-    std::string cause = "the base model's fit lies on the search box (" + where +
-                        "): its strengths are the bounds', not the data's (widen the bounds";
-    // A miss there beyond what any fitting candidate may leave: the bound may not be the cause
-    // (a random packing's twin on the FCC model misses its modulus, which no strength sets).
-    if (e.base.calibration && *e.base.calibration > kCalibrationFitBudgets) {
-      cause +=
-          ", unless the base model fits these data at no strengths: it misses the "
-          "calibration observations there by " +
-          fixed(*e.base.calibration, 1) + " noise budgets";
+    Verdict::Bound& bound = v.bound.emplace();
+    bound.on = e.base_on_bounds;
+    bound.calibration = e.base.calibration;
+    bound.refitted = e.base_calibration_refitted;
+    bound.holds = !(bound.refitted && *bound.refitted > kCalibrationFitBudgets);
+    const std::string beyond =
+        "re-fitted beyond it linearly on its sensitivity there, its calibration miss of " +
+        (bound.calibration ? fixed(*bound.calibration, 1) : std::string("?")) +
+        " noise budgets would be " + (bound.refitted ? fixed(*bound.refitted, 1) : "?");
+    if (bound.holds) {
+      causes.push_back("the base model's fit lies on the search box (" + where +
+                       "): its strengths are the bounds', not the data's (widen the bounds" +
+                       (bound.refitted ? ": " + beyond : std::string()) + ")");
+    } else {
+      bound_note = "; the base model's fit lies on the search box (" + where +
+                   "), but the bound does not hold it: " + beyond +
+                   ", beyond what a fitting model may leave, so no strengths explain its miss";
     }
-    causes.push_back(cause + ")");
   }
   if (!causes.empty()) {
     v.undetermined = true;
     v.candidate = -1;
     v.reason = "undetermined: ";
     for (const std::string& c : causes) v.reason += c + "; ";
-    v.reason += miss_text(e.base, rule.gap_budgets);
+    v.reason += miss_text(e.base, rule.gap_budgets) + bound_note;
     v.miss = e.base;
     conf.level = "none";
     return;
   }
+  v.reason += bound_note;
   if (misses_beyond(e.verdict, rule.gap_budgets)) {
     v.reason += "; not explained: " + miss_text(e.verdict, rule.gap_budgets);
     v.miss = e.verdict;

@@ -42,6 +42,14 @@ struct Verdict {
   bool undetermined = false;  // the data cannot judge any effect (temper_verdict)
   std::string reason;
   std::optional<ModelMiss> miss;  // the miss the reason states (temper_verdict), if any
+  // When the base model's fit lies on the search box: whether the bound holds it (temper_verdict).
+  struct Bound {
+    std::vector<std::string> on;        // on_bounds of the base fit
+    std::optional<double> calibration;  // its calibration miss there, rms in noise budgets
+    std::optional<double> refitted;     // the same with its strengths re-fitted beyond
+    bool holds = true;                  // the bound may be what the miss is
+  };
+  std::optional<Bound> bound;
 };
 
 // The verdict rule (docs/diagnosis.md, "Verdict rules"). An effect is named when its evidence
@@ -125,10 +133,14 @@ std::vector<std::string> on_bounds(const std::vector<double>& z);
 // What the data let the verdict say (docs/diagnosis.md, "Verdict rules"), applied to the rule's
 // verdict and confidence last, so that no later step can make them surer:
 // 1. Undetermined when no effect can be judged: nothing is held out; the base model has no
-//    held-out residual (its runs failed); or the base model's fit lies on the search box (its
-//    strengths are the bounds', not the data's). Then the label is "undetermined" (never "no
-//    effect needed"), no effect is named, the confidence is "none", and the reason names every
-//    cause and states the base model's miss observation by observation (miss_text).
+//    held-out residual (its runs failed); or the base model's fit lies on the search box and the
+//    bound holds it (its strengths are the bounds', not the data's): unless, re-fitted beyond the
+//    box linearly on its sensitivity there, its calibration miss stays above
+//    kCalibrationFitBudgets, which no strengths then remove (a random packing's twin on the FCC
+//    model misses its modulus); the reason then says so and the verdict goes on. Undetermined
+//    means the label "undetermined" (never "no effect needed"), no effect named, confidence
+//    "none", and a reason that names every cause and states the base model's miss observation by
+//    observation (miss_text).
 // 2. An unexplained miss: the verdict's model (the named effect's real runs, or the base
 //    model's) misses its calibration or its held-out observations by more than the rule's
 //    gap_budgets (rms in noise budgets). Then the confidence is never "high": "low" beside "no
@@ -139,6 +151,9 @@ struct Evidence {
   int held_out_observations = 0;
   bool base_has_held_out = false;
   std::vector<std::string> base_on_bounds;
+  // The base model's calibration rms in noise budgets with its strengths re-fitted without the box,
+  // linearly on its surfaces' sensitivity at its fit (nullopt: not measured).
+  std::optional<double> base_calibration_refitted;
   ModelMiss base;     // the base model's real residuals (model_miss)
   ModelMiss verdict;  // the verdict's model: the named effect's, else the base model's
 };

@@ -308,6 +308,23 @@ DiagnosisCampaign kept_effects(const DiagnosisCampaign& c, const ScreenResult& s
   return kept;
 }
 
+// The base model's calibration rms in noise budgets with its strengths re-fitted freely (beyond
+// the box), linearly on its surfaces' sensitivity at its fit, weighted as the miss is judged.
+std::optional<double> calibration_refitted(const std::vector<Target>& targets,
+                                           const CandidateResult& base,
+                                           const std::vector<double>& lab,
+                                           const std::vector<double>& budget) {
+  const StrengthResponse response = strength_response(base.surfaces, targets, {base.calibration.z});
+  std::vector<double> weight(targets.size(), 0.0);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const double scale = noise_scale(targets[i], budget[i]);
+    if (targets[i].role == Role::calibration) weight[i] = 1.0 / (scale * scale);
+  }
+  const std::vector<double> left =
+      change_after_refit(residuals(base.confirmed_ln, lab), response.jacobian[0], weight);
+  return rms_in_budgets(left, targets, budget, Role::calibration);
+}
+
 // Values the grids left missing, and the first reason. The samples of every effect that shares the
 // base grid end with it: those are counted once.
 void count_failures(DiagnosisResult& report, const DiagnosisCampaign& c,
@@ -467,6 +484,10 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   evidence.held_out_observations = int(count_role(c.targets, Role::held_out));
   evidence.base_has_held_out = report.candidates[0].confirmed_rms.held_out.has_value();
   evidence.base_on_bounds = on_bounds(report.candidates[0].calibration.z);
+  if (!evidence.base_on_bounds.empty()) {
+    evidence.base_calibration_refitted =
+        calibration_refitted(c.targets, report.candidates[0], lab, judged);
+  }
   evidence.base =
       model_miss("the base model", c.targets, residuals(report.candidates[0].confirmed_ln, lab),
                  judged, c.decision.gap_budgets);

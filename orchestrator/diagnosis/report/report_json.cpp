@@ -239,6 +239,14 @@ json verdict_json(const DiagnosisResult& r, const DecisionRule& rule) {
   }
   j["confidence"] = confidence_json(r.confidence);
   j["miss"] = miss_json(r.verdict.miss);
+  if (const auto& b = r.verdict.bound) {
+    j["bound"] = {{"on_bounds", b->on},
+                  {"calibration_budgets", num(b->calibration)},
+                  {"refitted_calibration_budgets", num(b->refitted)},
+                  {"holds", b->holds}};
+  } else {
+    j["bound"] = nullptr;
+  }
   return j;
 }
 
