@@ -44,9 +44,11 @@ def job(test, a, s, factor, seed):
             "bond": {"fr0": a.strength / math.sqrt(s), "fs0": a.strength * math.sqrt(s)},
             "contact": {"friction": 0.6},
             "loading": {"platen_velocity": "auto", "auto_transits": a.auto_transits,
-                        "past_window": a.past_window, "follow_transits": a.follow_transits,
+                        "past_window": a.past_window,
                         "dt": "auto", "slow_factor": a.slow_factor, "max_strain": 0.1},
             "damping": {"local": 0.7}}
+    if a.follow_transits:  # the engine refuses 0: off is the field left out
+        spec["loading"]["follow_transits"] = a.follow_transits
     effects = {}
     if factor != 1.0:
         effects["interaction_range"] = {"factor": factor,
