@@ -43,16 +43,15 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
   const RunOutcome base = run({100.0, 50.0, 70.0});
   const double e = std::exp(0.2);
   // Every value up by e^0.2: a change of both strengths, nothing left once they are re-fitted.
-  const ScreenedEffect absorbed =
-      screen_effect("uniform", base, run({100 * e, 50 * e, 70 * e}), jacobian, weight,
-                    three_targets(), budget, jacobian);
+  const ScreenedEffect absorbed = screen_effect("uniform", base, run({100 * e, 50 * e, 70 * e}),
+                                                jacobian, weight, three_targets(), budget);
   EXPECT_FALSE(absorbed.visible);
   EXPECT_LT(absorbed.largest_in_noise, 1e-9);
   EXPECT_NEAR(absorbed.noise[2], 0.03, 1e-12);
   // The held-out value moves by 0.1 beyond what the re-fit explains: 3.3 noise budgets.
   const ScreenedEffect marked =
       screen_effect("rate", base, run({100 * e, 50 * e, 70 * e * std::exp(0.1)}), jacobian, weight,
-                    three_targets(), budget, jacobian);
+                    three_targets(), budget);
   EXPECT_TRUE(marked.visible);
   ASSERT_TRUE(marked.largest);
   EXPECT_EQ(*marked.largest, 2u);
@@ -61,7 +60,7 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
   // A strong run without values cannot show that the effect moves nothing: it is kept.
   const ScreenedEffect failed =
       screen_effect("packing", base, run({std::nullopt, std::nullopt, std::nullopt}), jacobian,
-                    weight, three_targets(), budget, jacobian);
+                    weight, three_targets(), budget);
   EXPECT_TRUE(failed.visible);
   EXPECT_FALSE(failed.largest);
 }
@@ -73,8 +72,7 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
 // one run a step along each: the strengths undo the change by moving -0.1 along F_r0 and -0.2
 // along F_s0 (the base's sensitivity would say -0.2 and -0.1).
 TEST(Screen, TheStrongRunsReFitOnItsOwnSensitivitySaysWhereTheEffectFits) {
-  const std::vector<std::array<double, 2>> jacobian{{1.0, 0.0}, {0.0, 1.0}, {0.5, 0.5}};
-  const std::vector<double> weight{2500, 2500, 0}, budget{0.01, 0.01, 0.01};
+  const std::vector<double> weight{2500, 2500, 0};
   std::vector<Target> targets = three_targets();
   const double lab[] = {100.0, 50.0, 70.0};
   for (std::size_t i = 0; i < 3; ++i) targets[i].value = lab[i];
@@ -86,10 +84,9 @@ TEST(Screen, TheStrongRunsReFitOnItsOwnSensitivitySaysWhereTheEffectFits) {
   EXPECT_NEAR(own[0][0], 0.0, 1e-12);
   EXPECT_NEAR(own[0][1], 1.0, 1e-9);
   EXPECT_NEAR(own[1][0], 1.0, 1e-9);
-  const ScreenedEffect e = screen_effect("packing", run({100.0, 50.0, 70.0}), strong, jacobian,
-                                         weight, targets, budget, own);
-  EXPECT_NEAR(e.fit_shift[0], -0.1, 1e-9);
-  EXPECT_NEAR(e.fit_shift[1], -0.2, 1e-9);
+  const std::array<double, 2> shift = fit_shift(strong, targets, own, weight);
+  EXPECT_NEAR(shift[0], -0.1, 1e-9);
+  EXPECT_NEAR(shift[1], -0.2, 1e-9);
   // A step whose run gave no value leaves no sensitivity: with none, the fit stays at the point.
   const std::vector<std::array<double, 2>> none =
       secant_jacobian(strong,
@@ -97,9 +94,7 @@ TEST(Screen, TheStrongRunsReFitOnItsOwnSensitivitySaysWhereTheEffectFits) {
                        run({std::nullopt, std::nullopt, std::nullopt})},
                       {h, h});
   EXPECT_TRUE(std::isnan(none[0][0]));
-  const ScreenedEffect blind = screen_effect("packing", run({100.0, 50.0, 70.0}), strong, jacobian,
-                                             weight, targets, budget, none);
-  EXPECT_EQ(blind.fit_shift, (std::array<double, 2>{0.0, 0.0}));
+  EXPECT_EQ(fit_shift(strong, targets, none, weight), (std::array<double, 2>{0.0, 0.0}));
 }
 
 struct Diagnosed {

@@ -9,8 +9,7 @@ namespace rockcal::diagnosis {
 ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
                              const std::vector<std::array<double, 2>>& jacobian,
                              const std::vector<double>& weight, const std::vector<Target>& targets,
-                             const std::vector<double>& budget,
-                             const std::vector<std::array<double, 2>>& strong_jacobian) {
+                             const std::vector<double>& budget) {
   const std::size_t n = targets.size();
   std::vector<double> raw(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i) {
@@ -32,14 +31,19 @@ ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const R
     }
   }
   out.visible = !out.largest || out.largest_in_noise > 1.0;
-  std::vector<double> strong_residual(n, std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < n; ++i) {
-    if (strong.values[i] && *strong.values[i] > 0 && targets[i].value > 0)
-      strong_residual[i] = std::log(*strong.values[i] / targets[i].value);
-  }
-  const std::array<double, 2> dz = refit_shift(strong_residual, strong_jacobian, weight);
-  out.fit_shift = {-dz[0], -dz[1]};
   return out;
+}
+
+std::array<double, 2> fit_shift(const RunOutcome& strong, const std::vector<Target>& targets,
+                                const std::vector<std::array<double, 2>>& strong_jacobian,
+                                const std::vector<double>& weight) {
+  std::vector<double> residual(targets.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (strong.values[i] && *strong.values[i] > 0 && targets[i].value > 0)
+      residual[i] = std::log(*strong.values[i] / targets[i].value);
+  }
+  const std::array<double, 2> dz = refit_shift(residual, strong_jacobian, weight);
+  return {-dz[0], -dz[1]};
 }
 
 std::vector<std::array<double, 2>> secant_jacobian(const RunOutcome& at,

@@ -43,13 +43,18 @@ struct ScreenedEffect {
 inline constexpr int kScreenRunsPerEffect = 3;
 
 // One effect's mark: `strong` is its run at s = 1, `base` the base model's at the same strengths;
-// jacobian and weight as StrengthResponse at that point (budget.hpp); `strong_jacobian` the
-// effect's own d ln / dz there (NaN where a run gave no value), for its fit_shift.
+// jacobian and weight as StrengthResponse at that point (budget.hpp). Its fit_shift is left zero.
 ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
                              const std::vector<std::array<double, 2>>& jacobian,
                              const std::vector<double>& weight, const std::vector<Target>& targets,
-                             const std::vector<double>& budget,
-                             const std::vector<std::array<double, 2>>& strong_jacobian);
+                             const std::vector<double>& budget);
+
+// ScreenedEffect::fit_shift: the strong run's residual to the lab values, re-fitted (refit_shift)
+// on the effect's own d ln / dz there (`strong_jacobian`, NaN where a run gave no value), with the
+// calibration weights.
+std::array<double, 2> fit_shift(const RunOutcome& strong, const std::vector<Target>& targets,
+                                const std::vector<std::array<double, 2>>& strong_jacobian,
+                                const std::vector<double>& weight);
 
 // d ln / dz per target from a run at a point and one run a step `step[d]` along each strength
 // (NaN where either run has no value).

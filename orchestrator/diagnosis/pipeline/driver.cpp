@@ -262,6 +262,7 @@ Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base
   if (!screen.enabled) return measure_budget(c, base, z, evaluator);
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
   screen.point = model_point(c, base.candidate, z);
+  screen.z = z;
   // The steps of the effect's own sensitivity: the local design's arms (so an effect designed
   // where it was screened re-uses these runs), inward at the box's upper face.
   std::array<double, 2> step{};
@@ -279,9 +280,11 @@ Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base
   const StrengthResponse response = strength_response(base.surfaces, c.targets, {z});
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
     const RunOutcome* runs = &outcomes[1 + kScreenRunsPerEffect * k];
-    screen.effects.push_back(screen_effect(
-        c.candidates[k].effect, outcomes[0], runs[0], response.jacobian[0], response.weight,
-        c.targets, budget.per_target, secant_jacobian(runs[0], {runs[1], runs[2]}, step)));
+    screen.effects.push_back(screen_effect(c.candidates[k].effect, outcomes[0], runs[0],
+                                           response.jacobian[0], response.weight, c.targets,
+                                           budget.per_target));
+    screen.effects.back().fit_shift = fit_shift(
+        runs[0], c.targets, secant_jacobian(runs[0], {runs[1], runs[2]}, step), response.weight);
     if (!screen.effects.back().visible && judges_effects(c)) {
       screen.skipped_model_points += effect_grid_points(c, c.candidates[k]);
     }
@@ -325,20 +328,25 @@ std::optional<double> calibration_refitted(const std::vector<Target>& targets,
   return rms_in_budgets(left, targets, budget, Role::calibration);
 }
 
+// How many of samples[k]'s runs are candidate k's own: those of an effect that shares the base
+// grid end with the base's, counted once, as the base's.
+std::size_t own_runs(const std::vector<Samples>& samples, const DiagnosisCampaign& c,
+                     std::size_t k) {
+  const bool shared = k > 0 && c.candidates[k - 1].shares_base_grid();
+  return samples[k].outcomes.size() - (shared ? samples[0].outcomes.size() : 0);
+}
+
 // Values the grids left missing, and the first reason. The samples of every effect that shares the
 // base grid end with it: those are counted once.
 void count_failures(DiagnosisResult& report, const DiagnosisCampaign& c,
                     const std::vector<Samples>& samples) {
-  const std::size_t base_runs = samples[0].outcomes.size();
   report.base_grid_failures.assign(
       samples[0].outcomes.empty() ? 0 : samples[0].outcomes[0].values.size(), 0);
   for (const RunOutcome& o : samples[0].outcomes) {
     for (std::size_t i = 0; i < o.values.size(); ++i) report.base_grid_failures[i] += !o.values[i];
   }
   for (std::size_t k = 0; k < samples.size(); ++k) {
-    const bool shared = k > 0 && c.candidates[k - 1].shares_base_grid();
-    const std::size_t own = samples[k].outcomes.size() - (shared ? base_runs : 0);
-    for (std::size_t r = 0; r < own; ++r) {
+    for (std::size_t r = 0; r < own_runs(samples, c, k); ++r) {
       const RunOutcome& o = samples[k].outcomes[r];
       report.failed_values += int(std::count(o.values.begin(), o.values.end(), std::nullopt));
       if (report.first_error.empty()) report.first_error = o.error;
@@ -404,10 +412,8 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
     r.candidate = c.candidates[k - 1];
     r.surfaces = fit_surfaces(samples[k], r.candidate.dims(), n);
   }
-  for (std::size_t k = 1; k < samples.size(); ++k) {
-    const bool shared = c.candidates[k - 1].shares_base_grid();
-    report.model_points += int(samples[k].z.size() - (shared ? samples[0].z.size() : 0));
-  }
+  for (std::size_t k = 1; k < samples.size(); ++k)
+    report.model_points += int(own_runs(samples, c, k));
   report.combined_calibration = combined_budget(c.targets, budget, Role::calibration);
 
   // 3. Every candidate calibrated on its surfaces; held-out predicted; identifiability.

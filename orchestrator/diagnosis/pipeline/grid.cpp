@@ -96,15 +96,18 @@ void run_effect_grids(const DiagnosisCampaign& c, Evaluator& evaluator,
   share_base_slice(samples, c);
 }
 
+void append_base_slice(Samples& effect, const Samples& base) {
+  for (std::size_t r = 0; r < base.z.size(); ++r) {
+    std::vector<double> z = base.z[r];
+    z.push_back(0.0);
+    effect.z.push_back(std::move(z));
+    effect.outcomes.push_back(base.outcomes[r]);
+  }
+}
+
 void share_base_slice(std::vector<Samples>& samples, const DiagnosisCampaign& c) {
   for (std::size_t k = 1; k < samples.size(); ++k) {
-    if (!c.candidates[k - 1].shares_base_grid()) continue;
-    for (std::size_t r = 0; r < samples[0].z.size(); ++r) {
-      std::vector<double> z = samples[0].z[r];
-      z.push_back(0.0);
-      samples[k].z.push_back(std::move(z));
-      samples[k].outcomes.push_back(samples[0].outcomes[r]);
-    }
+    if (c.candidates[k - 1].shares_base_grid()) append_base_slice(samples[k], samples[0]);
   }
 }
 

@@ -50,6 +50,8 @@ Samples run_base_grid(const DiagnosisCampaign& c, Evaluator& evaluator);
 void run_effect_grids(const DiagnosisCampaign& c, Evaluator& evaluator,
                       std::vector<Samples>& samples);
 
+// The base model's samples as an effect's s = 0 slice, appended to its samples.
+void append_base_slice(Samples& effect, const Samples& base);
 // The s = 0 slice of every effect continuous at neutral is the base model's samples: appended to
 // theirs (samples[0] = the base, then one per campaign candidate).
 void share_base_slice(std::vector<Samples>& samples, const DiagnosisCampaign& c);

@@ -51,6 +51,19 @@ void run_into(std::vector<Samples>& samples, const std::vector<Point>& points,
   }
 }
 
+// One step of a walk that follows a fit: `design`'s points at `node` not yet in `made`, owned by
+// `owner`; none when a design has been centred at `node` (`centres` records each).
+void move_design(std::vector<Point>& points, std::size_t owner, const std::vector<double>& node,
+                 std::vector<std::vector<double>>& centres, const Samples& made,
+                 std::vector<std::vector<double>> design) {
+  if (std::find(centres.begin(), centres.end(), node) != centres.end()) return;
+  centres.push_back(node);
+  for (std::vector<double>& z : design) {
+    if (std::find(made.z.begin(), made.z.end(), z) == made.z.end())
+      points.push_back({owner, std::move(z)});
+  }
+}
+
 }  // namespace
 
 std::vector<std::vector<double>> star(std::span<const double> z, double h) {
@@ -72,13 +85,9 @@ Samples run_local_base(const DiagnosisCampaign& c, Evaluator& evaluator) {
   std::vector<std::vector<double>> centres;
   for (int move = 0; move <= kStarMoves; ++move) {
     const std::vector<double> centre = lattice_point(base_fit(c, samples[0]), c.grid.step);
-    if (std::find(centres.begin(), centres.end(), centre) != centres.end()) break;
-    centres.push_back(centre);
     std::vector<Point> around;
-    for (std::vector<double>& z : star(centre, c.grid.step)) {
-      if (std::find(samples[0].z.begin(), samples[0].z.end(), z) == samples[0].z.end())
-        around.push_back({0, std::move(z)});
-    }
+    move_design(around, 0, centre, centres, samples[0], star(centre, c.grid.step));
+    if (around.empty()) break;
     run_into(samples, around, c, evaluator);
   }
   return samples[0];
@@ -118,13 +127,7 @@ std::vector<std::vector<double>> effect_design(const DiagnosisCampaign& c, const
 // An effect's fit on its runs so far, with the base slice when it shares it.
 std::optional<SurfaceCalibration> effect_fit(const DiagnosisCampaign& c, const Candidate& k,
                                              Samples runs, const Samples& base) {
-  if (k.shares_base_grid()) {
-    for (std::size_t r = 0; r < base.z.size(); ++r) {
-      runs.z.push_back(base.z[r]);
-      runs.z.back().push_back(0.0);
-      runs.outcomes.push_back(base.outcomes[r]);
-    }
-  }
+  if (k.shares_base_grid()) append_base_slice(runs, base);
   return fit_on_lab(c, fit_surfaces(runs, k.dims(), c.targets.size()));
 }
 
@@ -167,14 +170,8 @@ void run_local_effects(const DiagnosisCampaign& c, Evaluator& evaluator,
       const auto fit = effect_fit(c, c.candidates[k], samples[k + 1], samples[0]);
       if (!fit) continue;
       const std::vector<double> node = lattice_point(fit->z, h);
-      if (std::find(centres[k].begin(), centres[k].end(), node) != centres[k].end()) continue;
-      centres[k].push_back(node);
-      const Samples& made = samples[k + 1];
-      for (std::vector<double>& z :
-           effect_design(c, c.candidates[k], [&](double) { return node; })) {
-        if (std::find(made.z.begin(), made.z.end(), z) == made.z.end())
-          points.push_back({k + 1, std::move(z)});
-      }
+      move_design(points, k + 1, node, centres[k], samples[k + 1],
+                  effect_design(c, c.candidates[k], [&](double) { return node; }));
     }
     if (points.empty()) break;
     run_into(samples, points, c, evaluator);

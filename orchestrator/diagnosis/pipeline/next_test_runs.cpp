@@ -126,7 +126,7 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
   for (std::size_t e = 0; e < out.effects.size(); ++e) {
     const ScreenedEffect mark =
         screen_effect(out.effects[e], outcomes[0], outcomes[run_of(out, out.effects[e])], jacobian,
-                      weight, all, all_budget, jacobian);  // its fit_shift is not used here
+                      weight, all, all_budget);
     out.mark.emplace_back(mark.change.begin() + long(n), mark.change.end());
   }
   if (a > 0) {

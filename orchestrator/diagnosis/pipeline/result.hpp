@@ -22,6 +22,7 @@ namespace rockcal::diagnosis {
 struct ScreenResult {
   bool enabled = false;
   ModelPoint point;                     // the base model's first fit
+  std::vector<double> z;                // the same in the unit square (ln F_r0, ln F_s0)
   std::vector<ScreenedEffect> effects;  // request order
   int model_points = 0;                 // the effects' runs (the base's are the budget's)
   int skipped_model_points = 0;         // the surfaces' model points of the effects left out

@@ -6,6 +6,7 @@
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/identifiability.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
+#include "orchestrator/diagnosis/pipeline/grid.hpp"
 #include "orchestrator/diagnosis/pipeline/jobs.hpp"
 #include "orchestrator/diagnosis/report/next_test_json.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
@@ -371,16 +372,16 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
                  {"in_noise", e.largest_in_noise}};
     }
     // The strengths the linear re-fit gives the effect at s = 1 (where its design is centred).
-    auto shifted = [](double at, const calibration::Range& bounds, double dz) {
-      return std::clamp(at * std::pow(bounds.hi / bounds.lo, dz), bounds.lo, bounds.hi);
-    };
-    effects.push_back({{"effect", e.effect},
-                       {"visible", e.visible},
-                       {"largest", largest},
-                       {"change", by_target(c.targets, e.change)},
-                       {"refitted_strengths",
-                        {{"fr0_n", shifted(screen.point.fr0_n, c.fr0_n, e.fit_shift[0])},
-                         {"fs0_n", shifted(screen.point.fs0_n, c.fs0_n, e.fit_shift[1])}}}});
+    const ModelPoint refitted =
+        model_point(c, Candidate{},
+                    std::vector<double>{std::clamp(screen.z[0] + e.fit_shift[0], 0.0, 1.0),
+                                        std::clamp(screen.z[1] + e.fit_shift[1], 0.0, 1.0)});
+    effects.push_back(
+        {{"effect", e.effect},
+         {"visible", e.visible},
+         {"largest", largest},
+         {"change", by_target(c.targets, e.change)},
+         {"refitted_strengths", {{"fr0_n", refitted.fr0_n}, {"fs0_n", refitted.fs0_n}}}});
     if (e.visible) continue;
     invisible.push_back(e.effect);
     std::snprintf(line, sizeof line,
