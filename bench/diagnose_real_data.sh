@@ -26,6 +26,7 @@ die() { echo "diagnose_real_data: $*" >&2; exit 2; }
 [[ -x "$build/api/rockcal" && -x "$build/engine/rockcal-dem" ]] ||
   die "no rockcal / rockcal-dem under $build (run deploy/build.sh, or set BUILD)"
 mkdir -p "$out"
+rm -f "$out/port" # a port file left by an earlier run would be read before the server writes its own
 
 # Open MPI refuses root without these; the jobs run without mpirun here (--ranks-per-job 0).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

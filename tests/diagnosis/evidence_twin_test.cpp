@@ -66,7 +66,8 @@ TEST(EvidenceThreshold, AtMostOneNullTwinInTenNamesAnEffect) {
       ++named;
       EXPECT_EQ(v["effect"], e["effect"]);
     } else {
-      EXPECT_EQ(v["label"], "no effect needed");
+      // A null's base model may still miss beyond the rule by chance: then the label says so.
+      EXPECT_EQ(v["label"], v["miss"].is_null() ? "no effect needed" : "unexplained miss");
     }
   }
   std::sort(best.begin(), best.end(), std::greater<>());

@@ -170,8 +170,9 @@ TEST(HonestVerdict, ABoundThatDoesNotHoldTheFitLetsTheVerdictStand) {
   EXPECT_TRUE(held.verdict.bound->holds);
 }
 
-// "No effect needed" beside a calibration miss beyond the budget: low, the miss added. A named
-// effect whose model still misses: at most medium. Within the budget: the rule's level stands.
+// No effect named beside a calibration miss beyond the budget: labelled "unexplained miss", never
+// "no effect needed", low, the miss added. A named effect whose model still misses: at most
+// medium, labelled by the effect. Within the budget: "no effect needed", the rule's level stands.
 TEST(HonestVerdict, AnUnexplainedMissBeyondTheBudgetIsNeverHigh) {
   const std::vector<Target> targets = {observation("uct", Role::calibration, 0.02),
                                        observation("btt", Role::calibration, 0.02),
@@ -183,6 +184,7 @@ TEST(HonestVerdict, AnUnexplainedMissBeyondTheBudgetIsNeverHigh) {
   temper_verdict(DecisionRule{}, e, none.verdict, none.confidence);
   EXPECT_EQ(none.confidence.level, "low");
   EXPECT_FALSE(none.verdict.undetermined);
+  EXPECT_EQ(verdict_label({}, none.verdict), "unexplained miss");
   EXPECT_EQ(none.verdict.reason,
             "within the budgets; not explained: the base model misses uct (calibration) by +0.06 "
             "in ln (6.2% above the lab), 3.0 times its noise 0.020 (budget 0.000, lab uncertainty "
@@ -203,6 +205,7 @@ TEST(HonestVerdict, AnUnexplainedMissBeyondTheBudgetIsNeverHigh) {
   EXPECT_EQ(fine.confidence.level, "high");
   EXPECT_EQ(fine.verdict.reason, "within the budgets");
   EXPECT_FALSE(fine.verdict.miss);
+  EXPECT_EQ(verdict_label({}, fine.verdict), "no effect needed");
 }
 
 }  // namespace

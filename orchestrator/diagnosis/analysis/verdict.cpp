@@ -260,7 +260,11 @@ std::string confidence_level(const Confidence& c) {
 }
 
 std::string verdict_label(const std::vector<CandidateResult>& candidates, const Verdict& v) {
-  return v.undetermined ? "undetermined" : verdict_label(candidates, v.candidate);
+  if (v.undetermined) return "undetermined";
+  // No effect named beside a miss beyond the rule (temper_verdict): "no effect needed" would deny
+  // the miss the reason states.
+  if (v.candidate < 0 && v.miss) return "unexplained miss";
+  return verdict_label(candidates, v.candidate);
 }
 
 std::vector<std::string> on_bounds(const std::vector<double>& z) {
@@ -318,7 +322,8 @@ void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Con
   if (misses_beyond(e.verdict, rule.gap_budgets)) {
     v.reason += "; not explained: " + miss_text(e.verdict, rule.gap_budgets);
     v.miss = e.verdict;
-    // "No effect needed" denies the miss: low. A named effect explains part of it: not high.
+    // No effect named: the label says the miss is unexplained, confidence low. A named effect
+    // explains part of it: not high.
     if (v.candidate < 0) {
       conf.level = "low";
     } else if (conf.level == "high") {

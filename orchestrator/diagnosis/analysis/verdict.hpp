@@ -123,7 +123,8 @@ std::string confidence_level(const Confidence& c);
 
 // "heterogeneity", or "no effect needed".
 std::string verdict_label(const std::vector<CandidateResult>& candidates, int index);
-// The verdict's label: "undetermined" when it is, else verdict_label.
+// The verdict's label: "undetermined" when it is; "unexplained miss" when no effect is named and
+// the reason states a miss (temper_verdict, 2.); else verdict_label.
 std::string verdict_label(const std::vector<CandidateResult>& candidates, const Verdict& v);
 
 // The fitted coordinates (unit cube: F_r0, F_s0, s) that sit on the search box ("fr0 lower",
@@ -143,9 +144,9 @@ std::vector<std::string> on_bounds(const std::vector<double>& z);
 //    observation (miss_text).
 // 2. An unexplained miss: the verdict's model (the named effect's real runs, or the base
 //    model's) misses its calibration or its held-out observations by more than the rule's
-//    gap_budgets (rms in noise budgets). Then the confidence is never "high": "low" beside "no
-//    effect needed" (the label denies the miss), at most "medium" beside a named effect (it
-//    explains part of it); the reason adds the miss.
+//    gap_budgets (rms in noise budgets). Then the confidence is never "high": "low" with no
+//    effect named (labelled "unexplained miss", never "no effect needed", which would deny it),
+//    at most "medium" beside a named effect (it explains part of it); the reason adds the miss.
 // The miss quoted is kept in Verdict::miss, so the report carries every figure of the sentence.
 struct Evidence {
   int held_out_observations = 0;
