@@ -43,5 +43,5 @@ url="http://127.0.0.1:$(cat "$out/port")"
 name=$(basename "$request" .json)
 start=$(date +%s)
 "$build/api/rockcal" diagnose "$request" --server "$url" --html "$out/$name.html" |
-  grep -v ' running \['
+  grep -Ev '^campaign [0-9]+ running: '
 echo "wall: $(($(date +%s) - start)) s; report: $out/$name.html; store: $out/store.db"
