@@ -292,12 +292,12 @@ TEST(DiagnosisRequest, ScreeningDefaultsOnAndIsRead) {
 TEST(DiagnosisRequest, TheDecisionRuleDefaultsAndIsRead) {
   DiagnosisCampaign c = parse_diagnosis_campaign(request());
   EXPECT_EQ(c.decision.gap_budgets, 1.0);
-  EXPECT_EQ(c.decision.min_evidence, 2.0);  // nats: calibrated on null twins (evidence_twin_test)
+  EXPECT_EQ(c.decision.min_evidence, 1.0);  // nats: calibrated on null twins (evidence_twin_test)
   json r = request();
   r["decision"] = {{"gap_budgets", 2.4}};
   c = parse_diagnosis_campaign(r);
   EXPECT_EQ(c.decision.gap_budgets, 2.4);
-  EXPECT_EQ(c.decision.min_evidence, 2.0);
+  EXPECT_EQ(c.decision.min_evidence, 1.0);
   r["decision"]["min_evidence"] = 0;
   EXPECT_EQ(parse_diagnosis_campaign(r).decision.min_evidence, 0.0);
   r["decision"]["min_evidence"] = -0.5;

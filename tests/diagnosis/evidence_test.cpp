@@ -2,7 +2,8 @@
 // (evidence.hpp), with exact numbers: which observations count, the variance each term uses (lab
 // uncertainty, budget, the surface emulator's variance, the floor), charged residuals, and the
 // evidence of an effect as its density minus the base model's over the observations both predict,
-// each candidate's from its real runs or its surfaces, and the ranking by it.
+// each candidate's from its real runs or its surfaces, the spread its fit leaves, and the ranking
+// by it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <numbers>
 
 #include "orchestrator/diagnosis/analysis/evidence.hpp"
+#include "orchestrator/diagnosis/analysis/fit_spread.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 #include "orchestrator/diagnosis/analysis/verdict.hpp"
 
@@ -148,14 +150,20 @@ TEST(Evidence, EachCandidateFromItsRunsOrItsSurfacesRanksTheEffects) {
   const double v_exact = variance_at(exact, c[1].calibration.z);
   EXPECT_GT(v_rough, 1e-4) << "scattered runs leave the emulator unsure";
   EXPECT_LT(v_exact, 0.1 * v_rough);
+  // The fit's spread (fit_spread.hpp) adds to both; the base's and the confirmed effect's runs
+  // have no surfaces here, so none.
+  const std::vector<double> spread = fit_spread(c[1].surfaces, c[1].calibration.z, four(), kBudget);
+  EXPECT_GT(spread[1], 0.0);
   ASSERT_EQ(c[1].density->terms.size(), 2u);
-  EXPECT_DOUBLE_EQ(c[1].density->terms[0].variance, 0.0025 + v_rough);
-  EXPECT_NEAR(c[1].density->lpd,
-              lpd_term(0.1, 0.0025 + v_rough) +
-                  lpd_term(0.0, std::max(0.0025 + v_exact, kMinNoiseScale * kMinNoiseScale)),
-              1e-12);
+  EXPECT_DOUBLE_EQ(c[1].density->terms[0].variance, 0.0025 + (spread[1] + v_rough));
+  EXPECT_NEAR(
+      c[1].density->lpd,
+      lpd_term(0.1, 0.0025 + spread[1] + v_rough) +
+          lpd_term(0.0, std::max(0.0025 + spread[3] + v_exact, kMinNoiseScale * kMinNoiseScale)),
+      1e-12);
   // On held-1, the one both predict: the base's real run has no emulator variance.
-  EXPECT_NEAR(*c[1].evidence, lpd_term(0.1, 0.0025 + v_rough) - lpd_term(0.1, 0.0025), 1e-12);
+  EXPECT_NEAR(*c[1].evidence, lpd_term(0.1, 0.0025 + spread[1] + v_rough) - lpd_term(0.1, 0.0025),
+              1e-12);
   EXPECT_FALSE(c[2].density) << "no held-out observation scored: no density, not an lpd of 0";
   EXPECT_FALSE(c[2].evidence);
   EXPECT_NEAR(*c[3].evidence, 1.92, 1e-12);
@@ -164,7 +172,55 @@ TEST(Evidence, EachCandidateFromItsRunsOrItsSurfacesRanksTheEffects) {
   EXPECT_EQ(c[2].rank, 3);
   // The variance is the emulator's at the fitted point: beyond the runs it is larger.
   c[1].calibration.z = {2.0, 2.0};
-  EXPECT_GT(surface_variance(c[1])[1], 10.0 * v_rough);
+  EXPECT_GT(predictive_variance(c[1], four(), kBudget)[1], 10.0 * v_rough);
+}
+
+// A surface through a 4 x 4 grid of the plane a z_0 + b z_1 (exact runs).
+Surface linear_surface(double a, double b) {
+  std::vector<std::vector<double>> z;
+  std::vector<double> y;
+  for (double u : {0.0, 1.0 / 3, 2.0 / 3, 1.0})
+    for (double v : {0.0, 1.0 / 3, 2.0 / 3, 1.0}) {
+      z.push_back({u, v});
+      y.push_back(a * u + b * v);
+    }
+  return *fit_surface(z, y);
+}
+
+// Focus: the fit's spread (fit_spread.hpp). A calibration observation that sees only
+// z_0 + z_1 (scale 0.05) fixes that direction and leaves z_0 - z_1 to the box's prior (variance
+// 1/12): a held-out observation along the loose direction is predicted with the prior's spread,
+// (1, -1) Sigma (1, -1)^T = 2 / 12, one along the calibrated direction with what the calibration
+// leaves, 2 / (12 + 2 / 0.05^2). A base model that misses the loose observation by 0.5 in ln is
+// not charged as if its fit were exact.
+TEST(FitSpread, AHeldOutObservationTheCalibrationLeavesLooseCarriesTheBoxsSpread) {
+  const std::vector<Target> t = {
+      target("cal", Role::calibration, 0.05), target("loose", Role::held_out, 0.05),
+      target("along", Role::held_out, 0.05), target("no-surface", Role::held_out, 0.05)};
+  SurfaceSet s;
+  s.dims = 2;
+  s.per_target = {linear_surface(1, 1), linear_surface(1, -1), linear_surface(1, 1), std::nullopt};
+  const std::vector<double> budget(4, 0.0);
+  const std::vector<double> v = fit_spread(s, {0.5, 0.5}, t, budget);
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_NEAR(v[0], 2.0 / 812.0, 1e-6);
+  EXPECT_NEAR(v[1], 2.0 / 12.0, 1e-6);
+  EXPECT_NEAR(v[2], 2.0 / 812.0, 1e-6);
+  EXPECT_EQ(v[3], 0.0) << "no surface, no sensitivity to carry";
+  // More calibration noise widens the calibrated direction only.
+  const std::vector<double> noisy = fit_spread(s, {0.5, 0.5}, t, {0.1, 0.0, 0.0, 0.0});
+  EXPECT_NEAR(noisy[2], 2.0 / (12.0 + 2.0 / 0.0125), 1e-6);
+  EXPECT_NEAR(noisy[1], 2.0 / 12.0, 1e-6);
+
+  std::vector<CandidateResult> c = {candidate("", true, {0.0, 0.5, 0.0, 0.0})};
+  c[0].surfaces = s;
+  c[0].calibration.z = {0.5, 0.5};
+  mark_evidence(c, t, {0, 0, 0, 0}, budget);
+  ASSERT_TRUE(c[0].density);
+  ASSERT_EQ(c[0].density->terms.size(), 3u);
+  EXPECT_NEAR(c[0].density->terms[0].variance, 0.0025 + 2.0 / 12.0, 1e-6);
+  EXPECT_NEAR(c[0].density->terms[1].variance, 0.0025 + 2.0 / 812.0, 1e-6);
+  EXPECT_DOUBLE_EQ(c[0].density->terms[2].variance, 0.0025);
 }
 
 // An effect fitted where it does nothing (an interaction range below the FCC's next neighbours

@@ -88,7 +88,8 @@ std::string two(double x) {
 }
 
 // Each term is -0.5 (r^2 / v + ln 2 pi v) of the observation's charged residual and its budget^2 +
-// lab uncertainty^2 (real runs); an effect's evidence is its terms' sum less the base's.
+// lab uncertainty^2 + the spread the fit leaves in the prediction (real runs: no emulator
+// variance); an effect's evidence is its terms' sum less the base's.
 void expect_terms_from_fields(const json& summary) {
   std::map<std::string, const json*> observation;
   for (const json& o : summary["observations"]) observation[o["id"]] = &o;
@@ -100,8 +101,10 @@ void expect_terms_from_fields(const json& summary) {
     for (const json& t : e["terms"]) {
       const json& o = *observation.at(t["id"]);
       EXPECT_EQ(o["role"], "held_out");
-      const double v =
-          std::pow(o["budget"].get<double>(), 2) + std::pow(o["lab_uncertainty"].get<double>(), 2);
+      const double spread = t["prediction_variance"].get<double>();
+      EXPECT_GE(spread, 0.0);
+      const double v = std::pow(o["budget"].get<double>(), 2) +
+                       std::pow(o["lab_uncertainty"].get<double>(), 2) + spread;
       const double r = t["charged"].get<double>();
       EXPECT_NEAR(t["variance"].get<double>(), v, 1e-12 * v);
       EXPECT_NEAR(t["lpd"].get<double>(), -0.5 * (r * r / v + std::log(2 * M_PI * v)), 1e-9);
@@ -126,20 +129,20 @@ TEST(EvidenceReport, TheVerdictSentenceAndTheTermsAreTheReportsFields) {
   const json& v = named["verdict"];
   const std::string threshold = two(v["evidence"]["threshold"].get<double>());
   const std::string evidence = two(v["evidence"]["value"].get<double>());
-  EXPECT_EQ(threshold, "2.00");
+  EXPECT_EQ(threshold, "1.00");
   EXPECT_EQ(
       v["reason"].get<std::string>().rfind(
-          "rate: evidence " + evidence + " nats over the base (threshold 2.00); it closes G = " +
+          "rate: evidence " + evidence + " nats over the base (threshold 1.00); it closes G = " +
               two(v["gap_closure"].get<double>()) + " of the held-out gap",
           0),
       0u)
       << v["reason"];
-  EXPECT_EQ(named["decision"]["min_evidence"], 2.0);
+  EXPECT_EQ(named["decision"]["min_evidence"], 1.0);
   const std::string html = report_html(named);
   EXPECT_NE(html.find("<h2>Evidence per effect</h2>"), std::string::npos);
-  EXPECT_NE(html.find("rate: " + evidence + " nats over the base; threshold 2.00 nats"),
+  EXPECT_NE(html.find("rate: " + evidence + " nats over the base; threshold 1.00 nats"),
             std::string::npos);
-  EXPECT_NE(api::diagnosis_text(named).find("evidence " + evidence + " nats (threshold 2.00)"),
+  EXPECT_NE(api::diagnosis_text(named).find("evidence " + evidence + " nats (threshold 1.00)"),
             std::string::npos);
 
   // Nothing named: the sentence gives the best contender's evidence against the threshold, and
@@ -152,7 +155,7 @@ TEST(EvidenceReport, TheVerdictSentenceAndTheTermsAreTheReportsFields) {
     const std::string best = n["evidence"]["effect"].get<std::string>();
     EXPECT_NE(reason.find("no gap to explain; the best effect, " + best + ", has evidence " +
                           two(n["evidence"]["value"].get<double>()) +
-                          " nats over the base (threshold 2.00)"),
+                          " nats over the base (threshold 1.00)"),
               std::string::npos)
         << reason;
   }

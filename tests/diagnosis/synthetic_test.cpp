@@ -580,7 +580,7 @@ TEST(Verdict, ACandidateThatCannotFitTheCalibrationDataIsNotTheVerdict) {
   const Verdict v = decide(DecisionRule{}, c, order, 1.20 / 0.17, 0.17);
   EXPECT_EQ(v.candidate, 1);
   EXPECT_EQ(v.reason,
-            "packing: evidence 12.00 nats over the base (threshold 2.00); it closes G = 0.41 of "
+            "packing: evidence 12.00 nats over the base (threshold 1.00); it closes G = 0.41 of "
             "the held-out gap (held-out rms 1.200 -> 0.710); the base model's held-out residuals "
             "are 7.06 budgets (combined budget 0.170)");
   EXPECT_EQ(v.runner_up, 2);

@@ -77,16 +77,17 @@ BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
     }
     const HeldOutDensity base =
         held_out_density(replicate_residuals(candidates[0], targets, budget, lab), targets, judged,
-                         surface_variance(candidates[0]));
+                         predictive_variance(candidates[0], targets, judged));
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
       if (!c.fitted || !c.identifiability || !c.identifiability->identifiable ||
-          !c.fits_calibration) {
+          !c.fits_calibration || (c.confirmed && c.g_confirmed && *c.g_confirmed <= 0.0)) {
         continue;
       }
-      const HeldOutDensity d = held_out_density(replicate_residuals(c, targets, budget, lab),
-                                                targets, judged, surface_variance(c));
+      const HeldOutDensity d =
+          held_out_density(replicate_residuals(c, targets, budget, lab), targets, judged,
+                           predictive_variance(c, targets, judged));
       if (const auto e = evidence_over(d, base)) contenders.push_back({i, *e});
     }
     const int chosen = choose_effect(rule, contenders);

@@ -80,7 +80,6 @@ std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int
 
 StrengthResponse strength_response(const SurfaceSet& base, const std::vector<Target>& targets,
                                    const std::vector<std::vector<double>>& points) {
-  constexpr double h = 0.02;
   StrengthResponse r;
   for (const Target& t : targets) {
     // The calibration objective's weights without a budget: the budget is what is being measured.
@@ -88,16 +87,9 @@ StrengthResponse strength_response(const SurfaceSet& base, const std::vector<Tar
     r.weight.push_back(t.role == Role::calibration ? 1.0 / (scale * scale) : 0.0);
   }
   for (const std::vector<double>& at : points) {
+    const std::vector<std::vector<double>> g = surface_gradients(base, at);
     std::vector<std::array<double, 2>> jacobian(targets.size());
-    for (int d = 0; d < 2; ++d) {
-      std::vector<double> lo = at, hi = at;
-      lo[d] = std::max(0.0, at[d] - h);
-      hi[d] = std::min(1.0, at[d] + h);
-      const std::vector<double> up = predict(base, hi), down = predict(base, lo);
-      for (std::size_t i = 0; i < jacobian.size(); ++i) {
-        jacobian[i][d] = (up[i] - down[i]) / (hi[d] - lo[d]);
-      }
-    }
+    for (std::size_t i = 0; i < jacobian.size(); ++i) jacobian[i] = {g[i][0], g[i][1]};
     r.jacobian.push_back(std::move(jacobian));
   }
   return r;

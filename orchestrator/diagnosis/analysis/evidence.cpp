@@ -10,18 +10,18 @@ namespace rockcal::diagnosis {
 HeldOutDensity held_out_density(const std::vector<double>& residuals,
                                 const std::vector<Target>& targets,
                                 const std::vector<double>& budget,
-                                const std::vector<double>& surface_variance) {
+                                const std::vector<double>& prediction_variance) {
   HeldOutDensity out;
   const std::vector<double> charged = charged_residuals(residuals, targets);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     if (targets[i].role != Role::held_out || !std::isfinite(charged[i])) continue;
-    const double extra = surface_variance.empty() ? 0.0 : surface_variance[i];
+    const double extra = prediction_variance.empty() ? 0.0 : prediction_variance[i];
     if (!std::isfinite(extra)) continue;
     const double scale = noise_scale(targets[i], budget[i]);
     const double v = std::max(scale * scale + extra, kMinNoiseScale * kMinNoiseScale);
     const double r = charged[i];
     const double lpd = -0.5 * (r * r / v + std::log(2.0 * M_PI * v));
-    out.terms.push_back({i, r, v, lpd});
+    out.terms.push_back({i, r, v, extra, lpd});
     out.lpd += lpd;
   }
   return out;

@@ -1,5 +1,6 @@
 #include "orchestrator/diagnosis/analysis/surface_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -16,6 +17,20 @@ std::vector<double> predict(const SurfaceSet& surfaces, std::span<const double> 
     out.push_back(s ? evaluate(*s, z) : std::numeric_limits<double>::quiet_NaN());
   }
   return out;
+}
+
+std::vector<std::vector<double>> surface_gradients(const SurfaceSet& surfaces,
+                                                   std::span<const double> z) {
+  constexpr double h = 0.02;
+  std::vector<std::vector<double>> g(surfaces.per_target.size(), std::vector<double>(z.size()));
+  for (std::size_t d = 0; d < z.size(); ++d) {
+    std::vector<double> lo(z.begin(), z.end()), hi = lo;
+    lo[d] = std::max(0.0, z[d] - h);
+    hi[d] = std::min(1.0, z[d] + h);
+    const std::vector<double> up = predict(surfaces, hi), down = predict(surfaces, lo);
+    for (std::size_t i = 0; i < g.size(); ++i) g[i][d] = (up[i] - down[i]) / (hi[d] - lo[d]);
+  }
+  return g;
 }
 
 double misfit(const Objective& objective, const std::vector<double>& ln_sim) {

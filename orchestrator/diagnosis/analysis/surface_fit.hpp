@@ -21,6 +21,11 @@ struct SurfaceSet {
 // ln(sim) of every target at z; NaN where the target has no surface.
 std::vector<double> predict(const SurfaceSet& surfaces, std::span<const double> z);
 
+// d ln(target) / dz of every target at z ([target][axis]): central differences of step 0.02 on
+// the surfaces, one-sided at a face of the cube; NaN where a target has no surface.
+std::vector<std::vector<double>> surface_gradients(const SurfaceSet& surfaces,
+                                                   std::span<const double> z);
+
 struct Objective {
   std::vector<double> ln_lab;
   std::vector<double> weight;  // per target; 0 = not in the objective (held out, no surface)

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "orchestrator/diagnosis/analysis/evidence.hpp"
+#include "orchestrator/diagnosis/analysis/fit_spread.hpp"
 #include "orchestrator/diagnosis/analysis/gap.hpp"
 
 namespace rockcal::diagnosis {
@@ -17,26 +19,61 @@ std::string fixed(double x, int digits = 3) {
   return buf;
 }
 
+// A confirmed effect whose real runs miss the held-out observations by more than the base model's
+// (G <= 0): whatever evidence it has comes from the width of its prediction (the spread a loosely
+// fixed parameter leaves, fit_spread.hpp), not from a closer one; a vaguer model outscores a base
+// that misses by several noise units (docs/diagnosis-measurements.md, the Zigong sandstone).
+bool wider_not_closer(const CandidateResult& c) {
+  return c.confirmed && c.g_confirmed && *c.g_confirmed <= 0.0;
+}
+
 bool eligible(const CandidateResult& c) {
   return c.fitted && c.confirmed && c.identifiability && c.identifiability->identifiable &&
-         c.fits_calibration && c.evidence.has_value() && !c.inert_at_fit();
+         c.fits_calibration && c.evidence.has_value() && !c.inert_at_fit() && !wider_not_closer(c);
+}
+
+// "; <effect> (evidence N nats) is not the explanation: <why>" for each effect in `order` that
+// `excluded` leaves out and that has evidence above `above`.
+template <class Excluded, class Why>
+std::string not_the_explanation(const std::vector<CandidateResult>& candidates,
+                                const std::vector<int>& order, double above, Excluded excluded,
+                                Why why) {
+  std::string out;
+  for (int i : order) {
+    const CandidateResult& c = candidates[i];
+    if (!excluded(c) || !c.evidence || !(*c.evidence > above)) continue;
+    out += "; " + c.candidate.effect + " (evidence " + fixed(*c.evidence, 2) +
+           " nats) is not the explanation: " + why(c);
+  }
+  return out;
+}
+
+// The confirmed effects left out by wider_not_closer whose evidence would have named them.
+std::string wider_note(const std::vector<CandidateResult>& candidates,
+                       const std::vector<int>& order, double min_evidence) {
+  return not_the_explanation(candidates, order, min_evidence, wider_not_closer,
+                             [](const CandidateResult& c) {
+                               return "its runs miss the held-out observations by more than the "
+                                      "base model's (G = " +
+                                      fixed(*c.g_confirmed, 2) +
+                                      "), so what it gained is the width of its prediction, not a "
+                                      "closer one";
+                             });
 }
 
 // The confirmed effects whose evidence came from the strengths' re-fit alone: at their fitted
 // value they change no observation beyond its noise against the base model at the same strengths.
 std::string inert_note(const std::vector<CandidateResult>& candidates,
                        const std::vector<int>& order) {
-  std::string out;
-  for (int i : order) {
-    const CandidateResult& c = candidates[i];
-    if (!c.inert_at_fit() || !c.evidence) continue;
-    out += "; " + c.candidate.effect + " (evidence " + fixed(*c.evidence, 2) +
-           " nats) is not the explanation: at its fitted value it changes no observation beyond "
-           "its noise against the base model at the same strengths (largest change " +
-           fixed(*c.mark_at_fit, 2) +
-           " of its noise), so what it gained is the strengths' re-fit, not the effect";
-  }
-  return out;
+  return not_the_explanation(
+      candidates, order, -std::numeric_limits<double>::infinity(),
+      [](const CandidateResult& c) { return c.inert_at_fit(); },
+      [](const CandidateResult& c) {
+        return "at its fitted value it changes no observation beyond its noise against the base "
+               "model at the same strengths (largest change " +
+               fixed(*c.mark_at_fit, 2) +
+               " of its noise), so what it gained is the strengths' re-fit, not the effect";
+      });
 }
 
 // The effects that would need a calibration observation to be judged: they move held-out ones
@@ -91,11 +128,15 @@ void mark_calibration_fits(std::vector<CandidateResult>& candidates, double comb
   }
 }
 
-std::vector<double> surface_variance(const CandidateResult& c) {
-  if (c.confirmed) return {};
-  std::vector<double> v;
-  for (const auto& s : c.surfaces.per_target)
-    v.push_back(s && !c.calibration.z.empty() ? variance_at(*s, c.calibration.z) : NAN);
+std::vector<double> predictive_variance(const CandidateResult& c,
+                                        const std::vector<Target>& targets,
+                                        const std::vector<double>& budget) {
+  std::vector<double> v = fit_spread(c.surfaces, c.calibration.z, targets, budget);
+  if (c.confirmed) return v;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const auto& s = i < c.surfaces.per_target.size() ? c.surfaces.per_target[i] : std::nullopt;
+    v[i] += s && !c.calibration.z.empty() ? variance_at(*s, c.calibration.z) : NAN;
+  }
   return v;
 }
 
@@ -105,8 +146,8 @@ void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<T
     c.density.reset();
     c.evidence.reset();
     if (!c.fitted) continue;
-    HeldOutDensity d =
-        held_out_density(residuals(c.ln_sim(), lab), targets, budget, surface_variance(c));
+    HeldOutDensity d = held_out_density(residuals(c.ln_sim(), lab), targets, budget,
+                                        predictive_variance(c, targets, budget));
     if (!d.terms.empty()) c.density = std::move(d);  // none: no held-out value, or no surface error
   }
   const CandidateResult& base = candidates[0];
@@ -188,12 +229,14 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
                               : "no candidate effect is identifiable from these observations, "
                                 "able to fit the calibration observations and active at its "
                                 "fitted value") +
-               unfixed_note(candidates, order) + inert;
+               unfixed_note(candidates, order) + inert +
+               wider_note(candidates, order, rule.min_evidence);
   } else {
     v.reason = size + gap_text + "the best effect, " + candidates[v.best].candidate.effect +
                ", has " + evidence_text(v.best) +
                (no_gap ? "" : ": none of the candidates explains the gap") +
-               unfixed_note(candidates, order) + inert_note(candidates, order);
+               unfixed_note(candidates, order) + inert_note(candidates, order) +
+               wider_note(candidates, order, rule.min_evidence);
   }
   return v;
 }
@@ -230,7 +273,8 @@ std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
     }
     const std::vector<double> base_residuals = residuals(candidates[0].seed_ln[j], lab);
     const auto base_rms = rms(base_residuals, targets, Role::held_out);
-    const HeldOutDensity base_density = held_out_density(base_residuals, targets, budget);
+    const HeldOutDensity base_density = held_out_density(
+        base_residuals, targets, budget, predictive_variance(candidates[0], targets, budget));
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
@@ -239,7 +283,9 @@ std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
       if (const auto g = gap_closure(rms(r, targets, Role::held_out), base_rms)) {
         check.gap_closure[c.candidate.effect] = *g;
       }
-      const auto e = evidence_over(held_out_density(r, targets, budget), base_density);
+      const auto e = evidence_over(
+          held_out_density(r, targets, budget, predictive_variance(c, targets, budget)),
+          base_density);
       if (!e) continue;
       check.evidence[c.candidate.effect] = *e;
       contenders.push_back({i, *e});

@@ -61,7 +61,7 @@ struct Verdict {
 // verdict states (temper_verdict).
 struct DecisionRule {
   double gap_budgets = 1.0;   // held-out rms, in noise budgets, above which the report calls a gap
-  double min_evidence = 2.0;  // nats over the base model that name an effect
+  double min_evidence = 1.0;  // nats over the base model that name an effect
 };
 
 struct Contender {
@@ -88,10 +88,13 @@ void mark_calibration_fits(std::vector<CandidateResult>& candidates, double comb
 void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<Target>& targets,
                    const std::vector<double>& ln_lab, const std::vector<double>& budget);
 
-// The variance a candidate's prediction adds to each held-out observation's: none from real runs
-// (confirmed; empty), each surface's emulator variance at the fitted point otherwise (NaN without
-// one).
-std::vector<double> surface_variance(const CandidateResult& c);
+// The variance a candidate's prediction adds to each held-out observation's: the spread its fit
+// leaves (fit_spread.hpp, from its surfaces; none without them), plus, when the prediction comes
+// from the surfaces and not from real runs (not confirmed), each surface's emulator variance at
+// the fitted point (NaN without one: the target is not scored).
+std::vector<double> predictive_variance(const CandidateResult& c,
+                                        const std::vector<Target>& targets,
+                                        const std::vector<double>& budget);
 
 // Ranks the effects (candidates[1..]) and sets their `rank` (1 = best): confirmed identifiable
 // ones that fit the calibration by their evidence (real runs), then the other identifiable ones

@@ -64,6 +64,7 @@ json evidence_json(const CandidateResult& c, const std::vector<Target>& targets)
     terms.push_back({{"id", targets[t.target].id},
                      {"charged", t.residual},
                      {"variance", t.variance},
+                     {"prediction_variance", t.prediction_variance},
                      {"lpd", t.lpd}});
   }
   return {{"value", num(c.evidence)},
