@@ -226,6 +226,34 @@ TEST(FitSpread, AHeldOutObservationTheCalibrationLeavesLooseCarriesTheBoxsSpread
 // An effect fitted where it does nothing (an interaction range below the FCC's next neighbours
 // is the base model) can still gain evidence, from its strengths' re-fit: measured against the
 // base model at the same strengths it moves nothing beyond noise, and it is not named.
+// An effect whose real runs lie further from the held-out data than the base model's (G <= 0) can
+// still gain evidence from the spread its loosely fixed parameter leaves in its predictions (a
+// vaguer model outscores a base that misses by several noise units): it is never named, and the
+// reason says why; with G > 0 the same evidence names it.
+TEST(Evidence, AnEffectNoCloserToTheHeldOutDataThanTheBaseIsNeverTheVerdict) {
+  std::vector<CandidateResult> c = {candidate("", true, {0.0, 0.2, 0.0, 0.0}),
+                                    candidate("compression_coupling", true, {0.0, 0.3, 0.0, 0.0})};
+  c[0].confirmed_rms.held_out = 0.2;
+  c[1].confirmed_rms.held_out = 0.3;
+  c[1].evidence = 10.66;
+  c[1].g_confirmed = -0.5;
+  const DecisionRule rule;
+  Verdict v = decide(rule, c, {1}, 2.8, 0.061);
+  EXPECT_EQ(v.candidate, -1) << v.reason;
+  EXPECT_NE(v.reason.find("compression_coupling (evidence 10.66 nats) is not the explanation: its "
+                          "runs miss the held-out observations by more than the base model's (G = "
+                          "-0.50), so what it gained is the width of its prediction, not a closer "
+                          "one"),
+            std::string::npos)
+      << v.reason;
+  c[1].g_confirmed = 0.0;  // no closer is not closer
+  EXPECT_EQ(decide(rule, c, {1}, 2.8, 0.061).candidate, -1);
+  c[1].g_confirmed = 0.1;
+  v = decide(rule, c, {1}, 2.8, 0.061);
+  EXPECT_EQ(v.candidate, 1) << v.reason;
+  EXPECT_EQ(v.reason.find("is not the explanation"), std::string::npos) << v.reason;
+}
+
 TEST(Evidence, AnEffectInertAtItsFittedValueIsNeverTheVerdict) {
   std::vector<CandidateResult> c = {candidate("", true, {0.0, 0.2, 0.0, 0.0}),
                                     candidate("interaction_range", true, {0.0, 0.05, 0.0, 0.0}),

@@ -82,7 +82,7 @@ BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
       if (!c.fitted || !c.identifiability || !c.identifiability->identifiable ||
-          !c.fits_calibration || (c.confirmed && c.g_confirmed && *c.g_confirmed <= 0.0)) {
+          !c.fits_calibration || wider_not_closer(c)) {
         continue;
       }
       const HeldOutDensity d =

@@ -19,14 +19,6 @@ std::string fixed(double x, int digits = 3) {
   return buf;
 }
 
-// A confirmed effect whose real runs miss the held-out observations by more than the base model's
-// (G <= 0): whatever evidence it has comes from the width of its prediction (the spread a loosely
-// fixed parameter leaves, fit_spread.hpp), not from a closer one; a vaguer model outscores a base
-// that misses by several noise units (docs/diagnosis-measurements.md, the Zigong sandstone).
-bool wider_not_closer(const CandidateResult& c) {
-  return c.confirmed && c.g_confirmed && *c.g_confirmed <= 0.0;
-}
-
 bool eligible(const CandidateResult& c) {
   return c.fitted && c.confirmed && c.identifiability && c.identifiability->identifiable &&
          c.fits_calibration && c.evidence.has_value() && !c.inert_at_fit() && !wider_not_closer(c);
@@ -126,6 +118,10 @@ void mark_calibration_fits(std::vector<CandidateResult>& candidates, double comb
         r && best &&
         *r <= std::max(*best + combined_calibration, kCalibrationFitBudgets * combined_calibration);
   }
+}
+
+bool wider_not_closer(const CandidateResult& c) {
+  return c.confirmed && c.g_confirmed && *c.g_confirmed <= 0.0;
 }
 
 std::vector<double> predictive_variance(const CandidateResult& c,

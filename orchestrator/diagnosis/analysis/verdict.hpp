@@ -88,6 +88,13 @@ void mark_calibration_fits(std::vector<CandidateResult>& candidates, double comb
 void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<Target>& targets,
                    const std::vector<double>& ln_lab, const std::vector<double>& budget);
 
+// A confirmed effect whose real runs miss the held-out observations by more than the base model's
+// (G <= 0): whatever evidence it has comes from the width of its prediction (the spread a loosely
+// fixed parameter leaves, fit_spread.hpp), not from a closer one; a vaguer model outscores a base
+// that misses by several noise units (docs/diagnosis-measurements.md, the Zigong sandstone). Never
+// named, in the verdict, the seed checks or the bootstrap.
+bool wider_not_closer(const CandidateResult& c);
+
 // The variance a candidate's prediction adds to each held-out observation's: the spread its fit
 // leaves (fit_spread.hpp, from its surfaces; none without them), plus, when the prediction comes
 // from the surfaces and not from real runs (not confirmed), each surface's emulator variance at
