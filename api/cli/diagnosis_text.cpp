@@ -63,19 +63,21 @@ std::string diagnosis_text(const json& s) {
   if (at(at(s, "next_test"), "reason").is_string()) {
     out << "Next test: " << fmt(at(at(s, "next_test"), "reason")) << "\n";
   }
-  out << "\nWhere the gap lies (base model; * = beyond budget + lab uncertainty):\n";
-  std::snprintf(line, sizeof line, "  %-14s %-9s %-15s %-11s %12s %12s %9s %8s %8s %9s\n",
+  out << "\nWhere the gap lies (base model; * = beyond budget + lab uncertainty + the fit's "
+         "spread):\n";
+  std::snprintf(line, sizeof line, "  %-14s %-9s %-15s %-11s %12s %12s %9s %8s %8s %8s %9s\n",
                 "observation", "test", "observable", "role", "lab", "base sim", "ln ratio",
-                "budget", "lab unc", "after");
+                "budget", "lab unc", "fit", "after");
   out << line;
   for (const json& o : at(s, "observations")) {
     const json& b = at(o, "base");
     std::snprintf(
-        line, sizeof line, "  %-14s %-9s %-15s %-11s %12s %12s %8s%s %8s %8s %9s\n",
+        line, sizeof line, "  %-14s %-9s %-15s %-11s %12s %12s %8s%s %8s %8s %8s %9s\n",
         fmt(at(o, "id")).c_str(), fmt(at(o, "test")).c_str(), fmt(at(o, "observable")).c_str(),
         fmt(at(o, "role")).c_str(), fmt(at(o, "lab")).c_str(), fmt(at(b, "sim")).c_str(),
         fmt(at(b, "residual"), "%+.4f").c_str(), at(b, "significant") == true ? "*" : " ",
         fmt(at(o, "budget"), "%.4f").c_str(), fmt(at(o, "lab_uncertainty"), "%.4f").c_str(),
+        fmt(at(b, "fit_spread"), "%.4f").c_str(),
         fmt(at(at(o, "verdict"), "residual"), "%+.4f").c_str());
     out << line;
   }

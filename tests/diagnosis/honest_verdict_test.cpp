@@ -51,6 +51,21 @@ Judged no_effect_needed(const std::string& reason) {
   return j;
 }
 
+// The rule named no effect ("within the budgets", high), tempered by a base model's miss with one
+// held-out observation.
+Judged none_tempered(const ModelMiss& base) {
+  Judged j = no_effect_needed("within the budgets");
+  temper_verdict(DecisionRule{}, evidence(1, {}, base), j.verdict, j.confidence);
+  return j;
+}
+
+// No effect named beside a stated miss: labelled "unexplained miss", the miss in the reason.
+void expect_unexplained(const Judged& j, const std::string& reason) {
+  EXPECT_EQ(verdict_label({}, j.verdict), "unexplained miss");
+  EXPECT_EQ(j.verdict.reason, reason);
+  EXPECT_TRUE(j.verdict.miss);
+}
+
 // The rule named candidate `index` with this reason and confidence; tempered by the evidence.
 Judged tempered(const Evidence& e, int index, const std::string& reason, const std::string& level) {
   Judged j;
@@ -86,8 +101,9 @@ TEST(HonestVerdict, TheSeedLabCaseIsUndeterminedWithItsMissStated) {
   const std::vector<double> budget = {0.10, 0.75};
   const std::vector<double> residuals = {-0.93, -0.93};
   const DecisionRule rule;
-  Evidence e = evidence(0, {"fs0 upper"},
-                        model_miss("the base model", targets, residuals, budget, rule.gap_budgets));
+  Evidence e =
+      evidence(0, {"fs0 upper"},
+               model_miss("the base model", targets, residuals, budget, {}, rule.gap_budgets));
   // Two calibration observations, two strengths: re-fitted freely, the strengths meet both.
   e.base_calibration_refitted = 0.0;
   // What it answered before: "no effect needed", confidence high.
@@ -122,8 +138,8 @@ Evidence two_observations_on_a_bound(const std::string& calibration, const std::
                                        observation("tri-high", Role::held_out, 0.02)};
   const std::vector<double> budget = {0.01, 0.01};
   Evidence e = evidence(
-      1, {bound}, model_miss("the base model", targets, {calibration_miss, 0.30}, budget, 1.0));
-  e.verdict = model_miss("the model with " + effect, targets, {0.005, 0.01}, budget, 1.0);
+      1, {bound}, model_miss("the base model", targets, {calibration_miss, 0.30}, budget, {}, 1.0));
+  e.verdict = model_miss("the model with " + effect, targets, {0.005, 0.01}, budget, {}, 1.0);
   return e;
 }
 
@@ -179,19 +195,17 @@ TEST(HonestVerdict, AnUnexplainedMissBeyondTheBudgetIsNeverHigh) {
                                        observation("uct-large", Role::held_out, 0.02)};
   const std::vector<double> budget = {0.0, 0.0, 0.0};
   Evidence e =
-      evidence(1, {}, model_miss("the base model", targets, {0.06, -0.01, 0.01}, budget, 1.0));
-  Judged none = no_effect_needed("within the budgets");
-  temper_verdict(DecisionRule{}, e, none.verdict, none.confidence);
+      evidence(1, {}, model_miss("the base model", targets, {0.06, -0.01, 0.01}, budget, {}, 1.0));
+  const Judged none = none_tempered(e.base);
   EXPECT_EQ(none.confidence.level, "low");
   EXPECT_FALSE(none.verdict.undetermined);
-  EXPECT_EQ(verdict_label({}, none.verdict), "unexplained miss");
-  EXPECT_EQ(none.verdict.reason,
-            "within the budgets; not explained: the base model misses uct (calibration) by +0.06 "
-            "in ln (6.2% above the lab), 3.0 times its noise 0.020 (budget 0.000, lab uncertainty "
-            "0.020): rms 2.2 noise budgets over the calibration observations, 0.5 over the "
-            "held-out ones");
+  expect_unexplained(none,
+                     "within the budgets; not explained: the base model misses uct (calibration) "
+                     "by +0.06 in ln (6.2% above the lab), 3.0 times its noise 0.020 (budget "
+                     "0.000, lab uncertainty 0.020): rms 2.2 noise budgets over the calibration "
+                     "observations, 0.5 over the held-out ones");
 
-  e.verdict = model_miss("the model with size", targets, {0.0, 0.0, 0.05}, budget, 1.0);
+  e.verdict = model_miss("the model with size", targets, {0.0, 0.0, 0.05}, budget, {}, 1.0);
   const Judged named = tempered(e, 1, "size closes G = 0.50", "high");
   expect_judged(named, "medium",
                 "size closes G = 0.50; not explained: the model with size misses uct-large (held "
@@ -199,13 +213,40 @@ TEST(HonestVerdict, AnUnexplainedMissBeyondTheBudgetIsNeverHigh) {
                 "0.000, lab uncertainty 0.020): rms 0.0 noise budgets over the calibration "
                 "observations, 2.5 over the held-out ones");
 
-  Judged fine = no_effect_needed("within the budgets");
-  e = evidence(1, {}, model_miss("the base model", targets, {0.01, -0.01, 0.01}, budget, 1.0));
-  temper_verdict(DecisionRule{}, e, fine.verdict, fine.confidence);
+  const Judged fine =
+      none_tempered(model_miss("the base model", targets, {0.01, -0.01, 0.01}, budget, {}, 1.0));
   EXPECT_EQ(fine.confidence.level, "high");
   EXPECT_EQ(fine.verdict.reason, "within the budgets");
   EXPECT_FALSE(fine.verdict.miss);
   EXPECT_EQ(verdict_label({}, fine.verdict), "no effect needed");
+}
+
+// A held-out miss within the spread the calibration leaves in that prediction (fit_spread.hpp) is
+// no gap: 0.05 in ln is 2.5 times a lab uncertainty of 0.02 alone but 0.83 times the noise with a
+// fit variance of 0.0032 added. Beyond it, the stated miss quotes the fit's spread beside the
+// budget and the lab uncertainty, so the reader sees what the noise is made of.
+TEST(HonestVerdict, AHeldOutMissWithinTheFitsSpreadIsNoGap) {
+  const std::vector<Target> targets = {observation("uct", Role::calibration, 0.02),
+                                       observation("uct-large", Role::held_out, 0.02)};
+  const std::vector<double> budget = {0.0, 0.0};
+  const std::vector<double> spread = {0.0, 0.0032};
+  const ModelMiss without = model_miss("the base model", targets, {0.0, 0.05}, budget, {}, 1.0);
+  EXPECT_NEAR(*without.held_out, 2.5, 1e-12);
+  const ModelMiss with = model_miss("the base model", targets, {0.0, 0.05}, budget, spread, 1.0);
+  EXPECT_NEAR(*with.held_out, 0.05 / 0.06, 1e-12);
+  EXPECT_NEAR(*rms_in_budgets({0.0, 0.05}, targets, budget, Role::held_out, spread), 0.05 / 0.06,
+              1e-12);
+  const Judged fine = none_tempered(with);
+  EXPECT_FALSE(fine.verdict.miss);
+  EXPECT_EQ(verdict_label({}, fine.verdict), "no effect needed");
+
+  const Judged missed =
+      none_tempered(model_miss("the base model", targets, {0.0, 0.15}, budget, spread, 1.0));
+  expect_unexplained(missed,
+                     "within the budgets; not explained: the base model misses uct-large (held "
+                     "out) by +0.15 in ln (16% above the lab), 2.5 times its noise 0.060 (budget "
+                     "0.000, lab uncertainty 0.020, fit spread 0.057): rms 0.0 noise budgets over "
+                     "the calibration observations, 2.5 over the held-out ones");
 }
 
 }  // namespace

@@ -135,9 +135,19 @@ std::string screen_reason_from_fields(const json& screen) {
                   l["change"].get<double>(), l["noise"].get<double>());
     named += (named.empty() ? "" : ", ") + e["effect"].get<std::string>() + line;
   }
+  std::snprintf(line, sizeof line, "at the base fit (F_r0 %.3g N, F_s0 %.3g N)",
+                screen["point"]["fr0"].get<double>(), screen["point"]["fs0"].get<double>());
+  std::string where = line;
+  if (!screen["balanced_point"].is_null()) {
+    std::snprintf(line, sizeof line, " and at equal strengths (F_r0 %.3g N, F_s0 %.3g N)",
+                  screen["balanced_point"]["fr0"].get<double>(),
+                  screen["balanced_point"]["fs0"].get<double>());
+    where += line;
+  }
   return "invisible to these tests: " + named +
          ": at its strong value (s = 1), with the strengths re-fitted, each moves no observation "
-         "beyond its noise (budget + lab uncertainty), so it was not designed further (" +
+         "beyond its noise (budget + lab uncertainty) " +
+         where + ", so it was not designed further (" +
          std::to_string(screen["skipped_model_points"].get<int>()) +
          " model points of surfaces not run)";
 }
@@ -208,6 +218,45 @@ TEST(Screen, AGapWithEveryEffectInvisibleNamesThem) {
   EXPECT_EQ(r.summary["gap"]["closure_missing"],
             "the screen found every candidate effect invisible to these tests (screen.reason): "
             "the diagnosis only locates the gap");
+}
+
+// Focus: an effect whose mark depends on where the strengths lie. "fading" (synthetic_model.hpp)
+// moves the confined peaks only where F_s0 is not well above F_r0: at the twin's fit (F_s0 = 2
+// F_r0) it leaves 3% of its mark, below the noise; at equal strengths 89%. The screen looks there
+// too, keeps it, says where it saw it, and centres its design on its fit from there.
+TEST(Screen, AnEffectWithoutAMarkAtTheBaseFitButOneAtEqualStrengthsIsKept) {
+  Diagnosed r{twin_campaign("", 0.0), {}, {}, 0};
+  // A box of x8 puts the balanced point (84.9 N) 0.17 of it from the truth's strengths, beyond a
+  // grid step and a half (the default box's x16 leaves 0.125: no second point).
+  r.campaign.fr0_n = {30, 240};
+  r.campaign.fs0_n = {30, 240};
+  std::erase_if(r.campaign.candidates, [](const Candidate& k) { return k.effect != "uniform"; });
+  r.campaign.candidates.push_back({"fading", "s", "", [](double s) { return s; }});
+  SyntheticModel model(r.campaign.targets);
+  r.report = run_diagnosis(r.campaign, model);
+  r.summary = to_json(r.report, r.campaign);
+  const json& screen = r.summary["screen"];
+  ASSERT_FALSE(screen["balanced_point"].is_null()) << screen.dump(2);
+  const double fr0 = screen["point"]["fr0"], fs0 = screen["point"]["fs0"];
+  EXPECT_NEAR(screen["balanced_point"]["fr0"].get<double>(), std::sqrt(fr0 * fs0), 1e-9 * fr0);
+  EXPECT_EQ(screen["balanced_point"]["fr0"], screen["balanced_point"]["fs0"]);
+  const json& uniform = screen["effects"][0];
+  const json& fading = screen["effects"][1];
+  EXPECT_FALSE(uniform["visible"].get<bool>());
+  EXPECT_EQ(uniform["judged_at"], "base fit");
+  EXPECT_TRUE(fading["visible"].get<bool>()) << fading.dump(2);
+  EXPECT_EQ(fading["judged_at"], "equal strengths");
+  EXPECT_EQ(fading["largest"]["id"].get<std::string>().substr(0, 4), "tri-");  // confined
+  EXPECT_GT(fading["largest"]["in_noise"].get<double>(), 1.0);
+  EXPECT_EQ(effects_of(r.summary), (std::vector<std::string>{"fading"}));
+  // Both points' runs: three per effect at each, and the base's at the second.
+  EXPECT_EQ(screen["model_points"], 2 * 3 * 2 + 1);
+  EXPECT_EQ(screen["reason"], screen_reason_from_fields(screen) +
+                                  "; fading: no mark at the base fit but one at equal strengths, "
+                                  "so designed around its fit from there");
+  // Hidden: none. The kept effect is not the verdict.
+  EXPECT_TRUE(r.summary["verdict"]["effect"].is_null());
+  std::printf("%s\n", screen["reason"].get<std::string>().c_str());
 }
 
 }  // namespace

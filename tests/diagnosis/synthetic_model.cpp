@@ -144,6 +144,13 @@ std::vector<double> SyntheticModel::values(const RunRequest& r,
     // On the unconfined strength, like a change of the bond strengths; "uniform" is exactly
     // that, so the strengths absorb it.
     ln += -0.6 * on("size") * size + 0.3 * on("rate") * speed - 0.3 * on("uniform");
+    // "fading": a mark on the confined peaks that shows only where F_s0 is not well above F_r0,
+    // 1 / (1 + (F_s0 / 1.3 F_r0)^8) of it: 3% at the truth's F_s0 = 2 F_r0, 89% at equal
+    // strengths (as the compression coupling, which weighs a bond's compression by 1 / F_r0,
+    // fades where F_r0 is well above F_s0).
+    if (c.confining_pressure_pa > 0) {
+      ln -= 0.3 * on("fading") / (1 + std::pow(p.fs0_n / (1.3 * p.fr0_n), 8));
+    }
     if (c.confining_pressure_pa > 0) {
       // The frictional gain of the confined cylinder: a force scale of its own.
       const double area = M_PI * c.diameter_m * c.diameter_m / 4;

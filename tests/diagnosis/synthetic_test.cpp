@@ -44,9 +44,9 @@ Diagnosed diagnose(const std::string& effect, double s, double noise = 0.01,
 }
 
 // The base model's miss as the verdict must state it, rebuilt from the report's own fields: each
-// observation's charged residual, budget and lab uncertainty (observations[]); those beyond one
-// noise budget sqrt(budget^2 + lab^2) listed (or, with none, the furthest), then the rms of each
-// role in noise budgets.
+// observation's charged residual, budget, lab uncertainty and the fit's spread in the prediction
+// (observations[]); those beyond one noise budget sqrt(budget^2 + lab^2 + fit^2) listed (or, with
+// none, the furthest), then the rms of each role in noise budgets.
 std::string base_miss_from_fields(const json& summary) {
   std::vector<std::string> beyond;
   std::string furthest;
@@ -57,7 +57,8 @@ std::string base_miss_from_fields(const json& summary) {
   for (const json& o : summary["observations"]) {
     const double r = o["base"]["charged"].get<double>();
     const double budget = o["budget"].get<double>(), lab = o["lab_uncertainty"].get<double>();
-    const double noise = std::hypot(budget, lab);
+    const double fit = o["base"]["fit_spread"].get<double>();
+    const double noise = std::sqrt(budget * budget + lab * lab + fit * fit);
     const int role = o["role"] == "held_out";
     sum[role] += (r / noise) * (r / noise);
     ++n[role];
@@ -65,11 +66,13 @@ std::string base_miss_from_fields(const json& summary) {
     char side[64];
     std::snprintf(side, sizeof side, percent >= 9.5 ? "%.0f%% %s" : "%.2g%% %s", percent,
                   r < 0 ? "below the lab" : "above the lab");
+    char fit_text[64] = "";
+    if (fit > 0) std::snprintf(fit_text, sizeof fit_text, ", fit spread %.3f", fit);
     std::snprintf(line, sizeof line,
                   "%s (%s) by %+.2f in ln (%s), %.1f times its noise %.3f (budget %.3f, lab "
-                  "uncertainty %.3f)",
+                  "uncertainty %.3f%s)",
                   o["id"].get<std::string>().c_str(), role ? "held out" : "calibration", r, side,
-                  std::abs(r) / noise, noise, budget, lab);
+                  std::abs(r) / noise, noise, budget, lab, fit_text);
     if (std::abs(r) / noise > 1.0) beyond.push_back(line);
     if (std::abs(r) / noise > furthest_budgets) {
       furthest_budgets = std::abs(r) / noise;

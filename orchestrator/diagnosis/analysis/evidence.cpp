@@ -17,8 +17,8 @@ HeldOutDensity held_out_density(const std::vector<double>& residuals,
     if (targets[i].role != Role::held_out || !std::isfinite(charged[i])) continue;
     const double extra = prediction_variance.empty() ? 0.0 : prediction_variance[i];
     if (!std::isfinite(extra)) continue;
-    const double scale = noise_scale(targets[i], budget[i]);
-    const double v = std::max(scale * scale + extra, kMinNoiseScale * kMinNoiseScale);
+    const double scale = noise_scale(targets[i], budget[i], extra);
+    const double v = std::max(scale * scale, kMinNoiseScale * kMinNoiseScale);
     const double r = charged[i];
     const double lpd = -0.5 * (r * r / v + std::log(2.0 * M_PI * v));
     out.terms.push_back({i, r, v, extra, lpd});

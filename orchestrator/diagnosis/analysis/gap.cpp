@@ -61,8 +61,8 @@ std::optional<double> rms(const std::vector<double>& residuals, const std::vecto
   return std::sqrt(sum / n);
 }
 
-double noise_scale(const Target& t, double budget) {
-  return std::hypot(budget, t.sigma);
+double noise_scale(const Target& t, double budget, double fit_variance) {
+  return std::sqrt(budget * budget + t.sigma * t.sigma + fit_variance);
 }
 
 double combined_budget(const std::vector<Target>& targets, const std::vector<double>& budget,
@@ -80,13 +80,16 @@ double combined_budget(const std::vector<Target>& targets, const std::vector<dou
 
 std::optional<double> rms_in_budgets(const std::vector<double>& residuals,
                                      const std::vector<Target>& targets,
-                                     const std::vector<double>& budget, Role role) {
+                                     const std::vector<double>& budget, Role role,
+                                     const std::vector<double>& fit_variance) {
   const std::vector<double> r = charged_residuals(residuals, targets);
   double sum = 0.0;
   int n = 0;
   for (std::size_t i = 0; i < r.size(); ++i) {
     if (targets[i].role != role || !std::isfinite(r[i])) continue;
-    const double scale = std::max(noise_scale(targets[i], budget[i]), kMinNoiseScale);
+    const double fit =
+        i < fit_variance.size() && std::isfinite(fit_variance[i]) ? fit_variance[i] : 0.0;
+    const double scale = std::max(noise_scale(targets[i], budget[i], fit), kMinNoiseScale);
     sum += (r[i] / scale) * (r[i] / scale);
     ++n;
   }

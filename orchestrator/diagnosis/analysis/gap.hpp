@@ -29,8 +29,10 @@ std::vector<double> charged_residuals(const std::vector<double>& residuals,
 std::optional<double> rms(const std::vector<double>& residuals, const std::vector<Target>& targets,
                           Role role);
 
-// sqrt(budget^2 + sigma^2): the spread a residual of one target has without any physics gap.
-double noise_scale(const Target& target, double budget);
+// sqrt(budget^2 + sigma^2 + fit_variance): the spread a residual of one target has without any
+// physics gap; fit_variance is the spread the calibration leaves in a held-out prediction
+// (fit_spread.hpp), 0 for a calibration observation.
+double noise_scale(const Target& target, double budget, double fit_variance = 0.0);
 // The least noise scale a residual is divided by (0.1%), so that an exact lab value with no
 // budget neither takes all of a calibration's weight nor makes a gap infinite.
 inline constexpr double kMinNoiseScale = 1e-3;
@@ -42,13 +44,15 @@ double combined_budget(const std::vector<Target>& targets, const std::vector<dou
                        Role role);
 
 // sqrt(mean over the role's targets with a finite residual of (charged residual / noise_scale)^2):
-// the residuals each in units of its own observation's noise. The verdict calls a held-out gap only
+// the residuals each in units of its own observation's noise, the fit's spread in it where
+// `fit_variance` gives one (empty: none). The verdict calls a held-out gap only
 // above 1. Budgets differ by x10 between observations (on the 117-particle demo twins the 1.5x
 // UCT's has a median of 0.64 in ln, the 1.5x BTT's 0.21), and a pooled rms against the pooled
 // budget lets the noisy observation hide a gap the precise one shows. nullopt when there are none.
 std::optional<double> rms_in_budgets(const std::vector<double>& residuals,
                                      const std::vector<Target>& targets,
-                                     const std::vector<double>& budget, Role role);
+                                     const std::vector<double>& budget, Role role,
+                                     const std::vector<double>& fit_variance = {});
 
 // G = 1 - rms(held-out, effect) / rms(held-out, base); nullopt when either is missing or the base
 // has no gap at all.

@@ -27,7 +27,7 @@ std::string observation_text(const ObservationMiss& o) {
          printed("%+.2f", o.residual) + " in ln (" + side + "), " +
          printed("%.1f", o.in_budgets()) + " times its noise " + printed("%.3f", o.noise()) +
          " (budget " + printed("%.3f", o.budget) + ", lab uncertainty " + printed("%.3f", o.sigma) +
-         ")";
+         (o.fit > 0 ? ", fit spread " + printed("%.3f", o.fit) : std::string()) + ")";
 }
 
 std::string rms_text(const ModelMiss& m) {
@@ -48,7 +48,7 @@ std::string rms_text(const ModelMiss& m) {
 double ObservationMiss::noise() const {
   Target t;
   t.sigma = sigma;
-  return std::max(noise_scale(t, budget), kMinNoiseScale);
+  return std::max(noise_scale(t, budget, fit * fit), kMinNoiseScale);
 }
 
 double ObservationMiss::in_budgets() const {
@@ -57,16 +57,19 @@ double ObservationMiss::in_budgets() const {
 
 ModelMiss model_miss(std::string model, const std::vector<Target>& targets,
                      const std::vector<double>& residuals, const std::vector<double>& budget,
-                     double beyond) {
+                     const std::vector<double>& fit_variance, double beyond) {
   ModelMiss m;
   m.model = std::move(model);
-  m.calibration = rms_in_budgets(residuals, targets, budget, Role::calibration);
-  m.held_out = rms_in_budgets(residuals, targets, budget, Role::held_out);
+  m.calibration = rms_in_budgets(residuals, targets, budget, Role::calibration, fit_variance);
+  m.held_out = rms_in_budgets(residuals, targets, budget, Role::held_out, fit_variance);
   const std::vector<double> charged = charged_residuals(residuals, targets);
   for (std::size_t i = 0; i < targets.size() && i < charged.size(); ++i) {
     if (!std::isfinite(charged[i])) continue;
-    const ObservationMiss o{targets[i].id, targets[i].role, charged[i], budget[i],
-                            targets[i].sigma};
+    const double fit = i < fit_variance.size() && std::isfinite(fit_variance[i])
+                           ? std::sqrt(std::max(fit_variance[i], 0.0))
+                           : 0.0;
+    const ObservationMiss o{targets[i].id, targets[i].role,  charged[i],
+                            budget[i],     targets[i].sigma, fit};
     if (o.in_budgets() > beyond) m.beyond.push_back(o);
     if (!m.largest || o.in_budgets() > m.largest->in_budgets()) m.largest = o;
   }

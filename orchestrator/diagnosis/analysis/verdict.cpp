@@ -136,6 +136,16 @@ std::vector<double> predictive_variance(const CandidateResult& c,
   return v;
 }
 
+std::vector<double> held_out_fit_variance(const CandidateResult& c,
+                                          const std::vector<Target>& targets,
+                                          const std::vector<double>& budget) {
+  std::vector<double> v = fit_spread(c.surfaces, c.calibration.z, targets, budget);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (targets[i].role != Role::held_out) v[i] = 0.0;
+  }
+  return v;
+}
+
 void mark_evidence(std::vector<CandidateResult>& candidates, const std::vector<Target>& targets,
                    const std::vector<double>& lab, const std::vector<double>& budget) {
   for (CandidateResult& c : candidates) {

@@ -103,6 +103,13 @@ std::vector<double> predictive_variance(const CandidateResult& c,
                                         const std::vector<Target>& targets,
                                         const std::vector<double>& budget);
 
+// The fit's spread in each held-out prediction of a candidate's real runs (fit_spread.hpp), 0 on
+// the calibration observations (the fit's own residuals there are no wider than their noise): what
+// the gap test and the stated miss (model_miss) add to each observation's noise.
+std::vector<double> held_out_fit_variance(const CandidateResult& c,
+                                          const std::vector<Target>& targets,
+                                          const std::vector<double>& budget);
+
 // Ranks the effects (candidates[1..]) and sets their `rank` (1 = best): confirmed identifiable
 // ones that fit the calibration by their evidence (real runs), then the other identifiable ones
 // that fit by their evidence on the surfaces, then identifiable ones that do not fit the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "orchestrator/diagnosis/analysis/bootstrap.hpp"
@@ -253,43 +254,109 @@ Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
   return numerical_budget(std::move(variants), references, changed, &response);
 }
 
-// The budget at the base model's first fit z, and in the same batch every effect at s = 1 there
-// (screen.hpp) when the campaign screens: judged against that budget, compared with the base's
-// nominal run at z (the budget's first reference).
-Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base,
-                         const std::vector<double>& z, Evaluator& evaluator, ScreenResult& screen) {
-  screen.enabled = c.screen && !c.candidates.empty();
-  if (!screen.enabled) return measure_budget(c, base, z, evaluator);
-  const Numerics nominal{c.sample_seed, 1.0, 1.0};
-  screen.point = model_point(c, base.candidate, z);
-  screen.z = z;
-  // The steps of the effect's own sensitivity: the local design's arms (so an effect designed
-  // where it was screened re-uses these runs), inward at the box's upper face.
+// The screen's second point: equal strengths F_r0 = F_s0 at the base fit's geometric mean, on the
+// study's lattice; none when that lies within a grid step of z on both axes. The base fit's ratio
+// F_s0 / F_r0 sets which bond failure rules the peaks, and an effect that acts through one of
+// them is invisible where the other rules; a hidden effect can put the base fit in the wrong
+// regime (the compression-coupling twin at D/R 20: base fit (256, 27.9) N, the truth's (68.4,
+// 87.5) N, the coupling, which weighs a bond's compression by 1 / F_r0, without a mark at the
+// first), so the screen also looks where neither rules alone.
+std::optional<std::vector<double>> balanced_point(const DiagnosisCampaign& c,
+                                                  const std::vector<double>& z) {
+  const ModelPoint at = model_point(c, Candidate{}, z);
+  const double mean = 0.5 * (std::log(at.fr0_n) + std::log(at.fs0_n));
+  auto unit = [&](const calibration::Range& r) {
+    return std::clamp((mean - std::log(r.lo)) / (std::log(r.hi) - std::log(r.lo)), 0.0, 1.0);
+  };
+  const std::vector<double> b = study_point(c, {unit(c.fr0_n), unit(c.fs0_n)});
+  const double near = 1.5 * c.grid.step;
+  if (std::abs(b[0] - z[0]) < near && std::abs(b[1] - z[1]) < near) return std::nullopt;
+  return b;
+}
+
+// The steps of an effect's own sensitivity at a screen point: the local design's arms (so an
+// effect designed where it was screened re-uses these runs), inward at the box's upper face.
+std::array<double, 2> screen_steps(const DiagnosisCampaign& c, const std::vector<double>& z) {
   std::array<double, 2> step{};
   for (std::size_t d = 0; d < 2; ++d)
     step[d] = z[d] + c.grid.step <= 1.0 ? c.grid.step : -c.grid.step;
-  std::vector<RunRequest> requests;
+  return step;
+}
+
+// Each effect's runs at s = 1 at a screen point z (kScreenRunsPerEffect: at z and a step along
+// each strength).
+void add_screen_runs(const DiagnosisCampaign& c, const std::vector<double>& z,
+                     std::vector<RunRequest>& requests) {
+  const Numerics nominal{c.sample_seed, 1.0, 1.0};
+  const std::array<double, 2> step = screen_steps(c, z);
   for (const Candidate& k : c.candidates) {
     for (const std::vector<double>& at :
          {std::vector<double>{z[0], z[1], 1.0}, std::vector<double>{z[0] + step[0], z[1], 1.0},
           std::vector<double>{z[0], z[1] + step[1], 1.0}})
       requests.push_back({model_point(c, k, at), nominal});
   }
+}
+
+// Every effect judged at screen point z from its runs there (`runs`, add_screen_runs' order) and
+// the base model's nominal run at z; fit_shift from z.
+std::vector<ScreenedEffect> screen_at(const DiagnosisCampaign& c, const CandidateResult& base,
+                                      const std::vector<double>& z, const RunOutcome& base_run,
+                                      const RunOutcome* runs, const std::vector<double>& budget) {
+  const StrengthResponse response = strength_response(base.surfaces, c.targets, {z});
+  const std::array<double, 2> step = screen_steps(c, z);
+  std::vector<ScreenedEffect> out;
+  for (std::size_t k = 0; k < c.candidates.size(); ++k) {
+    const RunOutcome* own = runs + kScreenRunsPerEffect * k;
+    out.push_back(screen_effect(c.candidates[k].effect, base_run, own[0], response.jacobian[0],
+                                response.weight, c.targets, budget));
+    out.back().fit_shift = fit_shift(
+        own[0], c.targets, secant_jacobian(own[0], {own[1], own[2]}, step), response.weight);
+  }
+  return out;
+}
+
+// The budget at the base model's first fit z, and in the same batch every effect at s = 1 there
+// (screen.hpp) when the campaign screens: judged against that budget, compared with the base's
+// nominal run at z (the budget's first reference); and at the balanced point (balanced_point), an
+// effect with no mark at z kept when it shows one there, its design centred on its fit from there.
+Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base,
+                         const std::vector<double>& z, Evaluator& evaluator, ScreenResult& screen) {
+  screen.enabled = c.screen && !c.candidates.empty();
+  if (!screen.enabled) return measure_budget(c, base, z, evaluator);
+  screen.point = model_point(c, base.candidate, z);
+  screen.z = z;
+  const auto balanced = balanced_point(c, z);
+  std::vector<RunRequest> requests;
+  add_screen_runs(c, z, requests);
+  if (balanced) {
+    screen.balanced_z = *balanced;
+    screen.balanced_point = model_point(c, base.candidate, *balanced);
+    requests.push_back({screen.balanced_point, {c.sample_seed, 1.0, 1.0}});
+    add_screen_runs(c, *balanced, requests);
+  }
   std::vector<RunOutcome> outcomes;
   Budget budget = measure_budget(c, base, z, evaluator, requests, &outcomes);
-  const StrengthResponse response = strength_response(base.surfaces, c.targets, {z});
+  screen.effects = screen_at(c, base, z, outcomes[0], &outcomes[1], budget.per_target);
+  screen.model_points = kScreenRunsPerEffect * int(c.candidates.size());
+  if (balanced) {
+    const std::size_t at = 1 + kScreenRunsPerEffect * c.candidates.size();
+    const std::vector<ScreenedEffect> there =
+        screen_at(c, base, *balanced, outcomes[at], &outcomes[at + 1], budget.per_target);
+    screen.model_points += 1 + kScreenRunsPerEffect * int(c.candidates.size());
+    for (std::size_t k = 0; k < there.size(); ++k) {
+      ScreenedEffect& e = screen.effects[k];
+      if (e.visible || !there[k].visible) continue;
+      e = there[k];
+      e.at_balanced = true;
+      // Its fit from the balanced point, as a shift from the base fit's.
+      for (std::size_t d = 0; d < 2; ++d) e.fit_shift[d] += (*balanced)[d] - z[d];
+    }
+  }
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
-    const RunOutcome* runs = &outcomes[1 + kScreenRunsPerEffect * k];
-    screen.effects.push_back(screen_effect(c.candidates[k].effect, outcomes[0], runs[0],
-                                           response.jacobian[0], response.weight, c.targets,
-                                           budget.per_target));
-    screen.effects.back().fit_shift = fit_shift(
-        runs[0], c.targets, secant_jacobian(runs[0], {runs[1], runs[2]}, step), response.weight);
-    if (!screen.effects.back().visible && judges_effects(c)) {
+    if (!screen.effects[k].visible && judges_effects(c)) {
       screen.skipped_model_points += effect_grid_points(c, c.candidates[k]);
     }
   }
-  screen.model_points = screen_model_points(c);
   return budget;
 }
 
@@ -459,8 +526,12 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   mark_calibration_fits(report.candidates, report.combined_calibration);
   mark_evidence(report.candidates, c.targets, lab, judged);
   const std::vector<int> order = rank_effects(report.candidates);
+  // The gap counts the spread the calibration leaves in each held-out prediction, so a held-out
+  // observation the calibration leaves loose is no gap by that looseness alone.
+  const std::vector<double> base_spread =
+      held_out_fit_variance(report.candidates[0], c.targets, judged);
   report.held_out_budgets = rms_in_budgets(residuals(report.candidates[0].confirmed_ln, lab),
-                                           c.targets, judged, Role::held_out);
+                                           c.targets, judged, Role::held_out, base_spread);
   report.verdict = decide(c.decision, report.candidates, order, report.held_out_budgets,
                           report.combined_held_out);
   Confidence& conf = report.confidence;
@@ -496,13 +567,15 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   }
   evidence.base =
       model_miss("the base model", c.targets, residuals(report.candidates[0].confirmed_ln, lab),
-                 judged, c.decision.gap_budgets);
+                 judged, base_spread, c.decision.gap_budgets);
   evidence.verdict =
       chosen_effect < 0
           ? evidence.base
           : model_miss("the model with " + report.candidates[chosen_effect].candidate.effect,
                        c.targets, residuals(report.candidates[chosen_effect].confirmed_ln, lab),
-                       judged, c.decision.gap_budgets);
+                       judged,
+                       held_out_fit_variance(report.candidates[chosen_effect], c.targets, judged),
+                       c.decision.gap_budgets);
   temper_verdict(c.decision, evidence, report.verdict, conf);
   // Without held-out residuals there is nothing to judge; say what stopped the runs.
   if (evidence.held_out_observations > 0 && !evidence.base_has_held_out &&

@@ -52,7 +52,9 @@ int grid_points(const DiagnosisCampaign& c) {
 }
 
 int screen_model_points(const DiagnosisCampaign& c) {
-  return c.screen ? kScreenRunsPerEffect * int(c.candidates.size()) : 0;
+  // At the first point, and at most as many again and the base's run at the second.
+  return c.screen && !c.candidates.empty() ? 1 + 2 * kScreenRunsPerEffect * int(c.candidates.size())
+                                           : 0;
 }
 
 Samples run_base_grid(const DiagnosisCampaign& c, Evaluator& evaluator) {

@@ -32,7 +32,8 @@ inline constexpr int kEffectMoves = 2;
 int base_grid_points(const DiagnosisCampaign& c);
 int effect_grid_points(const DiagnosisCampaign& c, const Candidate& effect);
 int grid_points(const DiagnosisCampaign& c);
-// Model points of the screen (screen.hpp): kScreenRunsPerEffect per candidate when it screens.
+// Model points of the screen (screen.hpp) when it screens, at most: kScreenRunsPerEffect per
+// candidate at each of its two points and the base model's run at the second.
 int screen_model_points(const DiagnosisCampaign& c);
 
 // The runs behind one candidate's surfaces.

@@ -21,8 +21,12 @@ namespace rockcal::diagnosis {
 // batch there; effects that are not `visible` get no surfaces and are not candidates.
 struct ScreenResult {
   bool enabled = false;
-  ModelPoint point;                     // the base model's first fit
-  std::vector<double> z;                // the same in the unit square (ln F_r0, ln F_s0)
+  ModelPoint point;       // the base model's first fit
+  std::vector<double> z;  // the same in the unit square (ln F_r0, ln F_s0)
+  // The second point (balanced_point, driver.cpp): equal strengths at the first's geometric mean;
+  // empty z when it lies within a grid step of the first.
+  ModelPoint balanced_point;
+  std::vector<double> balanced_z;
   std::vector<ScreenedEffect> effects;  // request order
   int model_points = 0;                 // the effects' runs (the base's are the budget's)
   int skipped_model_points = 0;         // the surfaces' model points of the effects left out

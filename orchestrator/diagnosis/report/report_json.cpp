@@ -127,8 +127,17 @@ json candidate_json(const CandidateResult& c, const std::vector<Target>& targets
   return j;
 }
 
+// A charged residual beyond budget + lab uncertainty + the fit's spread (sd) is a gap, not noise.
+bool significant(double charged, const Target& t, double budget, double fit_variance) {
+  return std::isfinite(charged) &&
+         std::abs(charged) > budget + t.sigma + std::sqrt(std::max(fit_variance, 0.0));
+}
+
+// `spread[k]`: the fit's spread in each prediction of candidate k's runs (held_out_fit_variance),
+// for the base and the verdict's model.
 json observation_json(std::size_t i, const DiagnosisResult& r, const std::vector<Target>& targets,
-                      const std::vector<double>& lab) {
+                      const std::vector<double>& lab,
+                      const std::vector<std::vector<double>>& spread) {
   const Target& t = targets[i];
   const double budget = r.budget.per_target[i];
   json j = {{"id", t.id},
@@ -141,7 +150,8 @@ json observation_json(std::size_t i, const DiagnosisResult& r, const std::vector
             {"budget", budget},
             {"budget_measured", bool(r.budget.measured[i])},
             {"base_grid_failures", i < r.base_grid_failures.size() ? r.base_grid_failures[i] : 0}};
-  auto sim = [&](const CandidateResult& c) {
+  auto sim = [&](int k) {
+    const CandidateResult& c = r.candidates[k];
     const double res = c.ln_sim()[i] - lab[i];
     // The part the model is charged with: the residual less the span of values the data
     // themselves give under the same conditions (consistency.hpp); the residual elsewhere.
@@ -149,11 +159,12 @@ json observation_json(std::size_t i, const DiagnosisResult& r, const std::vector
     return json{{"sim", num(std::exp(c.ln_sim()[i]))},
                 {"residual", num(res)},
                 {"charged", num(charged)},
-                // A charged residual beyond budget + lab uncertainty is a gap, not noise.
-                {"significant", std::isfinite(charged) && std::abs(charged) > budget + t.sigma}};
+                // The sd the calibration leaves in this prediction (0 on a calibration one).
+                {"fit_spread", std::sqrt(std::max(spread[k][i], 0.0))},
+                {"significant", significant(charged, t, budget, spread[k][i])}};
   };
-  j["base"] = sim(r.candidates[0]);
-  j["verdict"] = r.verdict.candidate >= 0 ? sim(r.candidates[r.verdict.candidate]) : json(nullptr);
+  j["base"] = sim(0);
+  j["verdict"] = r.verdict.candidate >= 0 ? sim(r.verdict.candidate) : json(nullptr);
   return j;
 }
 
@@ -195,6 +206,7 @@ json miss_json(const std::optional<ModelMiss>& m) {
     beyond.push_back({{"id", o.id},
                       {"role", to_string(o.role)},
                       {"charged", o.residual},
+                      {"fit_spread", o.fit},
                       {"noise", o.noise()},
                       {"budgets", o.in_budgets()}});
   }
@@ -318,10 +330,11 @@ json gap_json(const DiagnosisResult& r, const DiagnosisCampaign& c,
   const DecisionRule& rule = c.decision;
   const CandidateResult& base = r.candidates[0];
   const std::vector<double> res = charged_residuals(residuals(base.confirmed_ln, lab), targets);
-  json significant = json::array();
+  const std::vector<double> spread = held_out_fit_variance(base, targets, r.budget.per_target);
+  json beyond_noise = json::array();
   for (std::size_t i = 0; i < targets.size(); ++i) {
-    if (std::isfinite(res[i]) && std::abs(res[i]) > r.budget.per_target[i] + targets[i].sigma) {
-      significant.push_back(targets[i].id);
+    if (significant(res[i], targets[i], r.budget.per_target[i], spread[i])) {
+      beyond_noise.push_back(targets[i].id);
     }
   }
   return {{"rms", rms_json(base.confirmed_rms)},
@@ -330,7 +343,7 @@ json gap_json(const DiagnosisResult& r, const DiagnosisCampaign& c,
           {"held_out_budgets", num(r.held_out_budgets)},
           {"threshold_budgets", rule.gap_budgets},
           {"exceeds_budget", r.held_out_budgets.value_or(0) > rule.gap_budgets},
-          {"significant", significant},
+          {"significant", beyond_noise},
           {"closure_missing", closure_missing(r, c)}};
 }
 
@@ -361,7 +374,7 @@ json inconsistencies_json(const std::vector<Inconsistency>& pairs,
 // The screen's effects and the sentence the report prints, from these fields.
 json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
   json effects = json::array(), invisible = json::array();
-  std::string named;
+  std::string named, second;
   char line[256];
   for (const ScreenedEffect& e : screen.effects) {
     json largest = nullptr;
@@ -382,7 +395,9 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
          {"visible", e.visible},
          {"largest", largest},
          {"change", by_target(c.targets, e.change)},
+         {"judged_at", e.at_balanced ? "equal strengths" : "base fit"},
          {"refitted_strengths", {{"fr0_n", refitted.fr0_n}, {"fs0_n", refitted.fs0_n}}}});
+    if (e.at_balanced) second += (second.empty() ? "" : ", ") + e.effect;
     if (e.visible) continue;
     invisible.push_back(e.effect);
     std::snprintf(line, sizeof line,
@@ -391,21 +406,38 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
                   e.noise[*e.largest]);
     named += (named.empty() ? "" : ", ") + e.effect + line;
   }
+  // Where the screen looked: "at the base fit (F_r0 256 N, F_s0 27.9 N) and at equal strengths
+  // (84.5 N)".
+  std::snprintf(line, sizeof line, "at the base fit (F_r0 %.3g N, F_s0 %.3g N)", screen.point.fr0_n,
+                screen.point.fs0_n);
+  std::string where = line;
+  if (!screen.balanced_z.empty()) {
+    std::snprintf(line, sizeof line, " and at equal strengths (F_r0 %.3g N, F_s0 %.3g N)",
+                  screen.balanced_point.fr0_n, screen.balanced_point.fs0_n);
+    where += line;
+  }
   std::string reason;
   if (!screen.enabled) {
     reason = c.screen ? "no candidate effect to screen" : "not screened (\"screen\": false)";
   } else if (named.empty()) {
     reason =
         "every effect moves some observation beyond its noise (budget + lab uncertainty) at "
-        "its strong value (s = 1) with the strengths re-fitted: none screened out";
+        "its strong value (s = 1) with the strengths re-fitted, " +
+        where + ": none screened out";
   } else {
     reason = "invisible to these tests: " + named +
              ": at its strong value (s = 1), with the strengths re-fitted, each moves no "
-             "observation beyond its noise (budget + lab uncertainty)";
+             "observation beyond its noise (budget + lab uncertainty) " +
+             where;
     if (judges_effects(c)) {
       reason += ", so it was not designed further (" + std::to_string(screen.skipped_model_points) +
                 " model points of surfaces not run)";
     }
+  }
+  if (!second.empty()) {
+    reason += "; " + second +
+              ": no mark at the base fit but one at equal strengths, so designed around its fit "
+              "from there";
   }
   if (screen.enabled && !judges_effects(c)) {
     reason +=
@@ -415,6 +447,10 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
   return {{"enabled", screen.enabled},
           {"point", screen.enabled ? json{{"fr0", screen.point.fr0_n}, {"fs0", screen.point.fs0_n}}
                                    : json(nullptr)},
+          {"balanced_point",
+           screen.balanced_z.empty()
+               ? json(nullptr)
+               : json{{"fr0", screen.balanced_point.fr0_n}, {"fs0", screen.balanced_point.fs0_n}}},
           {"model_points", screen.model_points},
           {"skipped_model_points", screen.skipped_model_points},
           {"invisible", invisible},
@@ -426,9 +462,13 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
 
 json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
   const std::vector<double> lab = ln_lab(c.targets);
+  std::vector<std::vector<double>> spread(r.candidates.size());
+  for (int k : {0, r.verdict.candidate}) {
+    if (k >= 0) spread[k] = held_out_fit_variance(r.candidates[k], c.targets, r.budget.per_target);
+  }
   json observations = json::array();
   for (std::size_t i = 0; i < c.targets.size(); ++i) {
-    observations.push_back(observation_json(i, r, c.targets, lab));
+    observations.push_back(observation_json(i, r, c.targets, lab, spread));
   }
   json candidates = json::array();
   for (const CandidateResult& k : r.candidates)

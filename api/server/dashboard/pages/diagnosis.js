@@ -79,13 +79,13 @@ function afterModel(s, obs) {
 function residualSection(s, width) {
   const obs = s.observations || [];
   const categories = obs.map((o) => `${o.id}${o.role === 'held_out' ? ' (held out)' : ''}`);
-  const band = obs.map((o) => o.budget + o.lab_uncertainty);
+  const band = obs.map((o) => o.budget + o.lab_uncertainty + ((o.base && o.base.fit_spread) || 0));
   const later = afterModel(s, obs);
   const after = later ? later.name : '';
   const series = [{name: 'base model (before)', values: obs.map((o) => o.base && o.base.residual), colourIndex: 0}];
   if (later) series.push({name: later.name, values: later.values, colourIndex: 1, hatched: true});
   const chart = groupedBars({title: 'Residuals by observation', width, height: 340, categories, series, band,
-    yLabel: 'ln(sim / lab) (–)', bandLabel: '± (numerical budget + lab uncertainty)',
+    yLabel: 'ln(sim / lab) (–)', bandLabel: '± (numerical budget + lab uncertainty + the fit\'s spread)',
     caption: 'a bar beyond its band is a gap, not noise',
     describe: (k) => {
       const o = obs[k];
@@ -103,6 +103,7 @@ function residualSection(s, width) {
     {label: `after (${later ? later.short : 'no effect'})`, num: true, value: (o) => (later ? signed(later.values[obs.indexOf(o)], 3) : '–')},
     {label: 'budget', num: true, value: (o) => num(o.budget, 3)},
     {label: 'lab unc.', num: true, value: (o) => num(o.lab_uncertainty, 3)},
+    {label: 'fit spread', num: true, value: (o) => num(o.base && o.base.fit_spread, 3)},
   ], obs, {rowAttrs: (o) => ({class: o.base && o.base.significant ? 'gap-row' : null})});
   const g = s.gap || {};
   return section('Where the gap lies',
