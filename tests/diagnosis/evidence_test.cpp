@@ -246,6 +246,17 @@ TEST(Evidence, AnEffectNoCloserToTheHeldOutDataThanTheBaseIsNeverTheVerdict) {
                           "one"),
             std::string::npos)
       << v.reason;
+  // Inert at its fit too (the Zigong sandstone's coupling, G -0.06): given that one reason, once.
+  c[1].mark_at_fit = 0.2;
+  v = decide(rule, c, {1}, 2.8, 0.061);
+  EXPECT_EQ(v.candidate, -1);
+  const std::string once =
+      "compression_coupling (evidence 10.66 nats) is not the explanation: at "
+      "its fitted value it changes no observation";
+  const std::size_t at = v.reason.find(once);
+  EXPECT_NE(at, std::string::npos) << v.reason;
+  EXPECT_EQ(v.reason.find("compression_coupling (evidence", at + 1), std::string::npos) << v.reason;
+  c[1].mark_at_fit.reset();
   c[1].g_confirmed = 0.0;  // no closer is not closer
   EXPECT_EQ(decide(rule, c, {1}, 2.8, 0.061).candidate, -1);
   c[1].g_confirmed = 0.1;

@@ -139,7 +139,9 @@ std::string screen_reason_from_fields(const json& screen) {
                 screen["point"]["fr0"].get<double>(), screen["point"]["fs0"].get<double>());
   std::string where = line;
   if (!screen["balanced_point"].is_null()) {
-    std::snprintf(line, sizeof line, " and at equal strengths (F_r0 %.3g N, F_s0 %.3g N)",
+    std::snprintf(line, sizeof line,
+                  " and at the balanced point (F_r0 %.3g N, F_s0 %.3g N: equal strengths at their "
+                  "geometric mean, within the box)",
                   screen["balanced_point"]["fr0"].get<double>(),
                   screen["balanced_point"]["fs0"].get<double>());
     where += line;
@@ -245,15 +247,16 @@ TEST(Screen, AnEffectWithoutAMarkAtTheBaseFitButOneAtEqualStrengthsIsKept) {
   EXPECT_FALSE(uniform["visible"].get<bool>());
   EXPECT_EQ(uniform["judged_at"], "base fit");
   EXPECT_TRUE(fading["visible"].get<bool>()) << fading.dump(2);
-  EXPECT_EQ(fading["judged_at"], "equal strengths");
+  EXPECT_EQ(fading["judged_at"], "balanced point");
   EXPECT_EQ(fading["largest"]["id"].get<std::string>().substr(0, 4), "tri-");  // confined
   EXPECT_GT(fading["largest"]["in_noise"].get<double>(), 1.0);
   EXPECT_EQ(effects_of(r.summary), (std::vector<std::string>{"fading"}));
   // Both points' runs: three per effect at each, and the base's at the second.
   EXPECT_EQ(screen["model_points"], 2 * 3 * 2 + 1);
-  EXPECT_EQ(screen["reason"], screen_reason_from_fields(screen) +
-                                  "; fading: no mark at the base fit but one at equal strengths, "
-                                  "so designed around its fit from there");
+  EXPECT_EQ(screen["reason"],
+            screen_reason_from_fields(screen) +
+                "; fading: no mark at the base fit but one at the balanced point, "
+                "so designed around its fit from there");
   // Hidden: none. The kept effect is not the verdict.
   EXPECT_TRUE(r.summary["verdict"]["effect"].is_null());
   std::printf("%s\n", screen["reason"].get<std::string>().c_str());

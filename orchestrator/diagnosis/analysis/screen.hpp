@@ -1,8 +1,8 @@
 // Screening: before any effect's surfaces are run, each candidate is run at its strong value
 // (s = 1) at the base model's first fit, on every condition of the dataset, and compared with the
-// base model's run there (and again at equal strengths, where an effect that acts through one
-// bond failure mode shows when the first fit lies where the other rules: the driver's
-// balanced_point). The strengths' re-fit is removed linearly with the base model's local
+// base model's run there (and again at the balanced point, equal strengths, where an effect that
+// acts through one bond failure mode shows when the first fit lies where the other rules: the
+// driver's balanced_point). The strengths' re-fit is removed linearly with the base model's local
 // sensitivity (change_after_refit, as the budget's resolution term), and what is left is judged as
 // identifiability judges a change: against the observation's budget + lab uncertainty. An effect
 // that moves no observation beyond that, at its strongest, is invisible to these tests: whatever
@@ -38,7 +38,7 @@ struct ScreenedEffect {
   // the effect's runs on it, so an effect that changes what the strengths must be is fitted where
   // its runs are, not extrapolated from the base fit's. Zero when nothing was measured.
   std::array<double, 2> fit_shift{0.0, 0.0};
-  // Judged at the screen's second point (equal strengths), having no mark at the first: change,
+  // Judged at the screen's second point (the balanced one), having no mark at the first: change,
   // largest and fit_shift are from there (fit_shift still as a shift from the first point).
   bool at_balanced = false;
 };

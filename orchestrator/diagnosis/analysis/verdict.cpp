@@ -40,17 +40,20 @@ std::string not_the_explanation(const std::vector<CandidateResult>& candidates,
   return out;
 }
 
-// The confirmed effects left out by wider_not_closer whose evidence would have named them.
+// The confirmed effects left out by wider_not_closer whose evidence would have named them; one
+// inert at its fit is inert_note's (one reason an effect, the more basic one).
 std::string wider_note(const std::vector<CandidateResult>& candidates,
                        const std::vector<int>& order, double min_evidence) {
-  return not_the_explanation(candidates, order, min_evidence, wider_not_closer,
-                             [](const CandidateResult& c) {
-                               return "its runs miss the held-out observations by more than the "
-                                      "base model's (G = " +
-                                      fixed(*c.g_confirmed, 2) +
-                                      "), so what it gained is the width of its prediction, not a "
-                                      "closer one";
-                             });
+  return not_the_explanation(
+      candidates, order, min_evidence,
+      [](const CandidateResult& c) { return wider_not_closer(c) && !c.inert_at_fit(); },
+      [](const CandidateResult& c) {
+        return "its runs miss the held-out observations by more than the "
+               "base model's (G = " +
+               fixed(*c.g_confirmed, 2) +
+               "), so what it gained is the width of its prediction, not a "
+               "closer one";
+      });
 }
 
 // The confirmed effects whose evidence came from the strengths' re-fit alone: at their fitted

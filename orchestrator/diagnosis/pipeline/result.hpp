@@ -23,7 +23,8 @@ struct ScreenResult {
   bool enabled = false;
   ModelPoint point;       // the base model's first fit
   std::vector<double> z;  // the same in the unit square (ln F_r0, ln F_s0)
-  // The second point (balanced_point, driver.cpp): equal strengths at the first's geometric mean;
+  // The second point (balanced_point, driver.cpp): equal strengths at the first's geometric mean,
+  // each within its bounds;
   // empty z when it lies within a grid step of the first.
   ModelPoint balanced_point;
   std::vector<double> balanced_z;

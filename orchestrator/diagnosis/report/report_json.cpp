@@ -395,7 +395,7 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
          {"visible", e.visible},
          {"largest", largest},
          {"change", by_target(c.targets, e.change)},
-         {"judged_at", e.at_balanced ? "equal strengths" : "base fit"},
+         {"judged_at", e.at_balanced ? "balanced point" : "base fit"},
          {"refitted_strengths", {{"fr0_n", refitted.fr0_n}, {"fs0_n", refitted.fs0_n}}}});
     if (e.at_balanced) second += (second.empty() ? "" : ", ") + e.effect;
     if (e.visible) continue;
@@ -406,13 +406,15 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
                   e.noise[*e.largest]);
     named += (named.empty() ? "" : ", ") + e.effect + line;
   }
-  // Where the screen looked: "at the base fit (F_r0 256 N, F_s0 27.9 N) and at equal strengths
-  // (84.5 N)".
+  // Where the screen looked: "at the base fit (F_r0 256 N, F_s0 27.9 N) and at the balanced point
+  // (F_r0 84.4 N, F_s0 84.4 N: equal strengths at their geometric mean, within the box)".
   std::snprintf(line, sizeof line, "at the base fit (F_r0 %.3g N, F_s0 %.3g N)", screen.point.fr0_n,
                 screen.point.fs0_n);
   std::string where = line;
   if (!screen.balanced_z.empty()) {
-    std::snprintf(line, sizeof line, " and at equal strengths (F_r0 %.3g N, F_s0 %.3g N)",
+    std::snprintf(line, sizeof line,
+                  " and at the balanced point (F_r0 %.3g N, F_s0 %.3g N: equal strengths at their "
+                  "geometric mean, within the box)",
                   screen.balanced_point.fr0_n, screen.balanced_point.fs0_n);
     where += line;
   }
@@ -436,7 +438,7 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
   }
   if (!second.empty()) {
     reason += "; " + second +
-              ": no mark at the base fit but one at equal strengths, so designed around its fit "
+              ": no mark at the base fit but one at the balanced point, so designed around its fit "
               "from there";
   }
   if (screen.enabled && !judges_effects(c)) {
