@@ -72,11 +72,11 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points at most twice (the first and
   // the confirmed fit) and the screen's 3 points per effect at each of its two points and the
   // base's at the second, 3 confirmed candidates x (3 refinement runs + 2 seeds) and the base
-  // model at each confirmed effect's strengths; and the next test's
-  // base at its fit and two steps and both effects on the dataset's 4 runs and the menu's 7 more
-  // (squat and slender UCT, two discs, three triaxials; the UCT's modulus and peak strain are read
-  // off the dataset's UCT run).
-  constexpr int kNextTest = (3 + 2) * (4 + 7);
+  // model at each confirmed effect's strengths; and the next test's base at its fit and two steps
+  // (and at the screen's balanced point) and both effects on the dataset's 4 runs and the menu's 7
+  // more (squat and slender UCT, two discs, three triaxials; the UCT's modulus and peak strain are
+  // read off the dataset's UCT run).
+  constexpr int kNextTest = (2 * 3 + 2) * (4 + 7);
   constexpr int kScreen = 1 + 2 * 3 * 2;
   EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + kScreen + 3 * 5 + 2) * 4u + kNextTest);
   // The progress model's budget names them by phase.
@@ -419,14 +419,14 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   // own 25 x 5), twice 5 points x 8 budget runs (reference, 2 seeds, half speed, 4 resolutions),
   // the screen's 3 points for each of 10 effects at two points and the base's at the second,
   // every confirmed: 8 x (3 + 2) and the base model at each of the 7 confirmed effects'
-  // strengths; the next test's base at its fit and two steps
-  // and the 10 effects on the 7 runs and the menu's 7 more.
+  // strengths; the next test's base at its fit and two steps (and at the balanced point) and the
+  // 10 effects on the 7 runs and the menu's 7 more.
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
-  EXPECT_EQ(
-      planned_jobs(c),
-      (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 1 + 2 * 3 * 10 + 8 * 5 + 7) * 7u + (3 + 10) * (7 + 7));
+  EXPECT_EQ(planned_jobs(c),
+            (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 1 + 2 * 3 * 10 + 8 * 5 + 7) * 7u +
+                (2 * 3 + 10) * (7 + 7));
 }
 
 TEST(DiagnosisRuns, ARunWithoutAPeakHasNoValueAtAll) {

@@ -259,6 +259,17 @@ TEST(Screen, AnEffectWithoutAMarkAtTheBaseFitButOneAtEqualStrengthsIsKept) {
                 "so designed around its fit from there");
   // Hidden: none. The kept effect is not the verdict.
   EXPECT_TRUE(r.summary["verdict"]["effect"].is_null());
+  // The next test marks it where the screen saw it: its run and the base's three at the balanced
+  // point.
+  const json& balanced = screen["balanced_point"];
+  int fading_runs = 0, base_runs = 0;
+  for (const json& run : r.summary["next_test"]["runs"]) {
+    if (run["fr0"] != balanced["fr0"] || run["fs0"] != balanced["fs0"]) continue;
+    (run["effect"] == "fading" ? fading_runs : base_runs) += 1;
+  }
+  EXPECT_EQ(fading_runs, 1) << r.summary["next_test"].dump(2);
+  EXPECT_EQ(base_runs, 1);  // and two a step away
+  EXPECT_EQ(r.summary["next_test"]["runs"].size(), 3u + 2u + 3u);
   std::printf("%s\n", screen["reason"].get<std::string>().c_str());
 }
 

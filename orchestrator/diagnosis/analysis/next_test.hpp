@@ -50,11 +50,12 @@ inline constexpr std::size_t kNextTestBaseRuns = 3;
 struct NextTest {
   bool enabled = false;
   std::string reason;  // why there is no next test, when there is none
-  ModelPoint point;    // the base model's fit, where every run is
+  ModelPoint point;    // the base model's fit, where every run is but those below
   std::vector<MenuTest> menu;
   std::vector<TestNoise> noise;  // per menu test
   // The runs behind it: the base model at the fit and at a step along each strength (the menu
-  // tests' strength response), then each effect at s = 1; ln[run][menu test].
+  // tests' strength response), then each effect at s = 1 (at the screen's balanced point for one
+  // seen only there, then the base's three runs there); ln[run][menu test].
   std::vector<RunRequest> runs;
   std::vector<std::vector<double>> ln;
   std::vector<std::string> effects;       // the effects with a mark

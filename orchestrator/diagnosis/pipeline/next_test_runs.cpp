@@ -1,6 +1,7 @@
 #include "orchestrator/diagnosis/pipeline/next_test_runs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -43,11 +44,35 @@ std::string unidentified(const std::string& effect, const DiagnosisResult& r,
   return "";
 }
 
+// The base model at `z` and one step along each strength (backwards at the box's upper face),
+// appended to `runs`; the steps.
+std::array<double, 2> add_base_runs(const DiagnosisCampaign& c, const std::vector<double>& z,
+                                    const Numerics& numerics, std::vector<RunRequest>& runs) {
+  std::array<double, 2> step{};
+  runs.push_back({model_point(c, Candidate{}, z), numerics});
+  for (std::size_t d = 0; d < 2; ++d) {
+    std::vector<double> at = z;
+    step[d] = at[d] + kBudgetStep <= 1.0 ? kBudgetStep : -kBudgetStep;
+    at[d] += step[d];
+    runs.push_back({model_point(c, Candidate{}, at), numerics});
+  }
+  return step;
+}
+
+bool screened_at_balanced(const ScreenResult& screen, const std::string& effect) {
+  for (const ScreenedEffect& e : screen.effects) {
+    if (e.effect == effect) return e.at_balanced && !screen.balanced_z.empty();
+  }
+  return false;
+}
+
 }  // namespace
 
 int next_test_model_points(const DiagnosisCampaign& campaign) {
   if (campaign.candidates.empty()) return 0;  // nothing to tell apart
-  return int(kNextTestBaseRuns + campaign.candidates.size());
+  // The base's runs at the fit, and at the screen's balanced point for effects seen only there.
+  const std::size_t base = campaign.screen ? 2 * kNextTestBaseRuns : kNextTestBaseRuns;
+  return int(base + campaign.candidates.size());
 }
 
 NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Evaluator& evaluator) {
@@ -87,22 +112,24 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
 
   // The base at its fit and one step along each strength (backwards at the box's upper face); in
   // the local design at the fit's lattice node, so that datasets on one template share the runs.
-  const Candidate base;
+  // An effect the screen saw only at its balanced point (screen.hpp) is marked there, against the
+  // base's runs there (after the effects' runs).
   const std::vector<double> z = study_point(c, r.candidates[0].calibration.z);
-  std::vector<double> step(2);
   const Numerics nominal{c.sample_seed, 1.0, 1.0};
-  out.point = model_point(c, base, z);
-  out.runs.push_back({out.point, nominal});
-  for (int d = 0; d < 2; ++d) {
-    std::vector<double> at = z;
-    step[d] = at[d] + kBudgetStep <= 1.0 ? kBudgetStep : -kBudgetStep;
-    at[d] += step[d];
-    out.runs.push_back({model_point(c, base, at), nominal});
-  }
+  out.point = model_point(c, Candidate{}, z);
+  const std::array<double, 2> step = add_base_runs(c, z, nominal, out.runs);
+  std::vector<bool> balanced;
   for (const std::string& effect : out.effects) {
+    balanced.push_back(screened_at_balanced(r.screen, effect));
+    const std::vector<double>& at = balanced.back() ? r.screen.balanced_z : z;
     out.runs.push_back(
-        {model_point(c, *find_candidate(c, effect), std::vector<double>{z[0], z[1], 1.0}),
+        {model_point(c, *find_candidate(c, effect), std::vector<double>{at[0], at[1], 1.0}),
          nominal});
+  }
+  const std::size_t balanced_base = out.runs.size();
+  std::array<double, 2> balanced_step{};
+  if (std::find(balanced.begin(), balanced.end(), true) != balanced.end()) {
+    balanced_step = add_base_runs(c, r.screen.balanced_z, nominal, out.runs);
   }
   const std::vector<RunOutcome> outcomes = evaluator.run_on(out.runs, all);
   out.model_points = int(out.runs.size());
@@ -112,21 +139,31 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
     out.ln.emplace_back(ln.begin() + long(n), ln.end());
   }
 
-  // How each test follows the strengths: the dataset's on the base surfaces (as the screen), the
-  // menu's from the two steps.
-  StrengthResponse response = strength_response(r.candidates[0].surfaces, c.targets, {z});
-  std::vector<std::array<double, 2>> jacobian = response.jacobian[0];
-  std::vector<double> weight = response.weight;
-  for (std::size_t m = 0; m < out.menu.size(); ++m) {
-    std::array<double, 2> slope{};
-    for (int d = 0; d < 2; ++d) slope[d] = (out.ln[1 + d][m] - out.ln[0][m]) / step[d];
-    jacobian.push_back(slope);
-    weight.push_back(0.0);
-  }
+  // How each test follows the strengths at a point whose base runs start at `first`: the dataset's
+  // on the base surfaces (as the screen), the menu's from the two steps.
+  auto response_at = [&](std::size_t first, const std::vector<double>& at,
+                         const std::array<double, 2>& steps) {
+    StrengthResponse response = strength_response(r.candidates[0].surfaces, c.targets, {at});
+    for (std::size_t m = 0; m < out.menu.size(); ++m) {
+      std::array<double, 2> slope{};
+      for (std::size_t d = 0; d < 2; ++d)
+        slope[d] = (out.ln[first + 1 + d][m] - out.ln[first][m]) / steps[d];
+      response.jacobian[0].push_back(slope);
+      response.weight.push_back(0.0);
+    }
+    return response;
+  };
+  const StrengthResponse at_fit = response_at(0, z, step);
+  const StrengthResponse at_balanced =
+      balanced_base < out.runs.size()
+          ? response_at(balanced_base, r.screen.balanced_z, balanced_step)
+          : at_fit;
   for (std::size_t e = 0; e < out.effects.size(); ++e) {
+    const StrengthResponse& response = balanced[e] ? at_balanced : at_fit;
     const ScreenedEffect mark =
-        screen_effect(out.effects[e], outcomes[0], outcomes[run_of(out, out.effects[e])], jacobian,
-                      weight, all, all_budget);
+        screen_effect(out.effects[e], outcomes[balanced[e] ? balanced_base : 0],
+                      outcomes[run_of(out, out.effects[e])], response.jacobian[0], response.weight,
+                      all, all_budget);
     out.mark.emplace_back(mark.change.begin() + long(n), mark.change.end());
   }
   if (a > 0) {
