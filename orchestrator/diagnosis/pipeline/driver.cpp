@@ -255,12 +255,12 @@ Budget measure_budget(const DiagnosisCampaign& c, const CandidateResult& base,
 }
 
 // The screen's second point, the balanced one: equal strengths F_r0 = F_s0 at the base fit's
-// geometric mean, each within its bounds, on the study's lattice; none when that lies within a grid
-// step of z on both axes. The base fit's ratio F_s0 / F_r0 sets which bond failure rules the peaks,
-// and an effect that acts through one of them is invisible where the other rules; a hidden effect
-// can put the base fit in the wrong regime (the compression-coupling twin at D/R 20: base fit
-// (256, 27.9) N, the truth's (68.4, 87.5) N, the coupling, which weighs a bond's compression by 1 /
-// F_r0, without a mark at the first), so the screen also looks where neither rules alone.
+// geometric mean, each within its bounds, on the study's lattice; none when that lies within 1.5
+// grid steps of z on both axes. The base fit's ratio F_s0 / F_r0 sets which bond failure rules the
+// peaks, and an effect that acts through one of them is invisible where the other rules; a hidden
+// effect can put the base fit in the wrong regime (the compression-coupling twin at D/R 20: base
+// fit (256, 27.9) N, the truth's (68.4, 87.5) N, the coupling, which weighs a bond's compression by
+// 1 / F_r0, without a mark at the first), so the screen also looks where neither rules alone.
 std::optional<std::vector<double>> balanced_point(const DiagnosisCampaign& c,
                                                   const std::vector<double>& z) {
   const ModelPoint at = model_point(c, Candidate{}, z);
