@@ -61,7 +61,7 @@ std::array<double, 2> add_base_runs(const DiagnosisCampaign& c, const std::vecto
 
 bool screened_at_balanced(const ScreenResult& screen, const std::string& effect) {
   for (const ScreenedEffect& e : screen.effects) {
-    if (e.effect == effect) return e.at_balanced && !screen.balanced_z.empty();
+    if (e.effect == effect) return e.at_balanced;
   }
   return false;
 }

@@ -324,13 +324,13 @@ json closure_missing(const DiagnosisResult& r, const DiagnosisCampaign& campaign
   return "no candidate effect could be fitted (candidates[].error says why)";
 }
 
-json gap_json(const DiagnosisResult& r, const DiagnosisCampaign& c,
-              const std::vector<double>& lab) {
+// `spread`: the fit's spread in each of the base model's predictions (held_out_fit_variance).
+json gap_json(const DiagnosisResult& r, const DiagnosisCampaign& c, const std::vector<double>& lab,
+              const std::vector<double>& spread) {
   const std::vector<Target>& targets = c.targets;
   const DecisionRule& rule = c.decision;
   const CandidateResult& base = r.candidates[0];
   const std::vector<double> res = charged_residuals(residuals(base.confirmed_ln, lab), targets);
-  const std::vector<double> spread = held_out_fit_variance(base, targets, r.budget.per_target);
   json beyond_noise = json::array();
   for (std::size_t i = 0; i < targets.size(); ++i) {
     if (significant(res[i], targets[i], r.budget.per_target[i], spread[i])) {
@@ -479,7 +479,7 @@ json to_json(const DiagnosisResult& r, const DiagnosisCampaign& c) {
           {"name", c.name},
           {"dataset", c.dataset.name},
           {"verdict", verdict_json(r, c.decision)},
-          {"gap", gap_json(r, c, lab)},
+          {"gap", gap_json(r, c, lab, spread[0])},
           {"decision",
            {{"gap_budgets", c.decision.gap_budgets}, {"min_evidence", c.decision.min_evidence}}},
           {"observations", observations},
