@@ -38,6 +38,11 @@ struct EffectParam {
   // switches FCC to a random packing). The diagnosis then never interpolates across the jump: it
   // explores such an effect from a floor above neutral and compares it with the base model whole.
   bool continuous_at_neutral = true;
+  // For such an effect, when the job decides where its change begins: the least value whose model
+  // differs from the base model's for `job`, a little past the jump (interaction_range in an FCC
+  // lattice bonds nothing new below the second neighbours' distance, sqrt(2)). The diagnosis then
+  // explores the effect from there, not from values that are the base model again.
+  double (*first_change_of)(const JobSpec& job) = nullptr;
 };
 
 // Parameter values of one switched-on effect, by name (a job that omits one gets its default).
@@ -75,6 +80,9 @@ double effect_value_at(const EffectDef& effect, double s);
 double effect_value_at(const EffectDef& effect, double s, const JobSpec& job);
 // The base model's value of `param` for `job`.
 double effect_neutral(const EffectParam& param, const JobSpec& job);
+// The walk fraction s in [0, 1] at which params[0] takes `value` for `job`: effect_value_at's
+// inverse inside [lo, hi] (clamped to [0, 1]).
+double effect_walk_fraction(const EffectDef& effect, double value, const JobSpec& job);
 
 // Fills in every named effect's omitted parameters with their defaults and checks names and ranges.
 // Throws SpecError naming the field: "effects.NAME" (unknown effect), "effects.NAME.PARAM"

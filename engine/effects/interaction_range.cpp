@@ -36,6 +36,13 @@ void soften_long_bonds(Simulation& sim, const JobSpec&, const EffectValues& v) {
   }
 }
 
+// Where bonding beyond touching begins: in an FCC lattice at the second neighbours, sqrt(2) x the
+// touching distance (1% past it, clear of rounding in the lattice's turned coordinates); in a
+// random packing at any factor above 1.
+double second_neighbours(const JobSpec& job) {
+  return job.sample.packing == "fcc" ? std::sqrt(2.0) * 1.01 : 1.0;
+}
+
 }  // namespace
 
 EffectDef interaction_range_effect() {
@@ -56,7 +63,8 @@ EffectDef interaction_range_effect() {
                .log_scale = false,
                .doc = "bonding distance / touching distance",
                // FCC: nothing changes below sqrt(2), then a sixth of the bonds at once.
-               .continuous_at_neutral = false},
+               .continuous_at_neutral = false,
+               .first_change_of = second_neighbours},
               {.name = "stiffness_exponent",
                .unit = "",
                .lo = 0.0,

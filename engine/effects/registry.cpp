@@ -80,6 +80,19 @@ double effect_value_at(const EffectDef& effect, double s, const JobSpec& job) {
   return value_between(p, effect_neutral(p, job), s);
 }
 
+double effect_walk_fraction(const EffectDef& effect, double value, const JobSpec& job) {
+  const EffectParam& p = effect.params.at(0);
+  const double neutral = effect_neutral(p, job);
+  double s;
+  if (std::isinf(neutral))
+    s = p.strong / value;
+  else if (p.log_scale)
+    s = std::log(value / neutral) / std::log(p.strong / neutral);
+  else
+    s = (value - neutral) / (p.strong - neutral);
+  return std::clamp(s, 0.0, 1.0);
+}
+
 void complete_effects(std::map<std::string, EffectValues>& effects) {
   for (auto& [name, values] : effects) {
     const std::string field = "effects." + name;

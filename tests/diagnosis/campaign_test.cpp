@@ -2,6 +2,7 @@
 // to change; a good request resolves into model-unit targets and registry candidates.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -415,6 +416,15 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   const ModelPoint lowest = model_point(c, c.candidates[1], std::vector<double>{0.5, 0.5, 0.0});
   EXPECT_TRUE(effect_on(lowest));  // u = 0 is a random packing, not the base model's FCC
   EXPECT_DOUBLE_EQ(lowest.s, kDiscontinuousFloor);
+  // interaction_range jumps at neutral too, but in this FCC template nothing is bonded beyond
+  // touching below sqrt(2): its walk starts there, so no level of its design is the base model.
+  const auto range = std::find_if(c.candidates.begin(), c.candidates.end(), [](const Candidate& k) {
+    return k.effect == "interaction_range";
+  });
+  ASSERT_NE(range, c.candidates.end());
+  EXPECT_GT(range->value_at(range->s_at(0.0)), std::sqrt(2.0));
+  EXPECT_NEAR(range->value_at(range->s_at(0.0)), std::sqrt(2.0) * 1.01, 1e-9);
+  EXPECT_DOUBLE_EQ(range->value_at(range->s_at(1.0)), 1.5);
   // A 5 x 5 (x 5) grid: 25 + 7 x 25 x 4 (+ packing's, interaction_range's and brazilian_flats'
   // own 25 x 5), twice 5 points x 8 budget runs (reference, 2 seeds, half speed, 4 resolutions),
   // the screen's 3 points for each of 10 effects at two points and the base's at the second,

@@ -212,7 +212,8 @@ TEST_P(NextTestTwin, NamesTheTestAndThenTheEffect) {
   testing::SyntheticModel truth({measured});
   truth.numerical_noise = 0;
   truth.marks = testing::measured_marks();
-  measured.value = truth.values({{60.0, 120.0, twin.effect, 0.75}, {1, 1.0, 1.0}})[0];
+  const double hidden = std::max(0.75, testing::first_change_s(twin.effect));  // as the twin's
+  measured.value = truth.values({{60.0, 120.0, twin.effect, hidden}, {1, 1.0, 1.0}})[0];
   measured.sigma = 0.02;
   measured.role = Role::calibration;
   after.targets.push_back(measured);

@@ -1,7 +1,11 @@
 #include "synthetic_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+
+#include "engine/effects/effect.hpp"
+#include "engine/spec.hpp"
 
 namespace rockcal::diagnosis::testing {
 namespace {
@@ -120,6 +124,19 @@ Marks measured_marks() {
   };
 }
 
+double first_change_s(const std::string& effect) {
+  const EffectDef* def = find_effect(effect);
+  if (!def || !def->params[0].first_change_of) return 0.0;
+  const JobSpec job;
+  return effect_walk_fraction(*def, def->params[0].first_change_of(job), job);
+}
+
+double mark_share(const std::string& effect, double s) {
+  const double first = first_change_s(effect);
+  if (first <= 0.0) return s;
+  return s >= first - 1e-12 ? 1.0 : 0.0;
+}
+
 std::vector<double> SyntheticModel::values(const RunRequest& r) const {
   return values(r, targets);
 }
@@ -177,7 +194,7 @@ std::vector<double> SyntheticModel::values(const RunRequest& r,
     }
     if (measured != marks.end()) {
       const auto mark = measured->second.find(mark_of(at[i]));
-      if (mark != measured->second.end()) ln += s * mark->second;
+      if (mark != measured->second.end()) ln += mark_share(p.effect, s) * mark->second;
     }
     ln += 0.01 * std::log(r.numerics.resolution);
     ln += numerical_noise * hash_unit(r, i);
@@ -248,7 +265,7 @@ DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, do
       target("uct-peak-strain", TestKind::uct, Observable::peak_strain, Role::held_out, kD, 0, kV));
   c.candidates = registry_candidates(JobSpec{});
   c.budget.seeds = {2, 3};
-  draw_lab_values(c, measured_marks(), effect, s, noise, seed);
+  draw_lab_values(c, measured_marks(), effect, std::max(s, first_change_s(effect)), noise, seed);
   return c;
 }
 

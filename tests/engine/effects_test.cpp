@@ -165,6 +165,12 @@ TEST(Effects, ValueAtWalksFromNeutralToStrong) {
   EXPECT_DOUBLE_EQ(effect_value_at(pbf, 0.0, job), 0.4);
   EXPECT_DOUBLE_EQ(effect_value_at(pbf, 1.0, job), 0.05);
   EXPECT_DOUBLE_EQ(effect_value_at(pbf, 0.0), 0.6);  // the default job's
+  // effect_walk_fraction is the walk's inverse, on every scale.
+  for (const EffectDef& e : effect_registry()) {
+    for (double s : {0.2, 0.5, 1.0}) {
+      EXPECT_NEAR(effect_walk_fraction(e, effect_value_at(e, s, job), job), s, 1e-9) << e.name;
+    }
+  }
 }
 
 TEST(Effects, SpecHooksChangeTheEffectiveSpecOnly) {
@@ -331,6 +337,17 @@ TEST(Effects, InteractionRangeBondsTheLatticesSecondNeighboursFromSqrtTwo) {
   // Interior particles gain 6 bonds (3 bonds each), surface ones fewer.
   EXPECT_GT(double(wide) / double(plain), 1.3);
   EXPECT_LT(double(wide) / double(plain), 1.5);
+  // Where the diagnosis starts exploring the range in this lattice: the least factor it calls a
+  // change bonds the very network 1.5 does; in a random packing every factor above 1 adds bonds.
+  const EffectParam& factor = find_effect("interaction_range")->params[0];
+  ASSERT_NE(factor.first_change_of, nullptr);
+  const double first = factor.first_change_of(cylinder());
+  EXPECT_GT(first, std::sqrt(2.0));
+  EXPECT_LT(first, 1.5);
+  EXPECT_EQ(std::get<0>(bonds_of(first)), wide);
+  JobSpec random = cylinder();
+  random.sample.packing = "random";
+  EXPECT_EQ(factor.first_change_of(random), 1.0);
 }
 
 TEST(Effects, InteractionRangeSoftensTheLongerBondsByTheirLengthToTheExponent) {

@@ -234,9 +234,18 @@ std::vector<Candidate> registry_candidates(const JobSpec& model) {
   for (const EffectDef& def : effect_registry()) {
     if (def.params.empty()) continue;
     const EffectDef* d = &def;  // the registry is static: the pointer outlives every campaign
-    out.push_back({def.name, def.params[0].name, def.params[0].unit,
-                   [d, model](double s) { return effect_value_at(*d, s, model); },
-                   def.params[0].continuous_at_neutral ? 0.0 : kDiscontinuousFloor});
+    const EffectParam& p = def.params[0];
+    // An effect that jumps at neutral is explored from a floor; one whose change begins further
+    // out for this template (its first_change_of) from there, so that no level of its design is
+    // the base model again.
+    double floor = 0.0;
+    if (!p.continuous_at_neutral) {
+      floor = kDiscontinuousFloor;
+      if (p.first_change_of)
+        floor = std::max(floor, effect_walk_fraction(def, p.first_change_of(model), model));
+    }
+    out.push_back({def.name, p.name, p.unit,
+                   [d, model](double s) { return effect_value_at(*d, s, model); }, floor});
   }
   return out;
 }
