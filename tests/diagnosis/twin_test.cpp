@@ -126,6 +126,27 @@ TEST(DiagnosisTwin, BadTemplatesAndRequestsAreRefused) {
       refusal({"bogus", 1, 1, 0.02}).rfind("effect: unknown effect 'bogus' (known: none, ", 0), 0u);
   EXPECT_EQ(refusal({"rate", 100, 1, 0.02}), "value: must be in [0.125, 16.0] (rate.speed_factor)");
   EXPECT_EQ(twin_effects({"none", 0, 1, 0.02}), json::object());
+  // In an FCC template the interaction range changes nothing below sqrt(2): such a twin would be
+  // a null labelled with an effect, and is refused; in a random packing any factor above 1 bonds
+  // more.
+  JobSpec fcc;
+  auto changes = [](const JobSpec& model, const TwinRequest& r) -> std::string {
+    try {
+      check_twin_value_changes_model(model, r);
+    } catch (const orch::RequestError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(changes(fcc, {"interaction_range", 1.25, 1, 0.02}),
+            "value: interaction_range.factor 1.25 leaves this template's model unchanged (it "
+            "changes it from " +
+                json(std::sqrt(2.0) * 1.01).dump() + " on)");
+  EXPECT_EQ(changes(fcc, {"interaction_range", 1.45, 1, 0.02}), "(accepted)");
+  EXPECT_EQ(changes(fcc, {"rate", 2, 1, 0.02}), "(accepted)");
+  JobSpec random = fcc;
+  random.sample.packing = "random";
+  EXPECT_EQ(changes(random, {"interaction_range", 1.25, 1, 0.02}), "(accepted)");
   EXPECT_EQ(refusal({"none", 0, 1, 0.02, 3.0}), "(accepted)");
   const std::string resolution = "resolution: must be in [1, 3] (1 = the template's own)";
   EXPECT_EQ(refusal({"none", 0, 1, 0.02, 3.5}), resolution);

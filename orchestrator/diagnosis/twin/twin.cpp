@@ -102,6 +102,22 @@ json twin_effects(const TwinRequest& request) {
   return {{effect->name, {{p.name, request.value}}}};
 }
 
+void check_twin_value_changes_model(const JobSpec& model, const TwinRequest& request) {
+  if (request.effect == "none") return;
+  const EffectDef* effect = find_effect(request.effect);
+  if (!effect || effect->params.empty() || !effect->params[0].first_change_of) return;
+  const EffectParam& p = effect->params[0];
+  const double neutral = effect_neutral(p, model), first = p.first_change_of(model);
+  const bool short_of_it = neutral <= first ? request.value < first : request.value > first;
+  if (short_of_it) {
+    throw orch::RequestError("value", effect->name + "." + p.name + " " +
+                                          json(request.value).dump() +
+                                          " leaves this template's model unchanged (it changes "
+                                          "it from " +
+                                          json(first).dump() + " on)");
+  }
+}
+
 void check_twin_request(const TwinRequest& request) {
   twin_effects(request);
   if (!(request.noise > 0) || !std::isfinite(request.noise)) {
@@ -132,6 +148,7 @@ TwinJobs twin_jobs(const TwinDesign& design, const TwinRequest& request, const T
 
 Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJobs& run) {
   check_twin_request(request);
+  check_twin_value_changes_model(design.model, request);
   const json effects = twin_effects(request);
   Stream stream(request.seed);
   // u1, u2 are drawn from the seed's stream whatever the truth, so the noise that follows is the

@@ -50,6 +50,11 @@ TruthBonds truth_of(const JobSpec& model, const TwinRequest& request);
 // [1, 3].
 void check_twin_request(const TwinRequest& request);
 
+// Throws orch::RequestError ("value") for an effect value that leaves the template's model as it
+// is: one short of where the effect's change begins for it (first_change_of: interaction_range
+// below sqrt(2) in FCC), whose twin would be a null labelled with an effect.
+void check_twin_value_changes_model(const JobSpec& model, const TwinRequest& request);
+
 // The job's "effects" block for the request: {} for "none", else {NAME: {params[0]: value}}.
 // Throws orch::RequestError for an unknown effect ("effect") or a value outside its parameter's
 // range ("value").

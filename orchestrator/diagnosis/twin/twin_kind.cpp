@@ -37,7 +37,7 @@ TwinCampaign parse_twin_campaign(const json& request) {
   c.job_template = job ? *job : demo_twin_template();
   f.reject_unknown();
   check_twin_request(c.twin);
-  check_twin_template(c.job_template);
+  check_twin_value_changes_model(check_twin_template(c.job_template), c.twin);
   return c;
 }
 
