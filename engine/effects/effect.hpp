@@ -83,6 +83,9 @@ double effect_neutral(const EffectParam& param, const JobSpec& job);
 // The walk fraction s in [0, 1] at which params[0] takes `value` for `job`: effect_value_at's
 // inverse inside [lo, hi] (clamped to [0, 1]).
 double effect_walk_fraction(const EffectDef& effect, double value, const JobSpec& job);
+// The walk fraction where params[0]'s change begins for `job` (its first_change_of), 0 for an
+// effect that declares none.
+double effect_first_change_fraction(const EffectDef& effect, const JobSpec& job);
 
 // Fills in every named effect's omitted parameters with their defaults and checks names and ranges.
 // Throws SpecError naming the field: "effects.NAME" (unknown effect), "effects.NAME.PARAM"

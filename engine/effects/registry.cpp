@@ -93,6 +93,11 @@ double effect_walk_fraction(const EffectDef& effect, double value, const JobSpec
   return std::clamp(s, 0.0, 1.0);
 }
 
+double effect_first_change_fraction(const EffectDef& effect, const JobSpec& job) {
+  const EffectParam& p = effect.params.at(0);
+  return p.first_change_of ? effect_walk_fraction(effect, p.first_change_of(job), job) : 0.0;
+}
+
 void complete_effects(std::map<std::string, EffectValues>& effects) {
   for (auto& [name, values] : effects) {
     const std::string field = "effects." + name;

@@ -6,7 +6,6 @@
 // One with no mark at all is screened out before its runs and named invisible.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -52,8 +51,7 @@ TEST_P(RegisteredEffectTwin, IsNamedOnlyWhenItsMarkIsResolved) {
   const json summary = diagnose_registered(twin.effect, kHiddenS);
   const json& v = summary["verdict"];
   std::printf("%s at s = %.2f: verdict %s, held-out gap %.2f budgets, G %s\n", twin.effect,
-              std::max(kHiddenS, testing::first_change_s(twin.effect)),
-              v["label"].get<std::string>().c_str(),
+              testing::hidden_s(twin.effect, kHiddenS), v["label"].get<std::string>().c_str(),
               summary["gap"]["held_out_budgets"].get<double>(), v["gap_closure"].dump().c_str());
   if (twin.mark == Mark::absorbed) {
     EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);

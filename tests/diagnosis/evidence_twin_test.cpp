@@ -191,9 +191,8 @@ TEST_P(EffectAtTheDetectionLimit, IsNamedFirst) {
     }
     // interaction_range has no weaker version than its first change in FCC: hidden there.
     std::printf("%s at s = %.3g, seed %d: %s, evidence %.2f nats, G %.2f\n", effect.c_str(),
-                std::max(0.2, testing::first_change_s(effect)), int(seed),
-                v["label"].get<std::string>().c_str(), v["evidence"]["value"].get<double>(),
-                v["gap_closure"].get<double>());
+                testing::hidden_s(effect, 0.2), int(seed), v["label"].get<std::string>().c_str(),
+                v["evidence"]["value"].get<double>(), v["gap_closure"].get<double>());
   }
 }
 

@@ -212,7 +212,7 @@ TEST_P(NextTestTwin, NamesTheTestAndThenTheEffect) {
   testing::SyntheticModel truth({measured});
   truth.numerical_noise = 0;
   truth.marks = testing::measured_marks();
-  const double hidden = std::max(0.75, testing::first_change_s(twin.effect));  // as the twin's
+  const double hidden = testing::hidden_s(twin.effect, 0.75);  // as the twin's
   measured.value = truth.values({{60.0, 120.0, twin.effect, hidden}, {1, 1.0, 1.0}})[0];
   measured.sigma = 0.02;
   measured.role = Role::calibration;

@@ -126,9 +126,11 @@ Marks measured_marks() {
 
 double first_change_s(const std::string& effect) {
   const EffectDef* def = find_effect(effect);
-  if (!def || !def->params[0].first_change_of) return 0.0;
-  const JobSpec job;
-  return effect_walk_fraction(*def, def->params[0].first_change_of(job), job);
+  return def ? effect_first_change_fraction(*def, JobSpec{}) : 0.0;
+}
+
+double hidden_s(const std::string& effect, double s) {
+  return std::max(s, first_change_s(effect));
 }
 
 double mark_share(const std::string& effect, double s) {
@@ -265,7 +267,7 @@ DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, do
       target("uct-peak-strain", TestKind::uct, Observable::peak_strain, Role::held_out, kD, 0, kV));
   c.candidates = registry_candidates(JobSpec{});
   c.budget.seeds = {2, 3};
-  draw_lab_values(c, measured_marks(), effect, std::max(s, first_change_s(effect)), noise, seed);
+  draw_lab_values(c, measured_marks(), effect, hidden_s(effect, s), noise, seed);
   return c;
 }
 

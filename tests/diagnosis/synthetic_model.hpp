@@ -47,6 +47,8 @@ Marks measured_marks();
 // walk fraction; 0 when it has none): interaction_range in FCC bonds nothing new below sqrt(2),
 // so its mark is a step there, not a ramp from s = 0.
 double first_change_s(const std::string& effect);
+// Where a twin asked for `effect` at s hides it: s, or its first change when s lies below it.
+double hidden_s(const std::string& effect, double s);
 // The share of a measured mark (taken at s = 1) a run at walk fraction s carries: s, or for an
 // effect with a first change 1 from it on and 0 below.
 double mark_share(const std::string& effect, double s);
@@ -73,7 +75,7 @@ DiagnosisCampaign twin_campaign(const std::string& effect, double s, double nois
 // The same twin on the real twin design (the UCT at H/D = 1 for the 1.5x cylinder, the UCT's peak
 // strain held out), whose candidates are the engine's registered effects (registry_candidates)
 // leaving measured_marks. An effect hidden below its first change would be the base model again:
-// it is hidden at its first change instead (max(s, first_change_s)).
+// it is hidden at hidden_s(effect, s).
 DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, double noise = 0.01,
                                          std::uint64_t seed = 7);
 

@@ -238,12 +238,10 @@ std::vector<Candidate> registry_candidates(const JobSpec& model) {
     // An effect that jumps at neutral is explored from a floor; one whose change begins further
     // out for this template (its first_change_of) from there, so that no level of its design is
     // the base model again.
-    double floor = 0.0;
-    if (!p.continuous_at_neutral) {
-      floor = kDiscontinuousFloor;
-      if (p.first_change_of)
-        floor = std::max(floor, effect_walk_fraction(def, p.first_change_of(model), model));
-    }
+    const double floor =
+        p.continuous_at_neutral
+            ? 0.0
+            : std::max(kDiscontinuousFloor, effect_first_change_fraction(def, model));
     out.push_back({def.name, p.name, p.unit,
                    [d, model](double s) { return effect_value_at(*d, s, model); }, floor});
   }
