@@ -27,7 +27,15 @@ std::string diagnosis_text(const json& s) {
   const json& p = at(v, "parameter");
   const json& c = at(v, "confidence");
   out << "Verdict: " << fmt(at(v, "label"));
-  if (p.is_object()) out << " (" << fmt(at(p, "name")) << " = " << fmt(at(p, "value")) << ")";
+  if (p.is_object()) {
+    out << " (" << fmt(at(p, "name")) << " = " << fmt(at(p, "value"));
+    const json& span = at(p, "same_model");
+    if (span.is_object()) {
+      out << ", the same model as any value in [" << fmt(at(span, "from")) << ", "
+          << fmt(at(span, "to")) << ")";
+    }
+    out << ")";
+  }
   const json& e = at(v, "evidence");
   if (at(v, "effect").is_string() && at(e, "value").is_number()) {
     out << ", evidence " << fmt(at(e, "value"), "%.2f") << " nats (threshold "

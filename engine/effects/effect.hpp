@@ -21,6 +21,11 @@ namespace rockcal {
 struct JobSpec;
 struct Simulation;
 
+// Values [from, to) of a parameter; from == to is the one value.
+struct ValueSpan {
+  double from, to;
+};
+
 // One parameter of an effect: its documented range, the value that reproduces the base model (the
 // effect "off"), and how the diagnosis walks from off to strong.
 struct EffectParam {
@@ -43,6 +48,9 @@ struct EffectParam {
   // lattice bonds nothing new below the second neighbours' distance, sqrt(2)). The diagnosis then
   // explores the effect from there, not from values that are the base model again.
   double (*first_change_of)(const JobSpec& job) = nullptr;
+  // For an effect whose model changes in steps for `job` (interaction_range in a lattice: a shell
+  // of neighbours joins at a time), the values around `value` that give the same model as it.
+  ValueSpan (*same_model_of)(const JobSpec& job, double value) = nullptr;
 };
 
 // Parameter values of one switched-on effect, by name (a job that omits one gets its default).
@@ -86,6 +94,9 @@ double effect_walk_fraction(const EffectDef& effect, double value, const JobSpec
 // The walk fraction where params[0]'s change begins for `job` (its first_change_of), 0 for an
 // effect that declares none.
 double effect_first_change_fraction(const EffectDef& effect, const JobSpec& job);
+// The values of params[0] that give the same model as `value` for `job` (its same_model_of):
+// {value, value} for an effect whose model changes with every value.
+ValueSpan effect_same_model_span(const EffectDef& effect, double value, const JobSpec& job);
 
 // Fills in every named effect's omitted parameters with their defaults and checks names and ranges.
 // Throws SpecError naming the field: "effects.NAME" (unknown effect), "effects.NAME.PARAM"

@@ -43,6 +43,15 @@ double second_neighbours(const JobSpec& job) {
   return job.sample.packing == "fcc" ? std::sqrt(2.0) * 1.01 : 1.0;
 }
 
+// In an FCC lattice the neighbours lie in shells at sqrt(n) x the touching distance (n = 1, 2, 3,
+// 4 up to the documented range's factor 2), so every factor from one shell up to the next bonds
+// the same network. A random packing's count grows with any factor.
+ValueSpan lattice_shell(const JobSpec& job, double factor) {
+  if (job.sample.packing != "fcc") return {factor, factor};
+  const double n = std::floor(factor * factor);
+  return {std::sqrt(n), std::sqrt(n + 1.0)};
+}
+
 }  // namespace
 
 EffectDef interaction_range_effect() {
@@ -64,7 +73,8 @@ EffectDef interaction_range_effect() {
                .doc = "bonding distance / touching distance",
                // FCC: nothing changes below sqrt(2), then a sixth of the bonds at once.
                .continuous_at_neutral = false,
-               .first_change_of = second_neighbours},
+               .first_change_of = second_neighbours,
+               .same_model_of = lattice_shell},
               {.name = "stiffness_exponent",
                .unit = "",
                .lo = 0.0,

@@ -98,6 +98,11 @@ double effect_first_change_fraction(const EffectDef& effect, const JobSpec& job)
   return p.first_change_of ? effect_walk_fraction(effect, p.first_change_of(job), job) : 0.0;
 }
 
+ValueSpan effect_same_model_span(const EffectDef& effect, double value, const JobSpec& job) {
+  const EffectParam& p = effect.params.at(0);
+  return p.same_model_of ? p.same_model_of(job, value) : ValueSpan{value, value};
+}
+
 void complete_effects(std::map<std::string, EffectValues>& effects) {
   for (auto& [name, values] : effects) {
     const std::string field = "effects." + name;

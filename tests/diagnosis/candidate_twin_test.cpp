@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "api/cli/diagnosis_text.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "synthetic_model.hpp"
@@ -82,6 +83,21 @@ TEST_P(RegisteredEffectTwin, IsNamedOnlyWhenItsMarkIsResolved) {
   }
   ASSERT_EQ(v["effect"], twin.effect) << v.dump(2);
   EXPECT_NEAR(v["parameter"]["s"].get<double>(), kHiddenS, 0.15) << v.dump(2);
+  // A fitted value that stands for a span of values says so: the range in this FCC template
+  // bonds the second neighbours from sqrt(2) to sqrt(3), whatever factor in it was fitted.
+  const json& parameter = v["parameter"];
+  if (twin.effect == std::string("interaction_range")) {
+    ASSERT_TRUE(parameter.contains("same_model")) << v.dump(2);
+    const json& span = parameter["same_model"];
+    EXPECT_DOUBLE_EQ(span["from"].get<double>(), std::sqrt(2.0));
+    EXPECT_DOUBLE_EQ(span["to"].get<double>(), std::sqrt(3.0));
+    EXPECT_NE(api::diagnosis_text(summary).find(", the same model as any value in [1.414, 1.732))"),
+              std::string::npos);
+    EXPECT_NE(report_html(summary).find("; every value in [1.414, 1.732) gives this model"),
+              std::string::npos);
+  } else {
+    EXPECT_FALSE(parameter.contains("same_model")) << v.dump(2);
+  }
   EXPECT_GE(v["gap_closure"].get<double>(), 0.6);
   EXPECT_TRUE(summary["gap"]["exceeds_budget"].get<bool>());
   EXPECT_NEAR(std::log(v["fr0"].get<double>() / 60), 0, 0.25);

@@ -350,6 +350,32 @@ TEST(Effects, InteractionRangeBondsTheLatticesSecondNeighboursFromSqrtTwo) {
   EXPECT_EQ(factor.first_change_of(random), 1.0);
 }
 
+TEST(Effects, InteractionRangeSaysWhichFactorsBondTheSameLatticeNetwork) {
+  // What a diagnosis's fitted factor stands for: in FCC every factor of a shell [sqrt(n),
+  // sqrt(n + 1)) bonds the same network, so 1.45 means "the second neighbours", not 1.45 itself.
+  const EffectDef& range = *find_effect("interaction_range");
+  auto bonds_at = [](double factor) {
+    JobSpec s = cylinder();
+    s.effects = {{"interaction_range", {{"factor", factor}}}};
+    return make_specimen(s).bonds.size();
+  };
+  const ValueSpan shell = effect_same_model_span(range, 1.45, cylinder());
+  EXPECT_DOUBLE_EQ(shell.from, std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(shell.to, std::sqrt(3.0));
+  EXPECT_EQ(bonds_at(shell.from * 1.01), bonds_at(shell.to * 0.99));
+  EXPECT_LT(bonds_at(shell.to * 0.99), bonds_at(shell.to * 1.01));
+  const ValueSpan touching = effect_same_model_span(range, 1.2, cylinder());
+  EXPECT_DOUBLE_EQ(touching.from, 1.0);
+  EXPECT_DOUBLE_EQ(touching.to, std::sqrt(2.0));
+  // A random packing, and an effect without steps, are their one value.
+  JobSpec random = cylinder();
+  random.sample.packing = "random";
+  const ValueSpan one = effect_same_model_span(range, 1.45, random);
+  EXPECT_EQ(one.from, 1.45);
+  EXPECT_EQ(one.to, 1.45);
+  EXPECT_EQ(effect_same_model_span(*find_effect("rate"), 3.0, cylinder()).to, 3.0);
+}
+
 TEST(Effects, InteractionRangeSoftensTheLongerBondsByTheirLengthToTheExponent) {
   // The four stiffnesses of each bond at range 1.5 with stiffness_exponent n against n = 0:
   // touching bonds keep theirs, the second neighbours (at 2R sqrt(2)) get 2^(-n/2) of them.

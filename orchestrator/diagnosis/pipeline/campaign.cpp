@@ -243,7 +243,12 @@ std::vector<Candidate> registry_candidates(const JobSpec& model) {
             ? 0.0
             : std::max(kDiscontinuousFloor, effect_first_change_fraction(def, model));
     out.push_back({def.name, p.name, p.unit,
-                   [d, model](double s) { return effect_value_at(*d, s, model); }, floor});
+                   [d, model](double s) { return effect_value_at(*d, s, model); },
+                   [d, model](double value) {
+                     const ValueSpan span = effect_same_model_span(*d, value, model);
+                     return std::pair{span.from, span.to};
+                   },
+                   floor});
   }
   return out;
 }

@@ -49,10 +49,16 @@ json conditions_json(const RunConditions& c) {
 
 json parameter_json(const CandidateResult& c) {
   if (c.candidate.is_base()) return nullptr;
-  return {{"name", c.candidate.param},
-          {"unit", c.candidate.unit},
-          {"value", num(c.value)},
-          {"s", c.point.s}};
+  json j = {{"name", c.candidate.param},
+            {"unit", c.candidate.unit},
+            {"value", num(c.value)},
+            {"s", c.point.s}};
+  // A value that stands for a span of them (a lattice's shell of neighbours) says so.
+  if (c.candidate.same_model && std::isfinite(c.value)) {
+    const auto [from, to] = c.candidate.same_model(c.value);
+    if (from < to) j["same_model"] = {{"from", from}, {"to", to}};
+  }
+  return j;
 }
 
 // The held-out log predictive density (evidence.hpp), term by term, and an effect's evidence
