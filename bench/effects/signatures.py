@@ -12,7 +12,8 @@ are moved to restore those two. For each effect at its "strong" value:
   3. run the effect again at the re-fitted strengths exp(ln bond + d) (one Newton step; the UCS and
      BTS left after it are printed, "cal left");
   4. the signature of observable k is ln(effect at the re-fit / base), in ln and in standard
-     errors of that difference (the seeds' scatter of both ensembles).
+     errors of that difference: the seeds' scatter of both ensembles, and the step's own
+     uncertainty (from the scatter of the UCS and BTS it restores) through the Jacobian.
 
 Observables (all at D/R --size, seeded FCC lattice, the engine's default flattened disc):
   ucs, E (UCT modulus), eps_peak (UCT peak strain), tri_lo/tri_hi (triaxial sigma_1 at 0.1 and
@@ -21,6 +22,7 @@ Observables (all at D/R --size, seeded FCC lattice, the engine's default flatten
 
   bench/effects/signatures.py [--build build] [--out runs/signatures] [--size 20] [--seeds 3]
       [--bond 64,128] [--step 1.2] [--jobs 2] [--effects heterogeneity:weibull_m=2,...]
+      [--slow-factor 1]  (0.25: the two-rate loading of the diagnosis's twin design)
 
 Runs are kept in OUT/NAME/, so a rerun only runs what is missing; delete OUT after rebuilding the
 engine. Writes OUT/signatures.json and prints the markdown table.
@@ -65,7 +67,7 @@ RUNS = {
 }
 
 
-def job(run, size, seed, bond, effects, base_ucs):
+def job(run, size, seed, bond, effects, base_ucs, slow_factor=1.0):
     test, dfac, hd, speed, conf, geometry = RUNS[run]
     d = size * dfac
     sample = {"diameter": d, "packing": "fcc", "radius": 1.0, "seed": seed}
@@ -79,6 +81,8 @@ def job(run, size, seed, bond, effects, base_ucs):
         sample["height"] = hd * d
     loading = {"platen_velocity": 0.05 * speed, "dt": "auto", "stop_load_fraction": 0.7,
                "max_strain": 0.2 if test != "btt" else 0.1}
+    if slow_factor < 1.0:
+        loading["slow_factor"] = slow_factor
     if conf:
         loading["confining_pressure"] = round(conf * base_ucs, 3)
     if geometry:
@@ -102,6 +106,8 @@ def main():
     ap.add_argument("--step", type=float, default=1.2)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--effects", default=STRONG)
+    ap.add_argument("--slow-factor", type=float, default=1.0,
+                    help="the two-rate loading's late speed as a fraction (the twin design's 0.25)")
     a = ap.parse_args()
     engine = os.path.join(a.build, "engine", "rockcal-dem")
     bond0 = [float(x) for x in a.bond.split(",")]
@@ -121,7 +127,7 @@ def main():
                 name = f"{label}_{run}_{s}"
                 names.append((run, s))
                 futures.append(pool.submit(run_one, name, job(run, a.size, s, bond, effects,
-                                                              base_ucs)))
+                                                              base_ucs, a.slow_factor)))
         res = {}
         for (run, s), fut in zip(names, futures):
             r = fut.result()
@@ -158,7 +164,7 @@ def main():
 
     tag = lambda b: f"{b[0]:g}_{b[1]:g}"
     # The base UCS sets the confinements; the base UCT is the first run of the base point.
-    base_uct = [run_one(f"base_{tag(bond0)}_uct_{s}", job("uct", a.size, s, bond0, {}, 0))
+    base_uct = [run_one(f"base_{tag(bond0)}_uct_{s}", job("uct", a.size, s, bond0, {}, 0, a.slow_factor))
                 for s in seeds]
     base_ucs = statistics.mean(r["strength"] for r in base_uct if r.get("peak_reached"))
     base = means(point(f"base_{tag(bond0)}", bond0, {}, base_ucs))
@@ -185,6 +191,12 @@ def main():
         d2 = -(-a21 * c1 + a11 * c2) / det
         refit = [round(bond0[0] * math.exp(d1), 3), round(bond0[1] * math.exp(d2), 3)]
         at1 = means(point(f"{name}_{tag(refit)}", refit, eff, base_ucs))
+        # The step is only as sure as the UCS and BTS changes it restores (the seeds' scatter of
+        # both ensembles; a 442-particle disc's BTS has se 0.23 in ln): its variance, carried to
+        # each observable by the base Jacobian, is part of the signature's standard error. (The
+        # Jacobian's own scatter and the ensembles' correlations are left out.)
+        var_c = [at0[k][1] ** 2 + base[k][1] ** 2 for k in CALIBRATION]
+        dd = [[-a22 / det, a12 / det], [a21 / det, -a11 / det]]  # d(d1, d2) / d(c1, c2)
         row = {"spec": text, "refit": refit, "before_refit": {}, "signature": {}}
         for k in OBSERVABLES:
             (m0, se0, n0), (m1, se1, n1), (mb, seb, nb) = at0[k], at1[k], base[k]
@@ -193,9 +205,11 @@ def main():
             if m1 is None or mb is None:
                 row["signature"][k] = None
                 continue
-            se = math.hypot(se1, seb)
+            j = (jac["fr0"][k] or 0.0, jac["fs0"][k] or 0.0)
+            var_step = sum((j[0] * dd[0][i] + j[1] * dd[1][i]) ** 2 * var_c[i] for i in range(2))
+            se = math.sqrt(se1 ** 2 + seb ** 2 + var_step)
             row["signature"][k] = {"ln": m1 - mb, "se": se, "z": (m1 - mb) / se if se > 0 else None,
-                                   "n": [n1, nb]}
+                                   "se_seeds": math.hypot(se1, seb), "n": [n1, nb]}
         table[name] = row
     pool.shutdown()
 
