@@ -12,6 +12,9 @@ const effectName = (c) => (typeof c.effect === 'string' ? c.effect : 'base model
 // The report's values are in model units (its "units"); the unit of each observable.
 const UNITS = {peak_load: 'N', strength: 'Pa', youngs_modulus: 'Pa', poisson_ratio: ''};
 const withUnit = (x, o) => `${num(x)}${UNITS[o.observable] ? ` ${UNITS[o.observable]}` : ''}`;
+// A fitted parameter, and the span of values giving the same model when it stands for one.
+const parameterText = (p) => `${p.name} = ${num(p.value)} ${p.unit || ''}`
+  + (p.same_model ? ` (the same model as any value in [${num(p.same_model.from)}, ${num(p.same_model.to)}))` : '');
 
 export async function renderDiagnosis(c, ctx) {
   const s = c.summary || {};
@@ -39,7 +42,7 @@ function verdictSection(s) {
   const gap = v.gap || {};
   const rms = (role) => `${num(gap[role] && gap[role].before, 4)} → ${num(gap[role] && gap[role].after, 4)}`;
   const pairs = [
-    p ? ['fitted parameter', `${p.name} = ${num(p.value)} ${p.unit || ''}`] : null,
+    p ? ['fitted parameter', parameterText(p)] : null,
     ['F_r0, F_s0 (model)', `${num(v.fr0)} N, ${num(v.fs0)} N`],
     v.evidence ? ['evidence (held out)', v.evidence.effect
       ? `${v.evidence.effect}: ${num(v.evidence.value, 3)} nats over the base; threshold ${num(v.evidence.threshold, 3)} nats`
@@ -136,7 +139,7 @@ function candidateSection(s, width) {
     {label: 'evidence (nats)', num: true, value: (c) => (c.evidence ? num(c.evidence.value, 3) : '–')},
     {label: 'G', num: true, value: (c) => (c.gap_closure ? num(c.gap_closure.value, 3) : '–')},
     {label: 'basis', value: (c) => (c.gap_closure ? c.gap_closure.basis : '')},
-    {label: 'fitted parameter', value: (c) => (c.parameter ? `${c.parameter.name} = ${num(c.parameter.value)} ${c.parameter.unit || ''}` : '')},
+    {label: 'fitted parameter', value: (c) => (c.parameter ? parameterText(c.parameter) : '')},
     {label: 'F_r0, F_s0 (N)', value: (c) => (c.fit ? `${num(c.fit.fr0)}, ${num(c.fit.fs0)}` : '')},
     {label: 'rms held out', num: true, value: (c) => num(c.rms && (c.rms.confirmed || c.rms.surface).held_out, 3)},
     {label: 'identifiable', value: (c) => (c.identifiable === undefined ? ''
