@@ -4,7 +4,8 @@
 
 #include <functional>
 #include <string>
-#include <utility>
+
+#include "engine/effects/effect.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -18,10 +19,10 @@ struct Candidate {
   std::string unit;
   // The parameter's value at s (effect_value_at for registry effects; a formula in tests).
   std::function<double(double s)> value_at;
-  // The values that give the same model as a fitted one, {from, to} (registry effects:
+  // The values that give the same model as a fitted one (registry effects:
   // effect_same_model_span; interaction_range in FCC: its shell of neighbours). Empty, or from ==
   // to: the value alone.
-  std::function<std::pair<double, double>(double value)> same_model;
+  std::function<ValueSpan(double value)> same_model;
   // The walk fraction the candidate's unit coordinate u = 0 stands for: s = floor + (1 - floor) u.
   // 0 for an effect continuous at neutral (u = 0 is the base model, whose grid it shares); above 0
   // for one that jumps there (packing), whose own grid then starts at the floor.

@@ -242,13 +242,9 @@ std::vector<Candidate> registry_candidates(const JobSpec& model) {
         p.continuous_at_neutral
             ? 0.0
             : std::max(kDiscontinuousFloor, effect_first_change_fraction(def, model));
-    out.push_back({def.name, p.name, p.unit,
-                   [d, model](double s) { return effect_value_at(*d, s, model); },
-                   [d, model](double value) {
-                     const ValueSpan span = effect_same_model_span(*d, value, model);
-                     return std::pair{span.from, span.to};
-                   },
-                   floor});
+    out.push_back(
+        {def.name, p.name, p.unit, [d, model](double s) { return effect_value_at(*d, s, model); },
+         [d, model](double value) { return effect_same_model_span(*d, value, model); }, floor});
   }
   return out;
 }

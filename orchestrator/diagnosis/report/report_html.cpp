@@ -52,12 +52,13 @@ std::string verdict_section(const json& s) {
   out += "<p>" + show(at(v, "reason")) + "</p>\n<table>";
   if (p.is_object()) {
     const json& span = at(p, "same_model");
-    out += "<tr><th>fitted " + show(at(p, "name")) + "</th><td>" + show(at(p, "value")) + " " +
-           show(at(p, "unit")) + " (s = " + show(at(p, "s"), "%.2f") + ")" +
-           (span.is_object() ? "; every value in [" + show(at(span, "from"), "%.4g") + ", " +
-                                   show(at(span, "to"), "%.4g") + ") gives this model"
-                             : std::string()) +
-           "</td></tr>";
+    out +=
+        "<tr><th>fitted " + show(at(p, "name")) + "</th><td>" + show(at(p, "value")) + " " +
+        show(at(p, "unit")) + " (s = " + show(at(p, "s"), "%.2f") + ")" +
+        (span.is_object() ? "; the same model as any value in [" + show(at(span, "from"), "%.4g") +
+                                ", " + show(at(span, "to"), "%.4g") + ")"
+                          : std::string()) +
+        "</td></tr>";
   }
   out += "<tr><th>F_r0, F_s0</th><td>" + show(at(v, "fr0")) + ", " + show(at(v, "fs0")) +
          " N</td></tr>";

@@ -55,8 +55,8 @@ json parameter_json(const CandidateResult& c) {
             {"s", c.point.s}};
   // A value that stands for a span of them (a lattice's shell of neighbours) says so.
   if (c.candidate.same_model && std::isfinite(c.value)) {
-    const auto [from, to] = c.candidate.same_model(c.value);
-    if (from < to) j["same_model"] = {{"from", from}, {"to", to}};
+    const ValueSpan span = c.candidate.same_model(c.value);
+    if (span.from < span.to) j["same_model"] = {{"from", span.from}, {"to", span.to}};
   }
   return j;
 }
