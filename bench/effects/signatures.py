@@ -18,7 +18,8 @@ are moved to restore those two. For each effect at its "strong" value:
 Observables (all at D/R --size, seeded FCC lattice, the engine's default flattened disc):
   ucs, E (UCT modulus), eps_peak (UCT peak strain), tri_lo/tri_hi (triaxial sigma_1 at 0.1 and
   0.3 x the base UCS), ucs_hd1 (UCT at H/D = 1), rate (ln(UCS at 4x speed / UCS) / ln 4), bts,
-  bts_size (ln(BTS at 1.5 D / BTS)), bts_jaws (BTS with ISRM curved jaws).
+  bts_size (ln(BTS at 1.5 D / BTS)), bts_jaws (BTS with ISRM curved jaws), bts_rate (ln(BTS at 4x
+  speed / BTS) / ln 4).
 
   bench/effects/signatures.py [--build build] [--out runs/signatures] [--size 20] [--seeds 3]
       [--bond 64,128] [--step 1.2] [--jobs 2] [--effects heterogeneity:weibull_m=2,...]
@@ -47,7 +48,7 @@ STRONG = ("heterogeneity:weibull_m=2,packing:radius_ratio=2,platen_friction:mu=0
           "rolling_resistance:mu_r=0.3,brazilian_flats:angle_deg=10")
 
 OBSERVABLES = ["ucs", "E", "eps_peak", "tri_lo", "tri_hi", "ucs_hd1", "rate", "bts", "bts_size",
-               "bts_jaws"]
+               "bts_jaws", "bts_rate"]
 CALIBRATION = ["ucs", "bts"]
 
 
@@ -64,6 +65,7 @@ RUNS = {
     "btt": ("btt", 1.0, 0.0, 1.0, 0.0, None),
     "btt_15": ("btt", 1.5, 0.0, 1.0, 0.0, None),
     "btt_jaws": ("btt", 1.0, 0.0, 1.0, 0.0, "curved_jaws"),
+    "btt_fast": ("btt", 1.0, 0.0, 4.0, 0.0, None),
 }
 
 
@@ -137,6 +139,7 @@ def main():
         for s in seeds:
             u, f, h = res[("uct", s)], res[("uct_fast", s)], res[("uct_hd1", s)]
             b, b15, bj = res[("btt", s)], res[("btt_15", s)], res[("btt_jaws", s)]
+            bf = res[("btt_fast", s)]
             t1, t2 = res[("tri_lo", s)], res[("tri_hi", s)]
             ln = lambda r, k="strength": math.log(r[k]) if r and r.get(k) else None
             obs["ucs"].append(ln(u))
@@ -150,6 +153,7 @@ def main():
             obs["bts"].append(ln(b))
             obs["bts_size"].append(ln(b15) - ln(b) if b and b15 else None)
             obs["bts_jaws"].append(ln(bj))
+            obs["bts_rate"].append((ln(bf) - ln(b)) / math.log(4) if b and bf else None)
         return obs
 
     def mean_se(values):
@@ -222,7 +226,7 @@ def main():
     print(f"D/R {a.size:g}, {a.seeds} seeds, base ({bond0[0]:g}, {bond0[1]:g}), UCS {base_ucs:.2f}; "
           f"particles: " + ", ".join(f"{k} {v}" for k, v in particles.items()))
     print("Signature: change of ln(observable) with the strengths re-fitted to the base UCS and BTS"
-          " (rate: of the slope d ln UCS / d ln speed; bts_size: of ln(BTS 1.5D / BTS)); "
+          " (rate, bts_rate: of the slopes d ln UCS, d ln BTS / d ln speed; bts_size: of ln(BTS 1.5D / BTS)); "
           "in brackets, in standard errors")
     print("| effect | re-fit (fr0, fs0) | " + " | ".join(OBSERVABLES) + " |")
     print("| --- | --- | " + " | ".join("---" for _ in OBSERVABLES) + " |")

@@ -74,10 +74,10 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   // the confirmed fit) and the screen's 3 points per effect at each of its two points and the
   // base's at the second, 3 confirmed candidates x (3 refinement runs + 2 seeds) and the base
   // model at each confirmed effect's strengths; and the next test's base at its fit and two steps
-  // (and at the screen's balanced point) and both effects on the dataset's 4 runs and the menu's 7
-  // more (squat and slender UCT, two discs, three triaxials; the UCT's modulus and peak strain are
-  // read off the dataset's UCT run).
-  constexpr int kNextTest = (2 * 3 + 2) * (4 + 7);
+  // (and at the screen's balanced point) and both effects on the dataset's 4 runs and the menu's 9
+  // more (squat and slender UCT, two discs, a fast UCT and disc, three triaxials; the UCT's modulus
+  // and peak strain are read off the dataset's UCT run).
+  constexpr int kNextTest = (2 * 3 + 2) * (4 + 9);
   constexpr int kScreen = 1 + 2 * 3 * 2;
   EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + kScreen + 3 * 5 + 2) * 4u + kNextTest);
   // The progress model's budget names them by phase.
@@ -430,13 +430,13 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   // the screen's 3 points for each of 10 effects at two points and the base's at the second,
   // every confirmed: 8 x (3 + 2) and the base model at each of the 7 confirmed effects'
   // strengths; the next test's base at its fit and two steps (and at the balanced point) and the
-  // 10 effects on the 7 runs and the menu's 7 more.
+  // 10 effects on the 7 runs and the menu's 8 more (its fast UCT is the dataset's).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
   EXPECT_EQ(planned_jobs(c),
             (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 1 + 2 * 3 * 10 + 8 * 5 + 7) * 7u +
-                (2 * 3 + 10) * (7 + 7));
+                (2 * 3 + 10) * (7 + 8));
 }
 
 TEST(DiagnosisRuns, ARunWithoutAPeakHasNoValueAtAll) {

@@ -55,13 +55,13 @@ class EngineTwinDiagnosis : public ::testing::Test {
 TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   const auto t0 = std::chrono::steady_clock::now();
   // The twin: strong heterogeneity (Weibull modulus 2.5) hidden at seeded bond strengths, made
-  // by the service's "twin" kind: 1 + 7 runs.
+  // by the service's "twin" kind: 1 + 8 runs.
   start();
   const json made = run_to_summary(
       {{"kind", "twin"}, {"effect", "heterogeneity"}, {"value", 2.5}, {"seed", 3}}, 120s);
   ASSERT_TRUE(made.is_object());
   const std::int64_t twin_runs = jobs_run();
-  EXPECT_EQ(twin_runs, 1 + 7);
+  EXPECT_EQ(twin_runs, 1 + 8);
   const Dataset dataset = parse_dataset_json(made["dataset"]);
   EXPECT_EQ(dataset.origin, Origin::same_resolution_model);
   EXPECT_EQ(made["truth"]["effect"], "heterogeneity");
@@ -82,7 +82,7 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   const std::int64_t first_runs = jobs_run() - twin_runs;
 
   // Every observation has its budget, lab uncertainty and base residual from a real run.
-  ASSERT_EQ(s["observations"].size(), 9u);  // the twin design's, uct-peak-strain included
+  ASSERT_EQ(s["observations"].size(), 10u);  // the twin design's, uct-peak-strain included
   for (const json& o : s["observations"]) {
     EXPECT_TRUE(o["budget"].is_number()) << o.dump();
     EXPECT_NEAR(o["lab_uncertainty"].get<double>(), 0.02, 1e-9) << o.dump();

@@ -35,10 +35,11 @@ TEST(TestMenu, HoldsTheTestsTheDatasetDoesNotHave) {
   std::vector<Target> targets = testing::twin_targets();
   for (Target& t : targets) t.value = 30e3;
   const std::vector<MenuTest> menu = test_menu(targets);
-  // The modulus is there; 0.1 x UCS (38 Pa) is within 10% of 40 and 0.3 x UCS (115) of 120.
-  EXPECT_EQ(ids(menu),
-            (std::vector<std::string>{"menu-uct-hd1", "menu-uct-hd3", "menu-uct-peak-strain",
-                                      "menu-btt-t0.5", "menu-btt-t2", "menu-tri-0.6ucs"}));
+  // The modulus is there, and the fast UCT; 0.1 x UCS (38 Pa) is within 10% of 40 and 0.3 x UCS
+  // (115) of 120.
+  EXPECT_EQ(ids(menu), (std::vector<std::string>{
+                           "menu-uct-hd1", "menu-uct-hd3", "menu-uct-peak-strain", "menu-btt-t0.5",
+                           "menu-btt-t2", "menu-btt-fast", "menu-tri-0.6ucs"}));
   const Target& squat = menu[0].target;
   EXPECT_EQ(squat.conditions.test, TestKind::uct);
   EXPECT_EQ(squat.conditions.diameter_m, 10);
@@ -47,13 +48,22 @@ TEST(TestMenu, HoldsTheTestsTheDatasetDoesNotHave) {
   EXPECT_EQ(menu[0].description, "the peak load of a squat UCT (H/D = 1)");
   EXPECT_EQ(menu[3].target.conditions.thickness_m, 2.5);  // half the disc's 5
   EXPECT_EQ(menu[3].target.conditions.diameter_m, 10);
-  EXPECT_NEAR(menu[5].target.conditions.confining_pressure_pa, 0.6 * 30e3 / (M_PI * 25), 1e-9);
-  EXPECT_EQ(menu[5].target.observable, Observable::peak_load);
+  EXPECT_EQ(menu[5].target.conditions.platen_velocity_m_s, 0.2);  // the disc at 4x its speed
+  EXPECT_NEAR(menu[6].target.conditions.confining_pressure_pa, 0.6 * 30e3 / (M_PI * 25), 1e-9);
+  EXPECT_EQ(menu[6].target.observable, Observable::peak_load);
   // Without a UCT there is no UCS to scale a confinement to: no triaxial on the menu.
   std::vector<Target> discs{targets[2]};
-  EXPECT_EQ(ids(test_menu(discs)),
+  const std::vector<MenuTest> disc_menu = test_menu(discs);
+  EXPECT_EQ(ids(disc_menu),
             (std::vector<std::string>{"menu-uct-hd1", "menu-uct-hd3", "menu-uct-modulus",
-                                      "menu-uct-peak-strain", "menu-btt-t0.5", "menu-btt-t2"}));
+                                      "menu-uct-peak-strain", "menu-btt-t0.5", "menu-btt-t2",
+                                      "menu-uct-fast", "menu-btt-fast"}));
+  // The fast disc is the dataset's disc at 4x its platen speed.
+  const MenuTest& fast = disc_menu.back();
+  EXPECT_EQ(fast.target.conditions.test, TestKind::btt);
+  EXPECT_EQ(fast.target.conditions.thickness_m, 5);
+  EXPECT_EQ(fast.target.conditions.platen_velocity_m_s, 0.2);
+  EXPECT_EQ(fast.description, "the peak load of a disc at 4 x the platen speed");
 }
 
 TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
@@ -227,8 +237,11 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         // A calibration on the UCT and BTT peaks alone (as the seed lab's): the strengths absorb
         // every mark there.
-        HiddenTwin{"interaction_range", {"uct-modulus", "tri-low"}, "menu-uct-modulus"},
-        HiddenTwin{"compression_coupling", {"uct-modulus", "tri-low"}, "menu-tri-0.1ucs"}),
+        HiddenTwin{"interaction_range", {"uct-modulus", "tri-low", "btt-fast"}, "menu-uct-modulus"},
+        HiddenTwin{
+            "compression_coupling", {"uct-modulus", "tri-low", "btt-fast"}, "menu-tri-0.1ucs"},
+        // Without the fast disc, rate moves only the fast UCT, which is held out.
+        HiddenTwin{"rate", {"btt-fast"}, "menu-btt-fast"}),
     [](const auto& info) { return std::string(info.param.effect); });
 
 // With nothing held out (as in the seed lab's case: the UCT and BTT peaks, here with the UCT's

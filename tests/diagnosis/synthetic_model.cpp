@@ -45,8 +45,10 @@ std::string mark_of(const Target& t) {
       // Measured at 0.1 and 0.3 of the UCS: a confinement carries the nearer one's.
       return c.confining_pressure_pa < 0.5 * (kP1 + kP2) ? "tri-low" : "tri-high";
     case TestKind::btt:
-      // A larger disc was measured; a thinner or thicker one of the design's diameter splits like
-      // it (the disc's stress field is plane), so the re-fit absorbs whatever it moves.
+      // A larger disc was measured, and a faster one; a thinner or thicker one of the design's
+      // diameter splits like it (the disc's stress field is plane), so the re-fit absorbs whatever
+      // it moves.
+      if (c.platen_velocity_m_s > kV) return "btt-fast";
       return c.diameter_m > kD ? "btt-large" : "";
     default:
       break;
@@ -88,8 +90,8 @@ Marks measured_marks() {
   // design's two-rate loading, D/R 20, 3 seeds, base (64, 128) N, each effect at its strong value,
   // one Newton step of the strengths; the cells at 2 standard errors of the seeds' scatter or more
   // that also exceed the step's own uncertainty (the re-fit follows the discs' scatter: 0.5 in ln
-  // on the UCT's modulus). The rate column is the change of d ln UCS / d ln speed: at the
-  // design's 4x speed, x ln 4.
+  // on the UCT's modulus). The rate columns are the changes of d ln UCS and d ln BTS / d ln speed:
+  // at the design's 4x speed, x ln 4.
   const double ln4 = std::log(4.0);
   return {
       // The one-step re-fit misses a random packing's UCS by -2.5 in ln on this loading, so its
@@ -100,8 +102,8 @@ Marks measured_marks() {
         {"tri-high", -1.143},
         {"uct-fast", 0.147 * ln4},
         {"uct-peak-strain", 0.733}}},
-      // The slow late phase takes most of the inertial gain: only the fast UCT still shows it.
-      {"rate", {{"uct-fast", 0.144 * ln4}}},
+      // The slow late phase takes most of the inertial gain: only the fast tests still show it.
+      {"rate", {{"uct-fast", 0.144 * ln4}, {"btt-fast", 0.253 * ln4}}},
       {"compression_coupling",
        {{"uct-squat", -0.646},
         {"tri-low", -0.871},
@@ -112,6 +114,7 @@ Marks measured_marks() {
         {"uct-modulus", 1.009},
         {"tri-low", 0.321},
         {"tri-high", 0.499},
+        {"btt-fast", 0.119 * ln4},
         {"uct-peak-strain", -0.690}}},
       // Inside the step's uncertainty (heterogeneity 2, flaws 0.15: the UCT's modulus +0.14 and
       // +0.15, as the flats', which cannot change a UCT: the re-fit's scatter), below 2 standard
@@ -261,13 +264,15 @@ DiagnosisCampaign registry_twin_campaign(const std::string& effect, double s, do
   DiagnosisCampaign c;
   c.name = "measured-mark twin: " + (effect.empty() ? std::string("none") : effect);
   // The real twin design's observations (twin_design.hpp): the UCT at H/D = 1 instead of the
-  // formula design's 1.5x cylinder, and the peak strain.
+  // formula design's 1.5x cylinder, the fast disc and the peak strain.
   c.targets = twin_targets();
   for (Target& t : c.targets) {
     if (t.id != "uct-large") continue;
     t = target("uct-squat", TestKind::uct, Observable::peak_load, Role::held_out, kD, 0, kV);
     t.conditions.height_m = kD;
   }
+  c.targets.push_back(
+      target("btt-fast", TestKind::btt, Observable::peak_load, Role::calibration, kD, 0, 4 * kV));
   c.targets.push_back(
       target("uct-peak-strain", TestKind::uct, Observable::peak_strain, Role::held_out, kD, 0, kV));
   c.candidates = registry_candidates(JobSpec{});

@@ -70,10 +70,10 @@ TEST(DiagnosisTwin, DesignFollowsTheTemplate) {
   EXPECT_DOUBLE_EQ(round_to_two_digits(48.55), 49);
   EXPECT_DOUBLE_EQ(round_to_two_digits(0.014563), 0.015);
 
-  ASSERT_EQ(d.observations.size(), 9u);
+  ASSERT_EQ(d.observations.size(), 10u);
   const auto& o = d.observations;
   const auto role = [&](const std::string& id) { return find(o, id).role; };
-  for (const char* id : {"uct-peak", "uct-modulus", "btt-peak", "tri-low"})
+  for (const char* id : {"uct-peak", "uct-modulus", "btt-peak", "tri-low", "btt-fast"})
     EXPECT_EQ(role(id), Role::calibration) << id;
   for (const char* id : {"tri-high", "uct-squat", "btt-large", "uct-fast", "uct-peak-strain"})
     EXPECT_EQ(role(id), Role::held_out) << id;
@@ -86,6 +86,8 @@ TEST(DiagnosisTwin, DesignFollowsTheTemplate) {
   EXPECT_EQ(*find(o, "btt-peak").conditions.thickness_m, 3);
   EXPECT_EQ(*find(o, "btt-large").conditions.thickness_m, 4.5);
   EXPECT_EQ(*find(o, "uct-fast").conditions.loading_rate_m_s, 0.2);
+  EXPECT_EQ(*find(o, "btt-fast").conditions.loading_rate_m_s, 0.2);  // the disc of btt-peak
+  EXPECT_EQ(*find(o, "btt-fast").conditions.thickness_m, 3);
 
   // A template's own bond strengths are the reference (and the centre of the truth draw).
   t["bond"] = {{"fr0", 100}, {"fs0", 50}};
@@ -202,9 +204,9 @@ TEST(DiagnosisTwin, TruthAndNoiseComeFromTheSeed) {
   const Twin other = make_twin(d, {"heterogeneity", 3, 12, 0.05}, formula_engine());
   EXPECT_NE(a.truth["fr0"], other.truth["fr0"]);
 
-  // The UCT's peak, modulus and peak strain share a run: 7 distinct jobs, each with the hidden
+  // The UCT's peak, modulus and peak strain share a run: 8 distinct jobs, each with the hidden
   // effect, drawn with the twin's own seed (not the model's 1 or the budget's 2 and 3).
-  EXPECT_EQ(jobs.size(), 7u);
+  EXPECT_EQ(jobs.size(), 8u);
   for (const json& job : jobs) {
     EXPECT_EQ(job["effects"]["heterogeneity"]["weibull_m"], 3.0);
     EXPECT_EQ(job["bond"]["fr0"], a.truth["fr0"]);
@@ -326,12 +328,12 @@ TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
   const json made = make(request);
   ASSERT_TRUE(made.is_object());
   EXPECT_GT(made["design"]["p_low"].get<double>(), 0);
-  EXPECT_EQ(runs(), 1 + 7);
+  EXPECT_EQ(runs(), 1 + 8);
   // Its progress model planned those jobs before any ran (the design laid out without running).
-  EXPECT_EQ(made["progress"], json::parse(R"({"unit": "jobs", "done": 8, "budget": 8,
-    "parts": [{"name": "design", "budget": 1}, {"name": "observations", "budget": 7}],
+  EXPECT_EQ(made["progress"], json::parse(R"({"unit": "jobs", "done": 9, "budget": 9,
+    "parts": [{"name": "design", "budget": 1}, {"name": "observations", "budget": 8}],
     "left": 0, "fraction": 1.0, "eta_seconds": 0.0})"));
-  EXPECT_EQ(made["truth"]["jobs"].size(), 7u);
+  EXPECT_EQ(made["truth"]["jobs"].size(), 8u);
   const Dataset parsed = parse_dataset_json(made["dataset"]);
   EXPECT_EQ(to_json(parse_dataset_csv(to_csv(parsed))), to_json(parsed));
   int calibration = 0, held_out = 0;
@@ -339,11 +341,11 @@ TEST_F(DiagnosisTwinEngine, NoneOnATinySampleIsAParseableDeterministicDataset) {
     (o.role == Role::calibration ? calibration : held_out)++;
     EXPECT_GT(o.value, 0) << o.id;
   }
-  EXPECT_EQ(calibration, 4);
-  EXPECT_EQ(held_out, 5);  // uct-peak-strain shares the base UCT run: still 1 + 7 runs
+  EXPECT_EQ(calibration, 5);
+  EXPECT_EQ(held_out, 5);  // uct-peak-strain shares the base UCT run: still 1 + 8 runs
   // The same seed again: the job store answers every run, and the noise is the seed's.
   const json again = make(request);
-  EXPECT_EQ(runs(), 1 + 7);
+  EXPECT_EQ(runs(), 1 + 8);
   EXPECT_EQ(again["dataset"], made["dataset"]);
   EXPECT_EQ(again["truth"]["observations"], made["truth"]["observations"]);
   // A confined specimen carries more load; the squat UCT ran on a cylinder as high as it is wide.
@@ -367,7 +369,7 @@ TEST_F(DiagnosisTwinEngine, CommandWritesTheDatasetAndItsTruth) {
                               " > " + (work_ / "stdout").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << std::ifstream(work_ / "stdout").rdbuf();
   const Dataset d = read_dataset_file(out);
-  EXPECT_EQ(d.observations.size(), 9u);
+  EXPECT_EQ(d.observations.size(), 10u);
   // The engine's strain at the UCT's peak: a few per cent on a bonded packing, within max_strain.
   const Observation& strain = find(d.observations, "uct-peak-strain");
   EXPECT_GT(strain.value, 1e-3);

@@ -92,6 +92,16 @@ std::vector<MenuTest> test_menu(const std::vector<Target>& targets) {
     add(text("btt-t%g", f), Observable::peak_load, c,
         text("the peak load of a disc of %g x the thickness", f));
   }
+  // At 4x the platen speed: a model loaded too fast gains strength with speed that the lab's rock
+  // (nearly rate-independent at these speeds) does not, and the disc shows it most.
+  for (RunConditions c : {cylinder, disc}) {
+    c.platen_velocity_m_s *= kMenuSpeedFactor;
+    const bool uct = c.test == TestKind::uct;
+    add(uct ? "uct-fast" : "btt-fast", Observable::peak_load, c,
+        text(uct ? "the peak load of a UCT at %g x the platen speed"
+                 : "the peak load of a disc at %g x the platen speed",
+             kMenuSpeedFactor));
+  }
   const std::optional<double> ucs = ucs_of(targets);
   if (!ucs) return menu;
   const Target* triaxial =

@@ -1,7 +1,8 @@
 // The lab tests a diagnosis may propose next: conditions a dataset observation can have, derived
 // from the dataset's own specimen, that the dataset does not already have. A squat (H/D = 1) and a
 // slender (H/D = 3) UCT, the UCT's Young's modulus and peak strain, a disc of half and of double
-// thickness, and triaxial tests at 0.1, 0.3 and 0.6 of the dataset's UCS.
+// thickness, the UCT and the disc at 4x the platen speed, and triaxial tests at 0.1, 0.3 and 0.6
+// of the dataset's UCS.
 #pragma once
 
 #include <string>
@@ -15,6 +16,9 @@ struct MenuTest {
   Target target;            // id "menu-...", role held_out, value 0 (not measured), model units
   std::string description;  // "a squat UCT (H/D = 1)"
 };
+
+// The platen speed of the menu's fast tests, as a multiple of the specimen's.
+inline constexpr double kMenuSpeedFactor = 4.0;
 
 // The confinements of the menu's triaxial tests, as fractions of the dataset's UCS.
 inline constexpr double kMenuConfinements[] = {0.1, 0.3, 0.6};

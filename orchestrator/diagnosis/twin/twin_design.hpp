@@ -43,7 +43,7 @@ JobSpec check_twin_template(const nlohmann::json& job_template);
 // Checks the template (check_twin_template), runs its base UCT once through `run` for the UCS, and
 // lays out the design:
 //   calibration: UCT peak load and Young's modulus (D, H); BTT peak load (D, t); triaxial peak
-//                load at p_low (D, H)
+//                load at p_low (D, H); BTT at 4x the platen speed (D, t)
 //   held out:    triaxial at p_high (D, H); UCT at H/D = 1 (D, D); BTT at 1.5 D x 1.5 t; UCT at
 //                4x the platen speed; the UCT's peak strain (D, H; the base UCT's run)
 // Throws orch::RequestError naming "job..." for a bad template.
