@@ -198,9 +198,10 @@ TEST_P(EffectAtTheDetectionLimit, IsNamedFirst) {
 }
 
 // The effects whose measured mark reaches a calibration and a held-out observation
-// (candidate_twin_test.cpp); rate's shows on the fast UCT only, held out.
+// (candidate_twin_test.cpp): rate's through the fast disc (calibration) and the fast UCT.
 INSTANTIATE_TEST_SUITE_P(MeasuredMarks, EffectAtTheDetectionLimit,
-                         ::testing::Values("packing", "compression_coupling", "interaction_range"),
+                         ::testing::Values("packing", "compression_coupling", "interaction_range",
+                                           "rate"),
                          [](const auto& info) { return std::string(info.param); });
 
 }  // namespace
