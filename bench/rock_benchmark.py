@@ -43,7 +43,8 @@ def lab_values(row):
     number = lambda key: float(row[key]) if row[key] else None
     return {"ucs_mpa": number("ucs_mpa"), "bts_mpa": number("bts_mpa"),
             "youngs_modulus_gpa": number("youngs_modulus_gpa"),
-            "poisson_ratio": number("poisson_ratio")}
+            "poisson_ratio": number("poisson_ratio"),
+            "nu_from_source": row["nu_from_source"] == "yes"}
 
 
 def close(a, b, rel=1e-3):
@@ -78,7 +79,9 @@ def disagreement(row, request):
         ("targets.lab.material.nu", material["nu"], number("poisson_ratio")),
         ("targets.youngs_modulus", request["targets"].get("youngs_modulus"),
          number("youngs_modulus_gpa", 1e9)),
-        ("targets.poisson_ratio", request["targets"].get("poisson_ratio"), number("poisson_ratio")),
+        # A nu the source does not give stands in for the material only: it is no target.
+        ("targets.poisson_ratio", request["targets"].get("poisson_ratio"),
+         number("poisson_ratio") if row["nu_from_source"] == "yes" else None),
         ("job.material.nu", request["job"]["material"]["nu"], number("poisson_ratio")),
         ("targets.lab.material.density", material["density"], number("density_kg_m3")),
         ("targets.lab.specimen.diameter", specimen["diameter"], number("core_diameter_mm", 1e-3)),
@@ -176,15 +179,18 @@ def table(rows):
     lines = [head, "|" + " --- |" * 12]
     for r in rows:
         lab = r["lab"]
+        nu_given = lab.get("nu_from_source", True)
         cells = [r["rock"], "%g / %g" % (lab["ucs_mpa"], lab["bts_mpa"]),
-                 "%g / %g" % (lab["youngs_modulus_gpa"], lab["poisson_ratio"])]
+                 "%g / %g%s" % (lab["youngs_modulus_gpa"], lab["poisson_ratio"],
+                                "" if nu_given else " (assumed, no target)")]
         if "estimate" in r:
             strength = lambda s, e: "%.4g (%s) [%.4g, %.4g]" % (
                 s["value"] / 1e6, pct(e), s["interval"][0] / 1e6, s["interval"][1] / 1e6)
             interval = lambda est, iv: "%.3g [%.3g, %.3g]" % (est, iv[0], iv[1])
             cells += [strength(r["ucs_pa"], r["ucs_error"]), strength(r["bts_pa"], r["bts_error"]),
                       measured_cell(r["youngs_modulus_pa"], 1e-9, "%.3g", lab["youngs_modulus_gpa"], True),
-                      measured_cell(r["poisson_ratio"], 1, "%.2f", lab["poisson_ratio"], False),
+                      measured_cell(r["poisson_ratio"], 1, "%.2f",
+                                    lab["poisson_ratio"] if nu_given else None, False),
                       interval(r["estimate"]["fr0"], r["fr0"]), interval(r["estimate"]["fs0"], r["fs0"])]
         else:
             cells += ["no posterior"] + [""] * 5
