@@ -111,8 +111,7 @@ TwinDesign make_twin_design(const json& job_template, const RunJobs& run) {
   squat.height_m = D;
   large_disc.diameter_m = 1.5 * D;
   large_disc.thickness_m = 1.5 * t;
-  fast.loading_rate_m_s = 4 * v;
-  fast_disc.loading_rate_m_s = 4 * v;
+  fast.loading_rate_m_s = fast_disc.loading_rate_m_s = kFastSpeedFactor * v;
   using enum Observable;
   using enum Role;
   d.observations = {base,

@@ -16,6 +16,8 @@ namespace rockcal::diagnosis {
 // The confining pressures as fractions of the template's UCS at its default bond strengths.
 inline constexpr double kLowConfinement = 0.1;
 inline constexpr double kHighConfinement = 0.3;
+// The platen speed of the fast UCT and the fast disc, as a multiple of the template's.
+inline constexpr double kFastSpeedFactor = 4.0;
 
 struct TwinDesign {
   nlohmann::json job_template;  // as given (no "test", no "effects"; "bond" optional)
