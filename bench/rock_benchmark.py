@@ -138,7 +138,7 @@ def row_of(rock, lab, request, summary, wall_seconds):
             "youngs_modulus_pa": props.get("youngs_modulus_pa"),
             "poisson_ratio": props.get("poisson_ratio"),
             "estimate": post["estimate"], "fr0": post["fr0"], "fs0": post["fs0"],
-            "unique": post["unique"]})
+            "unique": post["unique"], "acceptance": post.get("acceptance")})
     return row
 
 
@@ -195,6 +195,10 @@ def table(rows):
         else:
             cells += ["no posterior"] + [""] * 5
         verdict = r.get("verdict") or "none"
+        accepted = r.get("acceptance") or {}
+        if verdict == "feasible" and accepted.get("source") == "lab_uncertainty":
+            verdict += " within the lab's uncertainty (UCS %.0f%%, BTS %.0f%%)" % (
+                100 * accepted["uct"], 100 * accepted["btt"])
         if r.get("max_evaluations"):
             verdict += " (budget %d)" % r["max_evaluations"]
         cells += [verdict, "%s (%s of %s)" % (r.get("runs"), r.get("quasi_static_runs"),

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "orchestrator/calibration/bayes/check.hpp"
+#include "orchestrator/calibration/bayes/verdict.hpp"
 #include "orchestrator/calibration/objective.hpp"
 #include "orchestrator/calibration/report.hpp"
 #include "orchestrator/calibration/rock_properties.hpp"
@@ -234,6 +235,12 @@ json realisations_so_far(const std::vector<EvaluationRecord>& history,
   return history.back().uct->realisations.size();
 }
 
+// The relative error each load may keep and count as met (bayes/verdict.hpp).
+json acceptance_json(const CalibrationCampaign& c) {
+  const Acceptance a = acceptance(c);
+  return {{"uct", a.uct}, {"btt", a.btt}, {"source", a.widened ? "lab_uncertainty" : "tolerance"}};
+}
+
 json predicted_json(const PredictedLoad& l, const CalibrationCampaign& c) {
   json j = {{"target", l.target_n},
             {"mean", l.mean_n},
@@ -307,6 +314,7 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
        {{"uct", p->uct.lab_sd},
         {"btt", p->btt.lab_sd},
         {"source", p->lab_stated ? "request" : "default"}}},
+      {"acceptance", acceptance_json(c)},
       {"discrepancy", p->discrepancy},
       {"unique_width", p->unique_width},
       {"unique", p->unique},

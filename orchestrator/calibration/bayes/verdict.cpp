@@ -1,6 +1,8 @@
 #include "orchestrator/calibration/bayes/verdict.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "orchestrator/calibration/bayes/box.hpp"
@@ -26,13 +28,14 @@ std::string region_text(const PosteriorSummary& p) {
 }
 
 // The loads whose check runs fall outside what the prediction allows, as "UCT -20.1% (z -3.1)":
-// those whose check mean misses the target beyond the tolerance (`missing` true), which the
+// those whose check mean misses the target beyond its acceptance (`missing` true), which the
 // prediction alone cannot call met, or those whose check mean meets it all the same.
-std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool missing) {
+std::string disagreeing_checks(const PosteriorSummary& p, const Acceptance& a, bool missing) {
   std::string out;
-  for (const auto& [name, load] : {std::pair{"UCT", &p.uct}, std::pair{"BTT", &p.btt}}) {
+  for (const auto& [name, load, band] :
+       {std::tuple{"UCT", &p.uct, a.uct}, std::tuple{"BTT", &p.btt, a.btt}}) {
     if (!load->check || load->check->agrees) continue;
-    if ((std::abs(load->check->relative_to_target) > tolerance) != missing) continue;
+    if ((std::abs(load->check->relative_to_target) > band) != missing) continue;
     out +=
         (out.empty() ? "" : ", ") + std::string(name) +
         sentence(" %+.3g%% (z %+.2g)", 100 * load->check->relative_to_prediction, load->check->z) +
@@ -40,6 +43,30 @@ std::string disagreeing_checks(const PosteriorSummary& p, double tolerance, bool
              ? ""
              : sentence(", itself %+.3g%% of the target", 100 * load->check->relative_to_target));
   }
+  return out;
+}
+
+// How the met targets were met: within the tolerance, or only within the lab's stated
+// uncertainty (with the ratio the runs could not reach, when that is why).
+std::string met_text(const PosteriorSummary& p, const CalibrationCampaign& c, const Acceptance& a,
+                     const std::optional<RatioRange>& ratio) {
+  const bool in_tolerance = std::abs(p.uct.relative_error) <= c.tolerance &&
+                            std::abs(p.btt.relative_error) <= c.tolerance;
+  if (in_tolerance)
+    return sentence("the predicted loads at the estimate are within %.3g%% of both targets (",
+                    100 * c.tolerance) +
+           loads_text(p, c) + ")";
+  std::string out =
+      "the predicted loads at the estimate lie within the lab's stated uncertainty of both "
+      "targets (" +
+      loads_text(p, c) + sentence("; accepted: UCT %.3g%%, BTT %.3g%%", 100 * a.uct, 100 * a.btt) +
+      sentence("), not within the %.3g%% tolerance of the lab's means", 100 * c.tolerance);
+  if (ratio && !ratio->target_inside())
+    out += sentence(
+        ": the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] the runs "
+        "reached, "
+        "so the model meets this rock only within the scatter its lab states",
+        ratio->target, ratio->min, ratio->max);
   return out;
 }
 
@@ -94,6 +121,15 @@ std::string bound_pressed(const PosteriorSummary& p) {
 
 }  // namespace
 
+Acceptance acceptance(const CalibrationCampaign& c) {
+  Acceptance a{c.tolerance, c.tolerance, false};
+  if (!c.inference.lab_stated) return a;
+  a.widened = c.inference.lab_uct > c.tolerance || c.inference.lab_btt > c.tolerance;
+  a.uct = std::max(a.uct, c.inference.lab_uct);
+  a.btt = std::max(a.btt, c.inference.lab_btt);
+  return a;
+}
+
 void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   r.consistent = {};
   if (!r.posterior) {
@@ -108,8 +144,9 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   r.consistent.why = p.why;
   r.consistent.fr0 = p.fr0;
   r.consistent.fs0 = p.fs0;
-  const bool met = std::abs(p.uct.relative_error) <= c.tolerance &&
-                   std::abs(p.btt.relative_error) <= c.tolerance;
+  const Acceptance accepted = acceptance(c);
+  const bool met = std::abs(p.uct.relative_error) <= accepted.uct &&
+                   std::abs(p.btt.relative_error) <= accepted.btt;
   std::string runs = sentence(" (%.0f runs at %.0f points)", p.runs, p.points);
   if (p.resolution == "fine") {
     runs = sentence(" (the fine specimen: %.0f fine runs at %.0f points", p.runs, p.points) +
@@ -123,8 +160,8 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
        {no_peak_text(r.history), not_quasi_static_text(r.history, platen_velocity_of(c))}) {
     if (!f.empty()) faults += "; " + f;
   }
-  const std::string disagree = disagreeing_checks(p, c.tolerance, true);
-  const std::string differ = disagreeing_checks(p, c.tolerance, false);
+  const std::string disagree = disagreeing_checks(p, accepted, true);
+  const std::string differ = disagreeing_checks(p, accepted, false);
   const std::string failed_check = failed_check_text(p);
   if (met && !failed_check.empty()) {
     // The prediction meets the targets where the real specimen gives no result.
@@ -154,9 +191,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   if (met) {
     r.verdict = Verdict::feasible;
     r.verdict_reason =
-        sentence("the predicted loads at the estimate are within %.3g%% of both targets (",
-                 100 * c.tolerance) +
-        loads_text(p, c) + ")" + runs + "; " + region_text(p) +
+        met_text(p, c, accepted, r.ratio) + runs + "; " + region_text(p) +
         (p.unique ? "; the strengths are unique: " : "; NOT unique: ") + p.why +
         (differ.empty()
              ? ""
@@ -212,8 +247,9 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   } else {
     r.verdict_reason = miss +
                        ", though the emulators know the region well: the model cannot "
-                       "meet both loads within the tolerance there" +
-                       wide;
+                       "meet both loads within " +
+                       (accepted.widened ? "the lab's stated uncertainty" : "the tolerance") +
+                       " there" + wide;
   }
   r.verdict_reason +=
       runs + "; " + region_text(p) + (failed_check.empty() ? "" : "; " + failed_check) + faults;
