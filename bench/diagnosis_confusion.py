@@ -38,6 +38,7 @@ lattice of the template, docs/diagnosis.md).
 """
 import argparse
 import json
+import math
 import os
 import signal
 import statistics
@@ -210,6 +211,7 @@ def main():
                     "resolution": a.resolution,
                     "verdict": found, "parameter": (v.get("parameter") or {}).get("value"),
                     "gap_closure": v.get("gap_closure"), "gap": v.get("gap"),
+                    "gap_closure_beyond_noise": closure_beyond_noise(s),
                     # The best contender's evidence (nats over the base), named or not.
                     "evidence": v.get("evidence"), "undetermined": v.get("undetermined"),
                     "confidence": (v.get("confidence") or {}).get("level"),
@@ -267,6 +269,33 @@ def detection_limits(eff):
     return lines
 
 
+def held_out_budgets(candidate):
+    """A candidate's held-out rms in noise units from its evidence terms (charged residual over the
+    variance each was judged with), as the report's held-out gap counts it; None without terms."""
+    terms = ((candidate or {}).get("evidence") or {}).get("terms") or []
+    if not terms:
+        return None
+    return math.sqrt(sum(t["charged"] ** 2 / t["variance"] for t in terms) / len(terms))
+
+
+def closure_beyond_noise(summary):
+    """The named effect's share of the held-out gap beyond noise: the report's
+    verdict.gap_closure_beyond_noise, or (a summary from before that field) the same formula,
+    1 - sqrt(max(b_effect^2 - 1, 0)) / sqrt(b_base^2 - 1), on the candidates' evidence terms."""
+    v = summary.get("verdict") or {}
+    if "gap_closure_beyond_noise" in v:
+        return v["gap_closure_beyond_noise"]
+    if not v.get("effect"):
+        return None
+    cands = summary.get("candidates") or []
+    base = next((c for c in cands if c.get("effect") is None), None)
+    mine = next((c for c in cands if c.get("effect") == v["effect"]), None)
+    b_base, b_eff = held_out_budgets(base), held_out_budgets(mine)
+    if b_base is None or b_eff is None or b_base <= 1:
+        return None
+    return 1 - math.sqrt(max(b_eff ** 2 - 1, 0)) / math.sqrt(b_base ** 2 - 1)
+
+
 def write_matrix(rows, work, wall):
     failed = [r for r in rows if "twin_error" in r]
     rows = [r for r in rows if "twin_error" not in r]
@@ -281,6 +310,8 @@ def write_matrix(rows, work, wall):
     null = [r for r in rows if r["hidden"] == "none"]
     hits = [r for r in eff if r["verdict"] == r["hidden"]]
     g = [r["gap_closure"] for r in hits if r["gap_closure"] is not None]
+    g_noise = [r.get("gap_closure_beyond_noise") for r in hits]
+    g_noise = [x for x in g_noise if x is not None]
     g_all = [r["candidates_g"].get(r["hidden"]) for r in eff]
     g_all = [x for x in g_all if x is not None]
     over = [r for r in eff if (r["base_gap"] or {}).get("exceeds_budget")]
@@ -293,6 +324,8 @@ def write_matrix(rows, work, wall):
               f"- null false positives: {sum(1 for r in null if r['verdict'] != 'none')} of {len(null)}",
               f"- median held-out gap closure of the correct verdicts: "
               + (f"{statistics.median(g):.2f}" if g else "n/a (none)"),
+              f"- median gap closure beyond noise of the correct verdicts: "
+              + (f"{statistics.median(g_noise):.2f} over {len(g_noise)}" if g_noise else "n/a"),
               f"- median G of the hidden effect's own candidate (verdict or not): "
               + (f"{statistics.median(g_all):.2f}" if g_all else "n/a"),
               f"- time: {sum(r['twin_seconds'] + r['diagnosis_seconds'] for r in rows) / 3600:.2f} h "

@@ -102,6 +102,25 @@ TEST_P(RegisteredEffectTwin, IsNamedOnlyWhenItsMarkIsResolved) {
     EXPECT_FALSE(parameter.contains("same_model")) << v.dump(2);
   }
   EXPECT_GE(v["gap_closure"].get<double>(), 0.6);
+  // Beyond noise the gap closes at least as far as the raw rms says (the noise is no gap), and
+  // it is what the candidates' evidence terms give (bench/diagnosis_confusion.py reads older
+  // summaries so): each held-out rms in noise units from charged^2 / variance.
+  const double closed = v["gap_closure_beyond_noise"].get<double>();
+  EXPECT_GE(closed, v["gap_closure"].get<double>());
+  auto in_noise = [&](const json& effect) -> double {
+    for (const json& c : summary["candidates"]) {
+      if (c["effect"] != effect) continue;
+      double sum = 0;
+      for (const json& t : c["evidence"]["terms"])
+        sum += std::pow(t["charged"].get<double>(), 2) / t["variance"].get<double>();
+      return std::sqrt(sum / c["evidence"]["terms"].size());
+    }
+    return NAN;
+  };
+  const double base = in_noise(nullptr), mine = in_noise(v["effect"]);
+  EXPECT_NEAR(base, summary["gap"]["held_out_budgets"].get<double>(), 1e-9);
+  EXPECT_NEAR(closed, 1 - std::sqrt(std::max(mine * mine - 1, 0.0)) / std::sqrt(base * base - 1),
+              1e-9);
   EXPECT_TRUE(summary["gap"]["exceeds_budget"].get<bool>());
   EXPECT_NEAR(std::log(v["fr0"].get<double>() / 60), 0, 0.25);
   EXPECT_NEAR(std::log(v["fs0"].get<double>() / 120), 0, 0.25);

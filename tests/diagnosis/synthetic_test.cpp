@@ -618,6 +618,20 @@ TEST(Verdict, AGapInAPreciseObservationIsNotHiddenByANoisyOne) {
   EXPECT_FALSE(rms_in_budgets({0.0, nan, nan}, targets, budget, Role::held_out));
 }
 
+// The gap beyond noise: pure noise has a mean square of 1 in budgets, so an effect that leaves the
+// held-out residuals at 1.1 budgets from a base at 1.95 closes 1 - sqrt(0.21) / sqrt(2.8025) =
+// 0.7263 of the gap beyond noise, where the raw rms ratio says 1 - 1.1 / 1.95 = 0.436.
+TEST(Verdict, TheGapClosureBeyondNoiseCountsOnlyTheMeanSquareAboveOne) {
+  EXPECT_NEAR(*gap_closure_beyond_noise(1.1, 1.95), 1 - std::sqrt(0.21) / std::sqrt(2.8025), 1e-12);
+  EXPECT_NEAR(*gap_closure_beyond_noise(1.1, 1.95), 0.7263, 1e-4);
+  EXPECT_DOUBLE_EQ(*gap_closure_beyond_noise(0.8, 1.95), 1.0);  // within noise: all of it
+  EXPECT_DOUBLE_EQ(*gap_closure_beyond_noise(1.95, 1.95), 0.0);
+  EXPECT_LT(*gap_closure_beyond_noise(2.5, 1.95), 0.0);  // further from the data than the base
+  EXPECT_FALSE(gap_closure_beyond_noise(0.5, 0.9));      // no gap beyond noise to close
+  EXPECT_FALSE(gap_closure_beyond_noise(std::nullopt, 1.95));
+  EXPECT_FALSE(gap_closure_beyond_noise(1.1, std::nullopt));
+}
+
 // A regular packing does not depend on the packing seed: its replicate seeds re-run the nominal
 // runs exactly, so they repeat the verdict instead of testing it and must not count as agreement.
 struct SeedlessModel : SyntheticModel {

@@ -103,4 +103,11 @@ std::optional<double> gap_closure(std::optional<double> rms_effect,
   return 1.0 - *rms_effect / *rms_base;
 }
 
+std::optional<double> gap_closure_beyond_noise(std::optional<double> effect_budgets,
+                                               std::optional<double> base_budgets) {
+  if (!effect_budgets || !base_budgets || !(*base_budgets > 1.0)) return std::nullopt;
+  const double left = std::sqrt(std::max(*effect_budgets * *effect_budgets - 1.0, 0.0));
+  return 1.0 - left / std::sqrt(*base_budgets * *base_budgets - 1.0);
+}
+
 }  // namespace rockcal::diagnosis

@@ -58,4 +58,14 @@ std::optional<double> rms_in_budgets(const std::vector<double>& residuals,
 // has no gap at all.
 std::optional<double> gap_closure(std::optional<double> rms_effect, std::optional<double> rms_base);
 
+// The share of the held-out gap beyond noise that an effect closes, from the two models' held-out
+// rms in noise units (rms_in_budgets, the fit's spread included): pure noise has a mean square of
+// 1 there, so the gap is the mean square beyond it, and
+//   G_noise = 1 - sqrt(max(b_effect^2 - 1, 0)) / sqrt(b_base^2 - 1).
+// G above counts the noise as gap: an effect that leaves only noise behind closes 1 - 1/b_base of
+// it (0.49 at a 1.95-budget gap), G_noise all of it. nullopt when either is missing or the base's
+// held-out residuals lie within their noise (no gap beyond it to close).
+std::optional<double> gap_closure_beyond_noise(std::optional<double> effect_budgets,
+                                               std::optional<double> base_budgets);
+
 }  // namespace rockcal::diagnosis

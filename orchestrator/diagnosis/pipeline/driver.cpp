@@ -577,6 +577,9 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
                        held_out_fit_variance(report.candidates[chosen_effect], c.targets, judged),
                        c.decision.gap_budgets);
   temper_verdict(c.decision, evidence, report.verdict, conf);
+  if (report.verdict.candidate >= 0)
+    report.gap_closure_beyond_noise =
+        gap_closure_beyond_noise(evidence.verdict.held_out, evidence.base.held_out);
   // Without held-out residuals there is nothing to judge; say what stopped the runs.
   if (evidence.held_out_observations > 0 && !evidence.base_has_held_out &&
       !report.first_error.empty()) {

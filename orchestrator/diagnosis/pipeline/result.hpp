@@ -48,6 +48,9 @@ struct DiagnosisResult {
   // The base model's held-out residuals (real runs) in budgets: rms_in_budgets, what the verdict
   // calls a gap above the campaign's decision.gap_budgets.
   std::optional<double> held_out_budgets;
+  // The named effect's share of that gap beyond noise (gap_closure_beyond_noise, its real runs);
+  // nullopt when no effect is named or the base has no gap beyond noise.
+  std::optional<double> gap_closure_beyond_noise;
   ScreenResult screen;
   // [0] = the base, then the effects the screen kept, in request order.
   std::vector<CandidateResult> candidates;

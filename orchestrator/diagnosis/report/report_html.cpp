@@ -69,6 +69,8 @@ std::string verdict_section(const json& s) {
               : std::string("no contender")) +
          "; threshold " + show(at(e, "threshold"), "%.2f") + " nats</td></tr>";
   out += "<tr><th>gap closure G</th><td>" + show(at(v, "gap_closure"), "%.2f") + "</td></tr>";
+  out += "<tr><th>gap closure beyond noise</th><td>" +
+         show(at(v, "gap_closure_beyond_noise"), "%.2f") + "</td></tr>";
   const json& gap = at(v, "gap");
   for (const char* role : {"calibration", "held_out"}) {
     out += std::string("<tr><th>rms ") + role + " before &rarr; after</th><td>" +

@@ -233,6 +233,7 @@ json verdict_json(const DiagnosisResult& r, const DecisionRule& rule) {
   j["fr0"] = after.point.fr0_n;
   j["fs0"] = after.point.fs0_n;
   j["gap_closure"] = v >= 0 ? num(after.g_confirmed) : json(nullptr);
+  j["gap_closure_beyond_noise"] = num(r.gap_closure_beyond_noise);
   // The contender with the most evidence (named or not) against the rule's threshold.
   const int best = r.verdict.best;
   j["evidence"] = {
