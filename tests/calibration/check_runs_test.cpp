@@ -127,6 +127,8 @@ TEST(CheckRuns, AChecksDifferenceThatStillMeetsTheTargetsLeavesFeasibleAndIsName
                                   "the target) but meet the targets themselves"),
             std::string::npos)
       << r.verdict_reason;
+  // Without scatter between packings nothing is said of it.
+  EXPECT_EQ(r.verdict_reason.find("scatters"), std::string::npos) << r.verdict_reason;
 }
 
 // Fitted on the check runs too, the posterior can move its estimate away from the point they ran

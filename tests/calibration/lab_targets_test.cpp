@@ -1,4 +1,5 @@
-// Lab-unit targets: the seed paper's lab case (examples/datasets/seed_paper) maps to its model targets by eq. 4.
+// Lab-unit targets: the seed paper's lab case (examples/datasets/seed_paper) maps to its model
+// targets by eq. 4.
 #include <gtest/gtest.h>
 
 #include <cmath>

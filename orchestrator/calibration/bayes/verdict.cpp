@@ -70,6 +70,17 @@ std::string met_text(const PosteriorSummary& p, const CalibrationCampaign& c, co
   return out;
 }
 
+// How far one specimen's peak load scatters about the predicted means (the emulators' packing
+// scatter at the estimate), when that is wider than the tolerance the means meet: the means, not
+// a single run, meet the targets. Empty when both scatter less.
+std::string scatter_text(const PosteriorSummary& p, double tolerance) {
+  if (std::max(p.uct.run_sd, p.btt.run_sd) <= tolerance) return "";
+  return sentence(
+      "; one specimen's peak load scatters about these means with sd %.2g (UCT) and %.2g (BTT) "
+      "in ln between packings: the means meet the targets, a single run only within that scatter",
+      p.uct.run_sd, p.btt.run_sd);
+}
+
 // When the estimate moved after the check runs: where they ran and that the estimate has no run of
 // its own, so its loads rest on the emulators alone. Empty when the check was at the estimate.
 std::string moved_text(const PosteriorSummary& p) {
@@ -198,7 +209,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
              : "; the check runs at the estimate differ from the prediction beyond its " +
                    sentence("%.0f%% interval (", 100 * kCheckLevel) + differ +
                    ") but meet the targets themselves") +
-        moved_text(p) + faults;
+        moved_text(p) + scatter_text(p, c.tolerance) + faults;
     return;
   }
   if (r.stop_reason == StopReason::cancelled) {
