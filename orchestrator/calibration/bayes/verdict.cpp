@@ -64,8 +64,7 @@ std::string met_text(const PosteriorSummary& p, const CalibrationCampaign& c, co
   if (ratio && !ratio->target_inside())
     out += sentence(
         ": the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] the runs "
-        "reached, "
-        "so the model meets this rock only within the scatter its lab states",
+        "reached, so the model meets this rock only within the scatter its lab states",
         ratio->target, ratio->min, ratio->max);
   return out;
 }
