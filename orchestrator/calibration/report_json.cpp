@@ -224,7 +224,10 @@ json check_json(const Homogeneity& h) {
 json homogeneity_json(const HomogeneityChecks& h) {
   json checks = json::array();
   for (const Homogeneity& c : h.checks) checks.push_back(check_json(c));
-  return {{"holds", h.holds()}, {"degree", h.degree()}, {"checks", checks}};
+  // Nothing measured (the bayes strategy relies on no homogeneity) is no verdict on it: null.
+  return {{"holds", h.checks.empty() ? json(nullptr) : json(h.holds())},
+          {"degree", h.degree()},
+          {"checks", checks}};
 }
 
 // While "auto" has not chosen yet there is no size to show; after, the latest evaluation's.

@@ -353,6 +353,10 @@ TEST(BayesCalibration, TheReportStatesTheRocksPropertiesAtTheEstimate) {
                    btt_strength_pa(r.posterior->btt.hi_n, c.model_specimen));
   EXPECT_EQ(j["youngs_modulus_pa"]["value"], nullptr);  // the formula engine measures none
   EXPECT_EQ(j["youngs_modulus_pa"]["runs"], 0);
+  // The bayes search measures no homogeneity: the report says nothing of it, not "does not hold".
+  const nlohmann::json h = to_json(r, c)["homogeneity"];
+  EXPECT_TRUE(h["holds"].is_null()) << h.dump();
+  EXPECT_TRUE(h["checks"].empty());
 }
 
 // Without a stiffness stage the rock's E and nu are the check runs' UCT means, over the same

@@ -152,7 +152,8 @@ function scatterSection(s, lab, width) {
 }
 
 function homogeneitySection(hm) {
-  return h('details', {class: 'jobs'}, h('summary', {}, `Homogeneity check: ${hm.holds ? 'holds' : 'does not hold'}`),
+  const verdict = hm.holds === null || hm.holds === undefined ? 'not measured' : hm.holds ? 'holds' : 'does not hold';
+  return h('details', {class: 'jobs'}, h('summary', {}, `Homogeneity check: ${verdict}`),
     note('Loads scale like c^p when both strengths scale by c; the ratio-then-scale strategy relies on p being equal for both tests.'),
     table([
       {label: 'measured', value: (r) => (r.measured ? 'yes' : 'no')},
