@@ -334,41 +334,28 @@ CalibrationReport run_calibration(const CalibrationCampaign& campaign, Evaluator
                  [](const std::optional<RatioRange>&, int) { return false; });
     return report;
   }
-  // The ranges in order, each with the budget the ranges before it left; from the last listed one
-  // back to the nearest earlier one when it came no nearer the target ratio.
+  // The ranges in order, each with the budget the ranges before it left.
   ReachResult reach;
   reach.listed = ranges;
   int left = campaign.max_evaluations;
-  for (std::size_t i = 0;;) {
+  for (std::size_t i = 0;; ++i) {
     evaluator.patch_template(interaction_range_patch(ranges[i]));
     CalibrationCampaign c = campaign;
     c.job_template.merge_patch(interaction_range_patch(ranges[i]));  // what the evaluator runs
     c.max_evaluations = left;
     report = {};
     const bool another = i + 1 < ranges.size();
-    const std::vector<ReachAttempt> earlier = reach.tried;
-    auto leave = [&](const std::optional<RatioRange>& ratio, int spent) {
-      if (reach.went_back) return false;
-      return another ? leave_range(ratio, true, left - spent)
-                     : go_back(ratio, earlier, left - spent);
-    };
-    bool moved = calibrate_at(c, evaluator, options, report, leave);
+    bool moved = calibrate_at(c, evaluator, options, report,
+                              [&](const std::optional<RatioRange>& ratio, int runs) {
+                                return leave_range(ratio, another, left - runs);
+                              });
     left -= int(report.history.size());
     reach.tried.push_back({ranges[i], report.history, report.ratio});
     // A search can end before its probe's runs (a bayes search whose emulators soon hold little
     // variance converges and checks): its ratios then decide as the probe's would have.
-    moved = moved || (report.stop_reason != StopReason::cancelled && leave(report.ratio, 0));
-    if (moved && another) {
-      ++i;
-      continue;
-    }
-    if (moved) {
-      i = std::find(ranges.begin(), ranges.end(),
-                    earlier[nearest_attempt(earlier)].interaction_range) -
-          ranges.begin();
-      reach.went_back = true;
-      continue;
-    }
+    moved = moved || (report.stop_reason != StopReason::cancelled &&
+                      leave_range(report.ratio, another, left));
+    if (moved) continue;
     reach.evaluations_left = left;
     reach.cancelled = report.stop_reason == StopReason::cancelled;
     const PeakLoads& t = campaign.targets.model_loads_n;

@@ -1,8 +1,6 @@
 #include "orchestrator/calibration/reach.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 #include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
@@ -36,30 +34,6 @@ bool leave_range(const std::optional<orch::RatioRange>& ratio, bool another_list
   return another_listed && ratio && !ratio->target_inside() && left >= kReachMinEvaluations;
 }
 
-double ratio_distance(const std::optional<orch::RatioRange>& ratio) {
-  if (!ratio || ratio->runs == 0) return std::numeric_limits<double>::infinity();
-  if (ratio->target > ratio->max) return std::log(ratio->target / ratio->max);
-  if (ratio->target < ratio->min) return std::log(ratio->min / ratio->target);
-  return 0.0;
-}
-
-int nearest_attempt(const std::vector<ReachAttempt>& earlier) {
-  int best = -1;
-  for (std::size_t i = 0; i < earlier.size(); ++i) {
-    if (!earlier[i].ratio) continue;
-    if (best < 0 || ratio_distance(earlier[i].ratio) < ratio_distance(earlier[best].ratio))
-      best = int(i);
-  }
-  return best;
-}
-
-bool go_back(const std::optional<orch::RatioRange>& ratio, const std::vector<ReachAttempt>& earlier,
-             int left) {
-  const int nearest = nearest_attempt(earlier);
-  return ratio && !ratio->target_inside() && nearest >= 0 && left >= kReachMinEvaluations &&
-         ratio_distance(ratio) >= ratio_distance(earlier[nearest].ratio);
-}
-
 std::string reach_why(const ReachResult& r, double target_ratio) {
   if (r.tried.empty()) return "";
   std::string list;
@@ -84,15 +58,7 @@ std::string reach_why(const ReachResult& r, double target_ratio) {
       sentence("no interaction range tried reaches the target UCT/BTT load ratio %.4g (",
                target_ratio) +
       list + ")";
-  if (r.went_back && r.tried.size() >= 2) {
-    const ReachAttempt& last_listed = r.tried[r.tried.size() - 2];
-    return out +
-           sentence("; range %.3g came no nearer it than range %.3g, ",
-                    last_listed.interaction_range, used.interaction_range) +
-           sentence("so the calibration went back to range %.3g with the budget left",
-                    used.interaction_range);
-  }
-  if (r.tried.size() >= r.listed.size()) return out;
+  if (r.tried.size() == r.listed.size()) return out;
   const double next = r.listed[r.tried.size()];
   if (r.cancelled) return out + sentence("; range %.3g not tried: cancelled", next);
   if (!used.ratio) {

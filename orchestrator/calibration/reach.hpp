@@ -3,10 +3,7 @@
 // search. With "reach": {"interaction_range": [1, 1.5]} the calibration runs at the first range;
 // when its runs show the target UCT/BTT load ratio outside the ratios they reached (ratio_range),
 // it moves to the next range with the budget left, redoing the stiffness stage there (the range
-// multiplies E). When the last listed range's runs come no nearer the target ratio than an earlier
-// range's did, the calibration goes back to the nearest one with the budget left and answers there
-// (a softer lattice that meets a nu target can reach less far than touching bonds). docs/reach.md
-// maps which ratios each range reaches.
+// multiplies E). docs/reach.md maps which ratios each range reaches.
 #pragma once
 
 #include <functional>
@@ -36,7 +33,6 @@ struct ReachResult {
   std::vector<ReachAttempt> tried;  // the last is the range the answer is at
   int evaluations_left = 0;         // of the budget when the last range ended
   bool cancelled = false;           // the calibration was cancelled at the last range
-  bool went_back = false;           // the last attempt is a return to the range that came nearest
   std::string why;                  // a sentence from the fields above
 };
 
@@ -56,20 +52,6 @@ nlohmann::json interaction_range_patch(double factor);
 // Whether the runs at a range send the calibration on to the next: the target ratio lies outside
 // what they reached, another range is listed, and at least kReachMinEvaluations are left for it.
 bool leave_range(const std::optional<orch::RatioRange>& ratio, bool another_listed, int left);
-
-// How far the target UCT/BTT load ratio lies outside the ratios reached, in ln (0 inside);
-// infinite without a ratio.
-double ratio_distance(const std::optional<orch::RatioRange>& ratio);
-
-// The earlier attempt whose runs came nearest the target ratio (the first of equals), or -1 when
-// none gave a ratio.
-int nearest_attempt(const std::vector<ReachAttempt>& earlier);
-
-// Whether the runs at the last listed range send the calibration back to an earlier one: the
-// target ratio lies outside what they reached, they came no nearer it than the nearest earlier
-// range's, and at least kReachMinEvaluations are left.
-bool go_back(const std::optional<orch::RatioRange>& ratio, const std::vector<ReachAttempt>& earlier,
-             int left);
 
 // The reason: the range used, and the ratios the runs reached at each range tried.
 std::string reach_why(const ReachResult& reach, double target_ratio);

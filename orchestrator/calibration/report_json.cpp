@@ -366,7 +366,6 @@ json reach_json(const std::optional<ReachResult>& reach) {
   return {{"interaction_range", reach->tried.back().interaction_range},
           {"listed", reach->listed},
           {"tried", tried},
-          {"went_back", reach->went_back},
           {"why", reach->why}};
 }
 
