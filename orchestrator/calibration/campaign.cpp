@@ -1,6 +1,7 @@
 #include "orchestrator/calibration/campaign.hpp"
 
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "engine/effects/effect.hpp"
@@ -168,8 +169,11 @@ void parse_inference(orch::JsonFields& root, CalibrationCampaign& c) {
     if (!lab->is_object())
       throw orch::RequestError("inference.lab_uncertainty", "must be an object");
     orch::JsonFields l(*lab, "inference.lab_uncertainty");
-    s.lab_uct = l.positive("uct").value_or(s.lab_uct);
-    s.lab_btt = l.positive("btt").value_or(s.lab_btt);
+    const std::optional<double> uct = l.positive("uct"), btt = l.positive("btt");
+    s.lab_uct = uct.value_or(s.lab_uct);
+    s.lab_btt = btt.value_or(s.lab_btt);
+    s.lab_uct_stated = uct.has_value();
+    s.lab_btt_stated = btt.has_value();
     l.reject_unknown();
     if (s.lab_uct >= 1 || s.lab_btt >= 1)
       throw orch::RequestError("inference.lab_uncertainty", "must be below 1 (a relative sd)");

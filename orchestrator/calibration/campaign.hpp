@@ -25,6 +25,7 @@ struct InferenceSettings {
   double lab_uct = 0.05;
   double lab_btt = 0.05;
   bool lab_stated = false;
+  bool lab_uct_stated = false, lab_btt_stated = false;  // which of the two the request gave
   double discrepancy = 0.0;   // relative sd of the model's stated discrepancy on both loads
   double level = 0.9;         // of the credible region
   double unique_width = 1.5;  // pinned: each strength's interval spans at most this factor

@@ -70,6 +70,14 @@ TEST(Acceptance, IsTheToleranceUnlessTheLabStatesAWiderUncertainty) {
   EXPECT_DOUBLE_EQ(wide.uct, 0.37);
   EXPECT_DOUBLE_EQ(wide.btt, 0.02);
   EXPECT_TRUE(wide.widened);
+  // The granite's request states its UCS's uncertainty alone: the BTT's default (5%) widens
+  // nothing.
+  nlohmann::json uct_only = kBayes;
+  uct_only["inference"] = {{"lab_uncertainty", {{"uct", 0.11}}}};
+  const Acceptance granite = acceptance(testing::campaign({200000, 8800}, uct_only));
+  EXPECT_DOUBLE_EQ(granite.uct, 0.11);
+  EXPECT_DOUBLE_EQ(granite.btt, 0.02);
+  EXPECT_TRUE(granite.widened);
 }
 
 TEST(Acceptance, AMeanMissedWithinTheLabsStatedUncertaintyIsFeasibleAndSaysSo) {

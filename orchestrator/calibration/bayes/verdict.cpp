@@ -132,11 +132,12 @@ std::string bound_pressed(const PosteriorSummary& p) {
 }  // namespace
 
 Acceptance acceptance(const CalibrationCampaign& c) {
+  // Only a value the request states widens: a default stands for no knowledge of the lab.
+  const InferenceSettings& s = c.inference;
   Acceptance a{c.tolerance, c.tolerance, false};
-  if (!c.inference.lab_stated) return a;
-  a.widened = c.inference.lab_uct > c.tolerance || c.inference.lab_btt > c.tolerance;
-  a.uct = std::max(a.uct, c.inference.lab_uct);
-  a.btt = std::max(a.btt, c.inference.lab_btt);
+  if (s.lab_uct_stated) a.uct = std::max(a.uct, s.lab_uct);
+  if (s.lab_btt_stated) a.btt = std::max(a.btt, s.lab_btt);
+  a.widened = a.uct > c.tolerance || a.btt > c.tolerance;
   return a;
 }
 
