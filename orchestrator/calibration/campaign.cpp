@@ -177,7 +177,6 @@ void parse_inference(orch::JsonFields& root, CalibrationCampaign& c) {
     l.reject_unknown();
     if (s.lab_uct >= 1 || s.lab_btt >= 1)
       throw orch::RequestError("inference.lab_uncertainty", "must be below 1 (a relative sd)");
-    s.lab_stated = true;
   }
   if (f.get("discrepancy")) {
     const double d = f.number("discrepancy").value_or(0.0);

@@ -21,11 +21,11 @@ enum class Strategy { automatic, ratio_scale, direct_2d, bayes };
 // What the "bayes" strategy needs beyond the targets ("inference": {...}).
 struct InferenceSettings {
   // Relative standard deviation of each lab mean (a target known to 5% is ln-normal with sd
-  // about 0.05); `stated` says whether the request gave it or the default stands.
+  // about 0.05); `*_stated` say whether the request gave each or the default stands.
   double lab_uct = 0.05;
   double lab_btt = 0.05;
-  bool lab_stated = false;
   bool lab_uct_stated = false, lab_btt_stated = false;  // which of the two the request gave
+  bool lab_stated() const { return lab_uct_stated || lab_btt_stated; }
   double discrepancy = 0.0;   // relative sd of the model's stated discrepancy on both loads
   double level = 0.9;         // of the credible region
   double unique_width = 1.5;  // pinned: each strength's interval spans at most this factor

@@ -302,7 +302,7 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
     const FurtherTarget& f = c.further[k];
     p.further.push_back(predicted(m.further[k], peak, f.model_n, f.sd, share[2 + k], z));
   }
-  p.lab_stated = s.lab_stated;
+  p.lab_stated = s.lab_stated();
   p.discrepancy = s.discrepancy;
   p.unique_width = s.unique_width;
   p.runs = m.runs;
