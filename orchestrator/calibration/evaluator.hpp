@@ -36,6 +36,7 @@ struct EvaluationRequest {
   BondPoint point;
   std::uint64_t sample_seed;
   int realisations = 1;
+  std::string phase{};  // what the search runs it for ("start", "design", "check"); else empty
 };
 
 // The loads of an evaluation are the ensemble means of each test's peak load over the realisations

@@ -216,7 +216,19 @@ TEST(BayesCalibration, TheRegionHoldsTheTruthWhenThePackingsScatterChangesAcross
   });
   expect_honest(c, 24, false);  // what this probes is a truth outside; the band is the test above's
   EXPECT_GE(c.quiet, 6);
-  EXPECT_GE(c.quiet_inside, c.quiet - 2) << "of " << c.quiet << " with F_s0 < F_r0";
+  // A 90% region holds its truth in fewer than this many of n twins with chance below 1%.
+  auto floor_at_1pct = [](int n) {
+    double below = 0.0;  // P(inside < k) for inside ~ Binomial(n, 0.9)
+    for (int k = 0; k <= n; ++k) {
+      const double pk =
+          std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) +
+                   k * std::log(0.9) + (n - k) * std::log(0.1));
+      if (below + pk >= 0.01) return k;
+      below += pk;
+    }
+    return n;
+  };
+  EXPECT_GE(c.quiet_inside, floor_at_1pct(c.quiet)) << "of " << c.quiet << " with F_s0 < F_r0";
 }
 
 TEST(BayesCalibration, NoWorkerIdlesWhileBudgetRemains) {
@@ -279,11 +291,7 @@ struct HighFirstCheckEvaluator : ScatteringEvaluator {
   bool checked = false;
   std::vector<EvaluationOutcome> evaluate_batch(std::span<const EvaluationRequest> rs) override {
     std::vector<EvaluationOutcome> out = ScatteringEvaluator::evaluate_batch(rs);
-    const bool one_point =
-        rs.size() >= 2 && std::all_of(rs.begin(), rs.end(), [&](const auto& r) {
-          return r.point.fr0_n == rs[0].point.fr0_n && r.point.fs0_n == rs[0].point.fs0_n;
-        });
-    if (checked || !one_point) return out;
+    if (checked || rs.empty() || rs[0].phase != "check") return out;
     checked = true;
     for (EvaluationOutcome& o : out) {
       for (auto [e, f] : {std::pair{&o.uct, 1.3}, std::pair{&o.btt, 1.4}}) {
@@ -637,9 +645,10 @@ TEST(BayesCalibration, FineRunsOnCoarseEmulatorsFindTheFineSpecimensStrengths) {
     EXPECT_EQ(p.coarse_runs + p.runs, int(r.history.size()));
     inside += in_credible_region(p, truth) ? 1 : 0;
     feasible += r.verdict == Verdict::feasible ? 1 : 0;
-    // The fine runs are spent where the answer is: each within 0.15 of the unit box of the point
-    // its check ran at (the first batch goes to the coarse estimate, a resolution factor of about
-    // 0.1 away here, and within 0.05 of it; spread over the posterior, they reach 0.2).
+    // The fine runs are spent where the answer is: the first batch at the coarse estimate (its
+    // two points within 0.05 of it, so within 0.1 of each other), the later ones each within 0.15
+    // of the unit box of the point the check ran at (spread over the posterior they reach 0.2),
+    // or inside the fine posterior's 90% region when that is wider.
     const auto check =
         std::find_if(r.history.begin(), r.history.end(),
                      [](const EvaluationRecord& h) { return h.phase == "fine check"; });
@@ -650,9 +659,15 @@ TEST(BayesCalibration, FineRunsOnCoarseEmulatorsFindTheFineSpecimensStrengths) {
                                     [](const EvaluationRecord& h) { return h.phase == "fine"; });
     ASSERT_TRUE(first != r.history.end() && first + 1 != r.history.end()) << twin;
     EXPECT_FALSE(first->point == (first + 1)->point) << twin;
-    for (const EvaluationRecord& h : r.history) {
-      if (h.phase != "fine") continue;
-      EXPECT_LE((to_unit(h.point, fine_campaign(c)) - at).norm(), 0.15) << twin << " " << h.index;
+    EXPECT_LE(
+        (to_unit(first->point, fine_campaign(c)) - to_unit((first + 1)->point, fine_campaign(c)))
+            .norm(),
+        0.1)
+        << twin;
+    for (auto h = first + 2; h != r.history.end(); ++h) {
+      if (h->phase != "fine") continue;
+      if (in_credible_region(p, h->point)) continue;
+      EXPECT_LE((to_unit(h->point, fine_campaign(c)) - at).norm(), 0.15) << twin << " " << h->index;
     }
     if (twin == 0) {
       std::printf("%s\n", r.verdict_reason.c_str());

@@ -129,27 +129,36 @@ TEST(CalibrationEnsembleSize, AutoRunsAPilotAndEveryEvaluationAtTheSizeItCallsFo
       << j["ensemble"]["why"];
 }
 
+// Which packings a search draws decides whether its best point lands within the tolerance or only
+// within it plus the standard error; over a few packing seeds some must land in the second case,
+// and each that does must say so.
 TEST(CalibrationEnsembleSize, ACappedEnsembleSaysWhatTheScatterCalledFor) {
-  CalibrationCampaign c = testing::campaign(
-      testing::power_law({40, 90}), with({{"realisations", "auto"}, {"max_realisations", 4}}));
-  c.consistency_evaluations = 0;
-  testing::ModelEvaluator evaluator(testing::power_law);
-  evaluator.noise = 0.4;  // cv about 23%: hundreds of runs for 1%
-  const CalibrationReport r = run_calibration(c, evaluator);
-  EXPECT_EQ(r.ensemble.realisations, 4);
-  EXPECT_TRUE(r.ensemble.capped);
-  ASSERT_TRUE(r.ensemble.pilot.needed);
-  EXPECT_GT(*r.ensemble.pilot.needed, 4);
-  EXPECT_NE(r.ensemble.why.find("beyond max_realisations"), std::string::npos) << r.ensemble.why;
-  EXPECT_NE(r.ensemble.why.find("more than were run"), std::string::npos) << r.ensemble.why;
-  // The tolerance test counted the wide standard error: the verdict must not claim 2%.
-  ASSERT_EQ(r.verdict, Verdict::feasible) << r.verdict_reason;
-  const double e_btt = r.best->loads->btt_n / c.targets.model_loads_n.btt_n - 1;
-  const double e_uct = r.best->loads->uct_n / c.targets.model_loads_n.uct_n - 1;
-  ASSERT_GT(std::max(std::abs(e_uct), std::abs(e_btt)), c.tolerance);
-  EXPECT_NE(r.verdict_reason.find("plus each ensemble mean's standard error"), std::string::npos)
-      << r.verdict_reason;
-  EXPECT_NE(r.verdict_reason.find("not within the tolerance"), std::string::npos);
+  int widened = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    CalibrationCampaign c = testing::campaign(
+        testing::power_law({40, 90}), with({{"realisations", "auto"}, {"max_realisations", 4}}));
+    c.consistency_evaluations = 0;
+    c.sample_seed = seed;
+    testing::ModelEvaluator evaluator(testing::power_law);
+    evaluator.noise = 0.4;  // cv about 23%: hundreds of runs for 1%
+    const CalibrationReport r = run_calibration(c, evaluator);
+    EXPECT_EQ(r.ensemble.realisations, 4);
+    EXPECT_TRUE(r.ensemble.capped);
+    ASSERT_TRUE(r.ensemble.pilot.needed);
+    EXPECT_GT(*r.ensemble.pilot.needed, 4);
+    EXPECT_NE(r.ensemble.why.find("beyond max_realisations"), std::string::npos) << r.ensemble.why;
+    EXPECT_NE(r.ensemble.why.find("more than were run"), std::string::npos) << r.ensemble.why;
+    // The tolerance test counted the wide standard error: the verdict must not claim 2%.
+    if (r.verdict != Verdict::feasible) continue;
+    const double e_btt = r.best->loads->btt_n / c.targets.model_loads_n.btt_n - 1;
+    const double e_uct = r.best->loads->uct_n / c.targets.model_loads_n.uct_n - 1;
+    if (std::max(std::abs(e_uct), std::abs(e_btt)) <= c.tolerance) continue;
+    ++widened;
+    EXPECT_NE(r.verdict_reason.find("plus each ensemble mean's standard error"), std::string::npos)
+        << r.verdict_reason;
+    EXPECT_NE(r.verdict_reason.find("not within the tolerance"), std::string::npos);
+  }
+  EXPECT_GE(widened, 1) << "no seed's best point was met only within its standard error";
 }
 
 TEST(CalibrationEnsembleSize, OnePackingPerEvaluationIsSaidToMeasureNoScatter) {

@@ -244,7 +244,7 @@ class Search {
     std::vector<EvaluationRequest> requests;
     std::vector<ProbeRequest> probes;  // each run's further tests, side by side with its UCT, BTT
     for (const Run& r : runs) {
-      requests.push_back({r.point, r.seed, 1});
+      requests.push_back({r.point, r.seed, 1, r.phase});
       for (const FurtherTarget& t : c_.further)
         probes.push_back({r.point, r.seed, 1, t.test, t.patch});
     }
