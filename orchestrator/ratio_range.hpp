@@ -14,13 +14,20 @@ struct RatioRange {
   double min = std::numeric_limits<double>::infinity();
   double max = -std::numeric_limits<double>::infinity();
   int runs = 0;  // model runs (or evaluations) the range spans
+  // Set by a search with emulators: the ratios their means give at the points run. One run's ratio
+  // carries its packing's scatter (a disc's ln load scatters 0.2-0.3), so the runs' extremes
+  // overstate the reach; when set, reach is judged on these.
+  double emulated_lo = 0.0, emulated_hi = 0.0;
+  bool emulated = false;
 
   void add(double ratio) {
     min = std::min(min, ratio);
     max = std::max(max, ratio);
     ++runs;
   }
-  bool target_inside() const { return runs > 0 && target >= min && target <= max; }
+  double reach_lo() const { return emulated ? emulated_lo : min; }
+  double reach_hi() const { return emulated ? emulated_hi : max; }
+  bool target_inside() const { return runs > 0 && target >= reach_lo() && target <= reach_hi(); }
 };
 
 }  // namespace rockcal::orch

@@ -15,8 +15,12 @@ std::string attempt_text(const ReachAttempt& a) {
                     double(a.history.size())) +
            (faults.empty() ? ")" : "; " + faults + ")");
   }
-  return sentence("range %.3g: [%.4g, %.4g] over ", a.interaction_range, a.ratio->min,
-                  a.ratio->max) +
+  const std::string emulated = a.ratio->emulated
+                                   ? sentence("[%.4g, %.4g] by its emulators' means, single runs ",
+                                              a.ratio->emulated_lo, a.ratio->emulated_hi)
+                                   : "";
+  return sentence("range %.3g: ", a.interaction_range) + emulated +
+         sentence("[%.4g, %.4g] over ", a.ratio->min, a.ratio->max) +
          sentence("%.0f runs", double(a.history.size()));
 }
 

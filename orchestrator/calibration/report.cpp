@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "orchestrator/calibration/sentence.hpp"
+
 namespace rockcal::calibration {
 namespace {
 
@@ -26,6 +28,14 @@ std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& histo
   }
   if (range.runs == 0) return std::nullopt;
   return range;
+}
+
+std::string reach_words(const RatioRange& r) {
+  if (!r.emulated) return sentence("the range [%.4g, %.4g] the runs reached", r.min, r.max);
+  return sentence(
+      "the range [%.4g, %.4g] the emulators' means give at the points run (single "
+      "runs, with their packings' scatter, reached [%.4g, %.4g])",
+      r.emulated_lo, r.emulated_hi, r.min, r.max);
 }
 
 SeedScatter seed_scatter(std::vector<ScatterRun> runs) {

@@ -74,6 +74,10 @@ struct CalibrationReport {
 
 std::optional<RatioRange> ratio_range(const std::vector<EvaluationRecord>& history,
                                       const PeakLoads& targets_n);
+
+// The ratios a range reached, as a verdict words them: "the range [a, b] the runs reached", or,
+// when the emulators judged the reach, theirs with the single runs' beside it.
+std::string reach_words(const RatioRange& r);
 SeedScatter seed_scatter(std::vector<ScatterRun> runs);
 
 const char* to_string(StopReason reason);

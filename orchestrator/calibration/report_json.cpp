@@ -344,10 +344,13 @@ json posterior_json(const std::optional<PosteriorSummary>& p, const CalibrationC
 
 json ratio_json(const std::optional<RatioRange>& ratio) {
   if (!ratio) return nullptr;
-  return {{"target", ratio->target},
-          {"min", ratio->min},
-          {"max", ratio->max},
-          {"target_inside", ratio->target_inside()}};
+  return {
+      {"target", ratio->target},
+      {"min", ratio->min},
+      {"max", ratio->max},
+      {"emulated", ratio->emulated ? json{{"min", ratio->emulated_lo}, {"max", ratio->emulated_hi}}
+                                   : json(nullptr)},
+      {"target_inside", ratio->target_inside()}};
 }
 
 // The ranges tried, each with its runs' ratio span; the earlier ranges' runs in full (the last

@@ -397,13 +397,20 @@ TEST(BayesCalibration, TheRocksNuIsTheCheckRunsMeanAsItsEIs) {
 
 // The model's UCT/BTT ratio stays within [6.0, 23.8] (smooth_min); a lab ratio of 3 is out of
 // its reach, and the verdict says so with the range the runs reached, not "the budget".
-TEST(BayesCalibration, AVerdictNamesARatioOutOfTheModelsReach) {
-  const PeakLoads reachable = testing::smooth_min({100, 100});
-  const PeakLoads lab{reachable.uct_n, reachable.uct_n / 3.0};
-  const CalibrationCampaign c = testing::campaign(lab, bayes(40, 0.05));
+// A smooth_min rock whose UCT is the model's at `at` and whose UCT/BTT ratio is `ratio`,
+// calibrated on packings that scatter by `sd` in ln per load.
+std::pair<CalibrationCampaign, CalibrationReport> smooth_min_rock(const BondPoint& at, double ratio,
+                                                                  int budget, double sd) {
+  const PeakLoads reachable = testing::smooth_min(at);
+  const CalibrationCampaign c =
+      testing::campaign({reachable.uct_n, reachable.uct_n / ratio}, bayes(budget, 0.05));
   ScatteringEvaluator e(testing::smooth_min);
-  e.sd_uct = e.sd_btt = 0.05;
-  const CalibrationReport r = run_calibration(c, e);
+  e.sd_uct = e.sd_btt = sd;
+  return {c, run_calibration(c, e)};
+}
+
+TEST(BayesCalibration, AVerdictNamesARatioOutOfTheModelsReach) {
+  const auto [c, r] = smooth_min_rock({100, 100}, 3.0, 40, 0.05);
   ASSERT_TRUE(r.posterior);
   EXPECT_EQ(r.verdict, Verdict::compromise);
   ASSERT_TRUE(r.ratio);
@@ -412,6 +419,30 @@ TEST(BayesCalibration, AVerdictNamesARatioOutOfTheModelsReach) {
             std::string::npos)
       << r.verdict_reason;
   EXPECT_EQ(r.verdict_reason.find("budget"), std::string::npos) << r.verdict_reason;
+}
+
+// Reach is judged on the model's mean ratio, not on single runs: with packings that scatter like
+// the engine's discs (0.3 in ln per load) a run's UCT/BTT ratio reaches far beyond what any
+// strengths give on average. The target 35 lies beyond smooth_min's 23.8: single runs reach it,
+// the emulators' means at the points run do not, and the verdict says the latter.
+TEST(BayesCalibration, ARatioOnlyScatteredRunsReachIsOutOfReach) {
+  const auto [c, r] = smooth_min_rock({100, 20}, 35.0, 60, 0.3);
+  ASSERT_TRUE(r.posterior);
+  ASSERT_TRUE(r.ratio);
+  ASSERT_TRUE(r.ratio->emulated);
+  EXPECT_GT(r.ratio->max, 35.0) << "no single run reached the target: the case is not made";
+  EXPECT_LT(r.ratio->emulated_hi, 35.0);
+  EXPECT_GT(r.ratio->emulated_hi, 15.0);
+  EXPECT_FALSE(r.ratio->target_inside());
+  EXPECT_EQ(r.verdict, Verdict::compromise);
+  EXPECT_NE(r.verdict_reason.find("the emulators' means give at the points run (single runs, with "
+                                  "their packings' scatter, reached ["),
+            std::string::npos)
+      << r.verdict_reason;
+  const nlohmann::json j = to_json(r, c);
+  EXPECT_DOUBLE_EQ(j["ratio"]["emulated"]["max"].get<double>(), r.ratio->emulated_hi);
+  EXPECT_FALSE(j["ratio"]["target_inside"].get<bool>());
+  std::printf("%s\n", r.verdict_reason.c_str());
 }
 
 // Runs that say they were not quasi-static (weak bonds at a fixed platen speed break at a strain
@@ -505,6 +536,26 @@ TEST(BayesCalibration, RunsWithoutAPeakKeepTheDesignAndTheRegionOutOfTheirZone) 
   RecordProperty("design_runs_into_the_zone", std::to_string(into_zone));
   RecordProperty("design_runs_deep_in_it", std::to_string(deep));
   RecordProperty("design_runs", std::to_string(designed));
+}
+
+// Targets whose strengths lie inside the zone without a peak (a rock whose UCT/BTT ratio the
+// model reaches only where its UCT keeps loading up): whatever the budget, no run gives their
+// loads, and the verdict must name that, not the budget.
+TEST(BayesCalibration, TargetsInsideTheZoneWithoutAPeakAreSaidToLieThere) {
+  const BondPoint truth{30, 150};
+  const CalibrationCampaign c = testing::campaign(testing::power_law(truth), bayes(60, 0.05));
+  ScatteringEvaluator e(testing::power_law);
+  e.no_peak = [](const BondPoint& p) { return p.fs0_n > 3.0 * p.fr0_n; };
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  EXPECT_EQ(r.verdict, Verdict::compromise) << r.verdict_reason;
+  EXPECT_NE(r.verdict_reason.find("the strengths that would give the targets lie where the runs "
+                                  "end without a peak ("),
+            std::string::npos)
+      << r.verdict_reason;
+  EXPECT_EQ(r.verdict_reason.find("more runs would narrow it"), std::string::npos)
+      << r.verdict_reason;
+  std::printf("%s\n", r.verdict_reason.c_str());
 }
 
 // The error a campaign with `over` merged in is refused with, or "accepted".

@@ -343,4 +343,18 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   return p;
 }
 
+void set_emulated_reach(const Emulators& m, const CalibrationCampaign&, orch::RatioRange& range) {
+  // At the points whose UCT peaked (the BTT emulator is defined everywhere): a mean away from the
+  // runs is the trend's extrapolation, which on a saturating model ran to twice the runs' ratios.
+  const Eigen::MatrixXd& at = m.uct.data.x;
+  if (at.rows() == 0) return;
+  Eigen::VectorXd mu_u, var_u, mu_b, var_b;
+  inference::predict_many(m.uct, at, mu_u, var_u);
+  inference::predict_many(m.btt, at, mu_b, var_b);
+  const Eigen::ArrayXd d = (mu_u - mu_b).array();
+  range.emulated = true;
+  range.emulated_lo = std::exp(d.minCoeff());
+  range.emulated_hi = std::exp(d.maxCoeff());
+}
+
 }  // namespace rockcal::calibration

@@ -9,6 +9,7 @@
 #include "orchestrator/calibration/ledger.hpp"
 #include "orchestrator/inference/posterior/feasibility.hpp"
 #include "orchestrator/inference/posterior/posterior.hpp"
+#include "orchestrator/ratio_range.hpp"
 
 namespace rockcal::calibration {
 
@@ -63,5 +64,9 @@ BondPoint posterior_estimate(const Emulators& m, const CalibrationCampaign& c);
 bool in_credible_region(const PosteriorSummary& s, const BondPoint& p);
 
 PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int rounds);
+
+// The UCT/BTT load ratios the emulators' means give at the points run whose UCT peaked (their
+// packings' scatter smoothed out): sets range's emulated reach.
+void set_emulated_reach(const Emulators& m, const CalibrationCampaign& c, orch::RatioRange& range);
 
 }  // namespace rockcal::calibration

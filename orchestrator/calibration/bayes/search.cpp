@@ -92,7 +92,7 @@ class Search {
       if (leaving_) continue;  // the runs in flight count against the budget; nothing more
       leaving_ = leave_ && !fine_phase_ &&
                  int(history_.size()) >= reach_probe_runs(c_.max_evaluations) &&
-                 leave_(ratio_range(history_, c_.targets.model_loads_n), int(history_.size()));
+                 leave_(ratio(), int(history_.size()));
       if (leaving_) continue;
       refit();
       reopen_after_check();
@@ -498,6 +498,14 @@ class Search {
   std::vector<EvaluationRecord> check_;
   std::optional<PosteriorSummary> before_check_;  // when the check batch was planned
   std::optional<Emulators> model_, fine_model_;
+
+ public:
+  // The UCT/BTT ratios of the coarse runs, with the reach the coarse emulators put on them.
+  std::optional<RatioRange> ratio() const {
+    std::optional<RatioRange> r = ratio_range(history_, c_.targets.model_loads_n);
+    if (r && model_) set_emulated_reach(*model_, c_, *r);
+    return r;
+  }
 };
 
 }  // namespace
@@ -508,7 +516,7 @@ bool bayes_calibration(const CalibrationCampaign& campaign, Evaluator& evaluator
   report.strategy_used = "bayes";
   Search search(campaign, evaluator, options, leave);
   search.run(report);
-  report.ratio = ratio_range(report.history, campaign.targets.model_loads_n);
+  report.ratio = search.ratio();
   if (search.left()) return true;  // the driver moves on to the next range
   judge_posterior(report, campaign);
   return false;

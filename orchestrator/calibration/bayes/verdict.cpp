@@ -7,6 +7,7 @@
 
 #include "orchestrator/calibration/bayes/box.hpp"
 #include "orchestrator/calibration/bayes/check.hpp"
+#include "orchestrator/calibration/bayes/emulators.hpp"
 #include "orchestrator/calibration/run_faults.hpp"
 #include "orchestrator/calibration/sentence.hpp"
 
@@ -62,10 +63,9 @@ std::string met_text(const PosteriorSummary& p, const CalibrationCampaign& c, co
       loads_text(p, c) + sentence("; accepted: UCT %.3g%%, BTT %.3g%%", 100 * a.uct, 100 * a.btt) +
       sentence("), not within the %.3g%% tolerance of the lab's means", 100 * c.tolerance);
   if (ratio && !ratio->target_inside())
-    out += sentence(
-        ": the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] the runs "
-        "reached, so the model meets this rock only within the scatter its lab states",
-        ratio->target, ratio->min, ratio->max);
+    out += sentence(": the target UCT/BTT load ratio %.4g lies outside ", ratio->target) +
+           reach_words(*ratio) +
+           ", so the model meets this rock only within the scatter its lab states";
   return out;
 }
 
@@ -109,6 +109,28 @@ std::string failed_check_text(const PosteriorSummary& p) {
          (p.estimate_moved() ? sentence("; the estimate then moved to (%.4g, %.4g)",
                                         p.estimate.fr0_n, p.estimate.fs0_n)
                              : "");
+}
+
+// The runs inside the credible region (of the posterior's resolution) that ended without a peak,
+// when the check at the estimate ended so too: the targets then lie where the model's runs give no
+// loads, whatever the budget. Empty otherwise.
+std::string no_peak_zone_text(const PosteriorSummary& p,
+                              const std::vector<EvaluationRecord>& history) {
+  if (!is_no_peak(p.check_failed)) return "";
+  int inside = 0, no_peak = 0;
+  for (const EvaluationRecord& e : history) {
+    const bool fine = e.phase.rfind("fine", 0) == 0;
+    if (fine != (p.resolution == "fine") || !in_credible_region(p, e.point)) continue;
+    ++inside;
+    no_peak += !e.loads && is_no_peak(e.error) ? 1 : 0;
+  }
+  return sentence(
+             ": the strengths that would give the targets lie where the runs end without a peak "
+             "(%.0f of the %.0f runs inside the %.0f%% region ended without one)",
+             no_peak, inside, 100 * p.level) +
+         ": the model reaches the targets' UCT/BTT load ratio there only with a UCT that keeps "
+         "loading up, so more runs of this specimen map the zone's edge rather than move it; "
+         "another interaction range in \"reach\" changes the ratios the peaks reach";
 }
 
 // The bound the estimate itself lies at (within two cells of a grid of grid_cells over the
@@ -230,10 +252,10 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   if (r.ratio && !r.ratio->target_inside()) {
     // The ratio first: no pair of strengths in the box gives it, so no scale of both can.
     r.verdict_reason =
-        miss + sentence(
-                   ": the target UCT/BTT load ratio %.4g lies outside the range [%.4g, %.4g] "
-                   "the runs reached",
-                   r.ratio->target, r.ratio->min, r.ratio->max);
+        miss + sentence(": the target UCT/BTT load ratio %.4g lies outside ", r.ratio->target) +
+        reach_words(*r.ratio);
+    if (const std::string zone = no_peak_zone_text(p, r.history); !zone.empty())
+      r.verdict_reason += ";" + zone.substr(1);
     if (!pressed.empty())
       r.verdict_reason += "; the posterior presses on " + pressed +
                           ": widen \"bounds\" to see whether the ratio moves toward the target "
@@ -241,6 +263,8 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
   } else if (!pressed.empty()) {
     r.verdict_reason = miss + ": the posterior presses on " + pressed +
                        "; the targets need strengths beyond it: widen \"bounds\"";
+  } else if (const std::string zone = no_peak_zone_text(p, r.history); !zone.empty()) {
+    r.verdict_reason = miss + zone + wide;
   } else if (r.stop_reason == StopReason::budget_exhausted) {
     const std::string budget =
         p.resolution == "fine"
