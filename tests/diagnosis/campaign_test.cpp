@@ -69,26 +69,26 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   EXPECT_NEAR(c.targets[0].sigma, 0.02, 1e-12);
   ASSERT_EQ(c.candidates.size(), 2u);
   EXPECT_EQ(c.candidates[0].effect, "heterogeneity");
-  EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3}));
-  // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 5 budget points at most twice (the first and
+  EXPECT_EQ(c.budget.seeds, (std::vector<std::uint64_t>{2, 3, 4, 5}));
+  // 4 distinct runs; 9 + 2 x 18 grid points, 5 x 7 budget points at most twice (the first and
   // the confirmed fit) and the screen's 3 points per effect at each of its two points and the
-  // base's at the second, 3 confirmed candidates x (3 refinement runs + 2 seeds) and the base
+  // base's at the second, 3 confirmed candidates x (3 refinement runs + 4 seeds) and the base
   // model at each confirmed effect's strengths; and the next test's base at its fit and two steps
   // (and at the screen's balanced point) and both effects on the dataset's 4 runs and the menu's 9
   // more (squat and slender UCT, two discs, a fast UCT and disc, three triaxials; the UCT's modulus
   // and peak strain are read off the dataset's UCT run).
   constexpr int kNextTest = (2 * 3 + 2) * (4 + 9);
   constexpr int kScreen = 1 + 2 * 3 * 2;
-  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 5 + kScreen + 3 * 5 + 2) * 4u + kNextTest);
+  EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 7 + kScreen + 3 * 7 + 2) * 4u + kNextTest);
   // The progress model's budget names them by phase.
   const std::vector<orch::BudgetPart> parts = planned_job_parts(c);
   ASSERT_EQ(parts.size(), 4u);
   EXPECT_EQ(parts[0].name, "grid");
   EXPECT_EQ(parts[0].budget, (9 + 2 * 18) * 4);
   EXPECT_EQ(parts[1].name, "budget");
-  EXPECT_EQ(parts[1].budget, (2 * 5 * 5 + kScreen) * 4);
+  EXPECT_EQ(parts[1].budget, (2 * 5 * 7 + kScreen) * 4);
   EXPECT_EQ(parts[2].name, "confirm");
-  EXPECT_EQ(parts[2].budget, (3 * 5 + 2) * 4);
+  EXPECT_EQ(parts[2].budget, (3 * 7 + 2) * 4);
   EXPECT_EQ(parts[3].name, "next_test");
   EXPECT_EQ(parts[3].budget, kNextTest);
   EXPECT_EQ(c.budget.resolutions, std::vector<double>{1.25});
@@ -97,8 +97,8 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   two["budget"] = {{"resolution", {1.25, 1.5}}};
   const DiagnosisCampaign c2 = parse_diagnosis_campaign(two);
   EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
-  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 6 + kScreen + 3 * 5 + 2) * 4u + kNextTest);
-  EXPECT_EQ(budget_runs_per_point(c2.budget), 6u);  // reference, 2 seeds, speed, 2 resolutions
+  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 8 + kScreen + 3 * 7 + 2) * 4u + kNextTest);
+  EXPECT_EQ(budget_runs_per_point(c2.budget), 8u);  // reference, 4 seeds, speed, 2 resolutions
   // The local design: the 3 x 3 base grid, its star and its moves, 4 points per effect (both
   // continuous at neutral) and as many per move of its design; the step is read.
   json local = request();
@@ -108,7 +108,7 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   EXPECT_EQ(c3.grid.step, 0.15);
   EXPECT_EQ(
       planned_jobs(c3),
-      (9 + 5 + 4 * kStarMoves + 2 * 4 * (1 + kEffectMoves) + 2 * 5 * 5 + kScreen + 3 * 5 + 2) * 4u +
+      (9 + 5 + 4 * kStarMoves + 2 * 4 * (1 + kEffectMoves) + 2 * 5 * 7 + kScreen + 3 * 7 + 2) * 4u +
           kNextTest);
   // Without the next test, its part is not planned.
   json off = request();
@@ -374,7 +374,7 @@ TEST(DiagnosisRequest, CalibrationOnlyDatasetTakesEffectsOnlyForTheirNextTest) {
   std::vector<orch::BudgetPart> parts = planned_job_parts(with);
   ASSERT_EQ(parts.size(), 4u);
   EXPECT_EQ(parts[0].budget, 9 * 4);                // the base grid alone
-  EXPECT_EQ(parts[2].budget, 1 * (1 + 2 + 2) * 4);  // the base model confirmed alone
+  EXPECT_EQ(parts[2].budget, 1 * (1 + 2 + 4) * 4);  // the base model confirmed alone
   EXPECT_EQ(parts[3].name, "next_test");
   r["next_test"] = false;
   try {
@@ -426,16 +426,16 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   EXPECT_NEAR(range->value_at(range->s_at(0.0)), std::sqrt(2.0) * 1.01, 1e-9);
   EXPECT_DOUBLE_EQ(range->value_at(range->s_at(1.0)), 1.5);
   // A 5 x 5 (x 5) grid: 25 + 7 x 25 x 4 (+ packing's, interaction_range's and brazilian_flats'
-  // own 25 x 5), twice 5 points x 8 budget runs (reference, 2 seeds, half speed, 4 resolutions),
-  // the screen's 3 points for each of 10 effects at two points and the base's at the second,
-  // every confirmed: 8 x (3 + 2) and the base model at each of the 7 confirmed effects'
+  // own 25 x 5), twice 5 points x 10 budget runs (reference, 4 seeds, half speed, 4
+  // resolutions), the screen's 3 points for each of 10 effects at two points and the base's at the
+  // second, every confirmed: 8 x (3 + 4) and the base model at each of the 7 confirmed effects'
   // strengths; the next test's base at its fit and two steps (and at the balanced point) and the
   // 10 effects on the 7 runs and the menu's 8 more (its fast UCT is the dataset's).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
   EXPECT_EQ(planned_jobs(c),
-            (25 + 7 * 100 + 3 * 125 + 2 * 5 * 8 + 1 + 2 * 3 * 10 + 8 * 5 + 7) * 7u +
+            (25 + 7 * 100 + 3 * 125 + 2 * 5 * 10 + 1 + 2 * 3 * 10 + 8 * 7 + 7) * 7u +
                 (2 * 3 + 10) * (7 + 8));
 }
 
