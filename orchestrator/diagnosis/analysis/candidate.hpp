@@ -22,7 +22,7 @@ struct Candidate {
   // The values that give the same model as a fitted one (registry effects:
   // effect_same_model_span; interaction_range in FCC: its shell of neighbours). Empty, or from ==
   // to: the value alone.
-  std::function<ValueSpan(double value)> same_model;
+  std::function<ValueSpan(double value)> same_model{};
   // The walk fraction the candidate's unit coordinate u = 0 stands for: s = floor + (1 - floor) u.
   // 0 for an effect continuous at neutral (u = 0 is the base model, whose grid it shares); above 0
   // for one that jumps there (packing), whose own grid then starts at the floor.
