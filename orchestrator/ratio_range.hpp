@@ -25,9 +25,10 @@ struct RatioRange {
     max = std::max(max, ratio);
     ++runs;
   }
-  double reach_lo() const { return emulated ? emulated_lo : min; }
-  double reach_hi() const { return emulated ? emulated_hi : max; }
-  bool target_inside() const { return runs > 0 && target >= reach_lo() && target <= reach_hi(); }
+  bool target_inside() const {
+    return runs > 0 && target >= (emulated ? emulated_lo : min) &&
+           target <= (emulated ? emulated_hi : max);
+  }
 };
 
 }  // namespace rockcal::orch

@@ -343,7 +343,7 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
   return p;
 }
 
-void set_emulated_reach(const Emulators& m, const CalibrationCampaign&, orch::RatioRange& range) {
+void set_emulated_reach(const Emulators& m, orch::RatioRange& range) {
   // At the points whose UCT peaked (the BTT emulator is defined everywhere): a mean away from the
   // runs is the trend's extrapolation, which on a saturating model ran to twice the runs' ratios.
   const Eigen::MatrixXd& at = m.uct.data.x;

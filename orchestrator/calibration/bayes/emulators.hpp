@@ -67,6 +67,6 @@ PosteriorSummary summarise(const Emulators& m, const CalibrationCampaign& c, int
 
 // The UCT/BTT load ratios the emulators' means give at the points run whose UCT peaked (their
 // packings' scatter smoothed out): sets range's emulated reach.
-void set_emulated_reach(const Emulators& m, const CalibrationCampaign& c, orch::RatioRange& range);
+void set_emulated_reach(const Emulators& m, orch::RatioRange& range);
 
 }  // namespace rockcal::calibration

@@ -71,6 +71,12 @@ class Search {
   }
 
   bool left() const { return leaving_ && !cancelled_; }
+  // The UCT/BTT ratios of the runs, with the reach the coarse emulators put on them.
+  std::optional<RatioRange> ratio() const {
+    std::optional<RatioRange> r = ratio_range(history_, c_.targets.model_loads_n);
+    if (r && model_) set_emulated_reach(*model_, *r);
+    return r;
+  }
 
   void run(CalibrationReport& report) {
     launch(start());
@@ -498,14 +504,6 @@ class Search {
   std::vector<EvaluationRecord> check_;
   std::optional<PosteriorSummary> before_check_;  // when the check batch was planned
   std::optional<Emulators> model_, fine_model_;
-
- public:
-  // The UCT/BTT ratios of the coarse runs, with the reach the coarse emulators put on them.
-  std::optional<RatioRange> ratio() const {
-    std::optional<RatioRange> r = ratio_range(history_, c_.targets.model_loads_n);
-    if (r && model_) set_emulated_reach(*model_, c_, *r);
-    return r;
-  }
 };
 
 }  // namespace

@@ -125,7 +125,7 @@ std::string no_peak_zone_text(const PosteriorSummary& p,
     no_peak += !e.loads && is_no_peak(e.error) ? 1 : 0;
   }
   return sentence(
-             ": the strengths that would give the targets lie where the runs end without a peak "
+             "the strengths that would give the targets lie where the runs end without a peak "
              "(%.0f of the %.0f runs inside the %.0f%% region ended without one)",
              no_peak, inside, 100 * p.level) +
          ": the model reaches the targets' UCT/BTT load ratio there only with a UCT that keeps "
@@ -255,7 +255,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
         miss + sentence(": the target UCT/BTT load ratio %.4g lies outside ", r.ratio->target) +
         reach_words(*r.ratio);
     if (const std::string zone = no_peak_zone_text(p, r.history); !zone.empty())
-      r.verdict_reason += ";" + zone.substr(1);
+      r.verdict_reason += "; " + zone;
     if (!pressed.empty())
       r.verdict_reason += "; the posterior presses on " + pressed +
                           ": widen \"bounds\" to see whether the ratio moves toward the target "
@@ -264,7 +264,7 @@ void judge_posterior(CalibrationReport& r, const CalibrationCampaign& c) {
     r.verdict_reason = miss + ": the posterior presses on " + pressed +
                        "; the targets need strengths beyond it: widen \"bounds\"";
   } else if (const std::string zone = no_peak_zone_text(p, r.history); !zone.empty()) {
-    r.verdict_reason = miss + zone + wide;
+    r.verdict_reason = miss + ": " + zone + wide;
   } else if (r.stop_reason == StopReason::budget_exhausted) {
     const std::string budget =
         p.resolution == "fine"
