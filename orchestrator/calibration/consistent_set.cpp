@@ -285,8 +285,10 @@ ConsistentSet consistent_set(const std::vector<EvaluationRecord>& history,
     set.why = sentence(
         "the consistent points lie within %.3g%% in each strength, a step of F_s0/F_r0 by a factor "
         "%.3g either way misses the targets at the fitted scale (or leaves the bounds), and no "
-        "other ratio within the bounds meets them",
-        100 * std::max(relative_half_width(set.fr0), relative_half_width(set.fs0)), kRatioStep);
+        "other ratio within the bounds meets them: each strength is pinned to within a factor "
+        "%.3g",
+        100 * std::max(relative_half_width(set.fr0), relative_half_width(set.fs0)), kRatioStep,
+        kRatioStep);
   }
   return set;
 }

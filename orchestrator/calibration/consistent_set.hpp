@@ -16,8 +16,10 @@
 namespace rockcal::calibration {
 
 // Steps of F_s0/F_r0 along the valley. With both directions closed by a miss one step from the
-// best point, every consistent point lies within a factor 1.2 of its ratio: within about 10% in
-// each strength, the uniqueness the report claims.
+// best point, every consistent point lies within a factor 1.2 of its ratio, so each strength lies
+// within a factor 1.2 of the best point's (about 10% each where the step shares out between the
+// two; the whole step in one strength where the other is pinned by a load): the uniqueness the
+// report claims is at this resolution.
 inline constexpr double kRatioStep = 1.2;
 // A set is one point when each strength spans at most this relative half-width.
 inline constexpr double kUniqueHalfWidth = 0.1;
