@@ -52,8 +52,11 @@ struct ScatteringEvaluator : Evaluator {
   int runs = 0;
   // Unset: runs report no quasi-static measure; else each run's verdict at its point.
   std::function<bool(const BondPoint&)> quasi_static;
-  // Where both tests end without a peak (set: the strengths the predicate holds for).
+  // Where both tests end without a peak (set: the strengths the predicate holds for), and the
+  // engine's reason.
   std::function<bool(const BondPoint&)> no_peak;
+  std::string no_peak_reason =
+      "the load was still rising past the bond-controlled window (loading.past_window \"stop\")";
   // Set: what each UCT's gauges measured (its E and nu), else none.
   std::function<void(orch::Realisation&)> uct_gauges;
 
@@ -73,14 +76,8 @@ struct ScatteringEvaluator : Evaluator {
       freed.notify_all();
     }
     if (no_peak && no_peak(r.point)) {
-      const orch::Realisation x{r.sample_seed,
-                                0,
-                                "failed",
-                                {},
-                                {},
-                                {},
-                                "no peak: the load was still rising past the bond-controlled "
-                                "window (loading.past_window \"stop\")"};
+      const orch::Realisation x{
+          r.sample_seed, 0, "failed", {}, {}, {}, "no peak: " + no_peak_reason};
       return outcome_of(orch::make_ensemble({x}), orch::make_ensemble({x}));
     }
     const PeakLoads l = model(r.point);
@@ -553,6 +550,34 @@ TEST(BayesCalibration, TargetsInsideTheZoneWithoutAPeakAreSaidToLieThere) {
                                   "end without a peak ("),
             std::string::npos)
       << r.verdict_reason;
+  EXPECT_EQ(r.verdict_reason.find("more runs would narrow it"), std::string::npos)
+      << r.verdict_reason;
+  std::printf("%s\n", r.verdict_reason.c_str());
+}
+
+// Targets whose strengths lie where the runs stop at loading.max_strain still loading (a strong
+// specimen's peak strain beyond it), at a UCT/BTT ratio that weaker strengths reach with a peak:
+// the cause is the strain limit, and the fix is to raise it, not another interaction range.
+TEST(BayesCalibration, TargetsBeyondTheStrainLimitAreSaidToNeedALargerOne) {
+  const BondPoint truth{400, 600};
+  const CalibrationCampaign c = testing::campaign(testing::power_law(truth), bayes(60, 0.05));
+  ScatteringEvaluator e(testing::power_law);
+  e.no_peak = [](const BondPoint& p) { return p.fr0_n > 250; };
+  e.no_peak_reason =
+      "the load did not fall past a peak with bonds breaking before loading.max_strain";
+  const CalibrationReport r = run_calibration(c, e);
+  ASSERT_TRUE(r.posterior);
+  ASSERT_TRUE(r.ratio);
+  EXPECT_TRUE(r.ratio->target_inside()) << "peaked runs at smaller strengths reach the ratio";
+  EXPECT_EQ(r.verdict, Verdict::compromise) << r.verdict_reason;
+  EXPECT_NE(r.verdict_reason.find("the strengths that would give the targets lie where the runs "
+                                  "end without a peak ("),
+            std::string::npos)
+      << r.verdict_reason;
+  EXPECT_NE(r.verdict_reason.find("raise loading.max_strain in the job template"),
+            std::string::npos)
+      << r.verdict_reason;
+  EXPECT_EQ(r.verdict_reason.find("interaction range"), std::string::npos) << r.verdict_reason;
   EXPECT_EQ(r.verdict_reason.find("more runs would narrow it"), std::string::npos)
       << r.verdict_reason;
   std::printf("%s\n", r.verdict_reason.c_str());

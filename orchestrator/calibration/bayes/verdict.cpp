@@ -113,24 +113,36 @@ std::string failed_check_text(const PosteriorSummary& p) {
 
 // The runs inside the credible region (of the posterior's resolution) that ended without a peak,
 // when the check at the estimate ended so too: the targets then lie where the model's runs give no
-// loads, whatever the budget. Empty otherwise.
+// loads, whatever the budget. The fix follows what ended them: runs stopped at loading.max_strain
+// only (a stiff, strong specimen's peak strain beyond it) reach a peak with a larger one; runs
+// still loading up past the bond-controlled window have no peak the strengths set there. Empty
+// otherwise.
 std::string no_peak_zone_text(const PosteriorSummary& p,
                               const std::vector<EvaluationRecord>& history) {
   if (!is_no_peak(p.check_failed)) return "";
-  int inside = 0, no_peak = 0;
+  int inside = 0, no_peak = 0, at_strain = 0;
   for (const EvaluationRecord& e : history) {
     const bool fine = e.phase.rfind("fine", 0) == 0;
     if (fine != (p.resolution == "fine") || !in_credible_region(p, e.point)) continue;
     ++inside;
-    no_peak += !e.loads && is_no_peak(e.error) ? 1 : 0;
+    if (e.loads || !is_no_peak(e.error)) continue;
+    ++no_peak;
+    at_strain += e.error.find("loading.max_strain") != std::string::npos ? 1 : 0;
   }
+  const bool strain_only =
+      at_strain == no_peak && p.check_failed.find("loading.max_strain") != std::string::npos;
   return sentence(
              "the strengths that would give the targets lie where the runs end without a peak "
              "(%.0f of the %.0f runs inside the %.0f%% region ended without one)",
              no_peak, inside, 100 * p.level) +
-         ": the model reaches the targets' UCT/BTT load ratio there only with a UCT that keeps "
-         "loading up, so more runs of this specimen map the zone's edge rather than move it; "
-         "another interaction range in \"reach\" changes the ratios the peaks reach";
+         (strain_only
+              ? ": they stopped at loading.max_strain with the load still rising, so these "
+                "strengths' peaks lie at larger strains; raise loading.max_strain in the job "
+                "template"
+              : ": the model reaches the targets' UCT/BTT load ratio there only with a UCT that "
+                "keeps loading up, so more runs of this specimen map the zone's edge rather than "
+                "move it; another interaction range in \"reach\" changes the ratios the peaks "
+                "reach");
 }
 
 // The bound the estimate itself lies at (within two cells of a grid of grid_cells over the
