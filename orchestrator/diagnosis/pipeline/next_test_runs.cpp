@@ -27,7 +27,8 @@ std::string unidentified(const std::string& effect, const DiagnosisResult& r,
                          const DiagnosisCampaign& c) {
   for (const ScreenedEffect& e : r.screen.effects) {
     if (e.effect == effect && !e.visible) {
-      return "invisible to the dataset's tests (screen): it moves no observation beyond its noise";
+      return "invisible to the dataset's tests (screen): it moves no observation beyond half its "
+             "noise";
     }
   }
   if (!judges_effects(c)) {
