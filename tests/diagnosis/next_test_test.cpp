@@ -291,7 +291,7 @@ TEST(NextTest, WithNothingHeldOutEveryEffectGetsTheTestThatWouldShowIt) {
     const bool screened_out = !r.screen.effects[k].visible;
     screened.insert(screened_out);
     EXPECT_EQ(row["why"], screened_out ? "invisible to the dataset's tests (screen): it moves no "
-                                         "observation beyond half its noise"
+                                         "observation beyond its noise"
                                        : "not judged: the dataset has no held-out observation, so "
                                          "no evidence can tell it from the base model")
         << row.dump(2);

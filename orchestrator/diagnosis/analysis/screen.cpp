@@ -9,7 +9,7 @@ namespace rockcal::diagnosis {
 ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
                              const std::vector<std::array<double, 2>>& jacobian,
                              const std::vector<double>& weight, const std::vector<Target>& targets,
-                             const std::vector<double>& budget, double margin) {
+                             const std::vector<double>& budget) {
   const std::size_t n = targets.size();
   std::vector<double> raw(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i) {
@@ -30,7 +30,7 @@ ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const R
       out.largest_in_noise = in_noise;
     }
   }
-  out.visible = !out.largest || out.largest_in_noise > margin;
+  out.visible = !out.largest || out.largest_in_noise > 1.0;
   return out;
 }
 

@@ -5,13 +5,8 @@
 // driver's balanced_point). The strengths' re-fit is removed linearly with the base model's local
 // sensitivity (change_after_refit, as the budget's resolution term), and what is left is judged as
 // identifiability judges a change: against the observation's budget + lab uncertainty. An effect
-// that moves no observation beyond half that, at its strongest, is invisible to these tests:
-// whatever its surfaces showed would be noise, so they are not run.
-// Why half: the screen runs where the base model fits, and an effect that raises the loads
-// displaces that fit from the strengths the effect would need, where its mark can be larger (an
-// effect's mark depends on the strengths: a faster platen's on a D/R 20 UCT was +0.19 in ln at a
-// twin's truth and +0.095 at the base fit that twin's data displaced 1.6x). A full noise unit at
-// the base fit dropped such an effect that its surfaces would have named.
+// that moves no observation beyond that, at its strongest, is invisible to these tests: whatever
+// its surfaces showed would be noise, so they are not run.
 #pragma once
 
 #include <array>
@@ -33,8 +28,8 @@ struct ScreenedEffect {
   std::vector<double> noise;           // per target: budget + lab uncertainty
   std::optional<std::size_t> largest;  // the target moved most in noise units; none measured: none
   double largest_in_noise = std::numeric_limits<double>::quiet_NaN();
-  // Some target moves beyond kScreenMargin of its noise. An effect with no value to compare is
-  // kept: unknown is not nothing.
+  // Some target moves beyond its noise. An effect with no value to compare is kept: unknown is
+  // not nothing.
   bool visible = true;
   // Where the effect's fit lies from the screen's point, in the unit cube of (ln F_r0, ln F_s0):
   // the strengths' linear re-fit of the strong run to the calibration observations, with the
@@ -52,21 +47,12 @@ struct ScreenedEffect {
 // strength (the effect's own sensitivity).
 inline constexpr int kScreenRunsPerEffect = 3;
 
-// The share of an observation's noise (budget + lab uncertainty) the screen's re-fitted change must
-// exceed on some observation for the effect to be kept: half at the base fit (above); the whole at
-// the balanced point, which lies away from any fit, where the strengths' linear re-fit errs most (a
-// uniform factor on every load, which the strengths absorb, kept 0.59 of the noise there on the
-// formula twin of screen_test.cpp) and no fit of the data is displaced by the effect.
-inline constexpr double kScreenMargin = 0.5;
-inline constexpr double kBalancedScreenMargin = 1.0;
-
 // One effect's mark: `strong` is its run at s = 1, `base` the base model's at the same strengths;
-// jacobian and weight as StrengthResponse at that point (budget.hpp); visible beyond `margin` of
-// the noise. Its fit_shift is left zero.
+// jacobian and weight as StrengthResponse at that point (budget.hpp). Its fit_shift is left zero.
 ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const RunOutcome& strong,
                              const std::vector<std::array<double, 2>>& jacobian,
                              const std::vector<double>& weight, const std::vector<Target>& targets,
-                             const std::vector<double>& budget, double margin = kScreenMargin);
+                             const std::vector<double>& budget);
 
 // ScreenedEffect::fit_shift: the strong run's residual to the lab values, re-fitted (refit_shift)
 // on the effect's own d ln / dz there (`strong_jacobian`, NaN where a run gave no value), with the

@@ -298,18 +298,17 @@ void add_screen_runs(const DiagnosisCampaign& c, const std::vector<double>& z,
 }
 
 // Every effect judged at screen point z from its runs there (`runs`, add_screen_runs' order) and
-// the base model's nominal run at z, visible beyond `margin` of its noise; fit_shift from z.
+// the base model's nominal run at z; fit_shift from z.
 std::vector<ScreenedEffect> screen_at(const DiagnosisCampaign& c, const CandidateResult& base,
                                       const std::vector<double>& z, const RunOutcome& base_run,
-                                      const RunOutcome* runs, const std::vector<double>& budget,
-                                      double margin) {
+                                      const RunOutcome* runs, const std::vector<double>& budget) {
   const StrengthResponse response = strength_response(base.surfaces, c.targets, {z});
   const std::array<double, 2> step = screen_steps(c, z);
   std::vector<ScreenedEffect> out;
   for (std::size_t k = 0; k < c.candidates.size(); ++k) {
     const RunOutcome* own = runs + kScreenRunsPerEffect * k;
     out.push_back(screen_effect(c.candidates[k].effect, base_run, own[0], response.jacobian[0],
-                                response.weight, c.targets, budget, margin));
+                                response.weight, c.targets, budget));
     out.back().fit_shift = fit_shift(
         own[0], c.targets, secant_jacobian(own[0], {own[1], own[2]}, step), response.weight);
   }
@@ -337,14 +336,12 @@ Budget budget_and_screen(const DiagnosisCampaign& c, const CandidateResult& base
   }
   std::vector<RunOutcome> outcomes;
   Budget budget = measure_budget(c, base, z, evaluator, requests, &outcomes);
-  screen.effects =
-      screen_at(c, base, z, outcomes[0], &outcomes[1], budget.per_target, kScreenMargin);
+  screen.effects = screen_at(c, base, z, outcomes[0], &outcomes[1], budget.per_target);
   screen.model_points = kScreenRunsPerEffect * int(c.candidates.size());
   if (balanced) {
     const std::size_t at = 1 + kScreenRunsPerEffect * c.candidates.size();
     const std::vector<ScreenedEffect> there =
-        screen_at(c, base, *balanced, outcomes[at], &outcomes[at + 1], budget.per_target,
-                  kBalancedScreenMargin);
+        screen_at(c, base, *balanced, outcomes[at], &outcomes[at + 1], budget.per_target);
     screen.model_points += 1 + kScreenRunsPerEffect * int(c.candidates.size());
     for (std::size_t k = 0; k < there.size(); ++k) {
       ScreenedEffect& e = screen.effects[k];

@@ -27,8 +27,7 @@ std::string unidentified(const std::string& effect, const DiagnosisResult& r,
                          const DiagnosisCampaign& c) {
   for (const ScreenedEffect& e : r.screen.effects) {
     if (e.effect == effect && !e.visible) {
-      return "invisible to the dataset's tests (screen): it moves no observation beyond half its "
-             "noise";
+      return "invisible to the dataset's tests (screen): it moves no observation beyond its noise";
     }
   }
   if (!judges_effects(c)) {

@@ -425,22 +425,19 @@ json screen_json(const ScreenResult& screen, const DiagnosisCampaign& c) {
                   screen.balanced_point.fr0_n, screen.balanced_point.fs0_n);
     where += line;
   }
-  // The share of the noise each point asks (screen.hpp: kScreenMargin, kBalancedScreenMargin).
-  const std::string noise =
-      "its noise (budget + lab uncertainty; half of it at the base fit, which an effect that "
-      "displaced the fit can mark more at its own strengths)";
   std::string reason;
   if (!screen.enabled) {
     reason = c.screen ? "no candidate effect to screen" : "not screened (\"screen\": false)";
   } else if (named.empty()) {
-    reason = "every effect moves some observation beyond " + noise +
-             " at its strong value (s = 1) with the strengths re-fitted, " + where +
-             ": none screened out";
+    reason =
+        "every effect moves some observation beyond its noise (budget + lab uncertainty) at "
+        "its strong value (s = 1) with the strengths re-fitted, " +
+        where + ": none screened out";
   } else {
     reason = "invisible to these tests: " + named +
              ": at its strong value (s = 1), with the strengths re-fitted, each moves no "
-             "observation beyond " +
-             noise + " " + where;
+             "observation beyond its noise (budget + lab uncertainty) " +
+             where;
     if (judges_effects(c)) {
       reason += ", so it was not designed further (" + std::to_string(screen.skipped_model_points) +
                 " model points of surfaces not run)";
