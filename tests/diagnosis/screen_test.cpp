@@ -57,6 +57,20 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
   EXPECT_EQ(*marked.largest, 2u);
   EXPECT_NEAR(marked.change[2], 0.1, 1e-12);
   EXPECT_NEAR(marked.largest_in_noise, 0.1 / 0.03, 1e-9);
+  // A dropped effect near the threshold is named with its mark and how to design it anyway; one
+  // far below it only by name.
+  ScreenedEffect faint =
+      screen_effect("rate", base, run({100 * e, 50 * e, 70 * e * std::exp(0.025)}), jacobian,
+                    weight, three_targets(), budget);
+  EXPECT_FALSE(faint.visible);
+  EXPECT_EQ(screened_out_text({absorbed, marked, faint}, three_targets()),
+            "not tried, as invisible to these tests (screen): uniform, rate; of these, rate moved "
+            "uct-fast 0.83 of its noise at the base fit, near the threshold: data an effect "
+            "raised put the base fit away from the strengths it would need, where its mark can be "
+            "larger; a request with \"screen\": false designs it");
+  EXPECT_EQ(screened_out_text({absorbed}, three_targets()),
+            "not tried, as invisible to these tests (screen): uniform");
+  EXPECT_EQ(screened_out_text({marked}, three_targets()), "");
   // A strong run without values cannot show that the effect moves nothing: it is kept.
   const ScreenedEffect failed =
       screen_effect("packing", base, run({std::nullopt, std::nullopt, std::nullopt}), jacobian,

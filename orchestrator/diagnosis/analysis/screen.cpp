@@ -1,6 +1,7 @@
 #include "orchestrator/diagnosis/analysis/screen.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "orchestrator/diagnosis/analysis/budget.hpp"
 
@@ -31,6 +32,30 @@ ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const R
     }
   }
   out.visible = !out.largest || out.largest_in_noise > 1.0;
+  return out;
+}
+
+std::string screened_out_text(const std::vector<ScreenedEffect>& effects,
+                              const std::vector<Target>& targets) {
+  std::string names, near;
+  for (const ScreenedEffect& e : effects) {
+    if (e.visible) continue;
+    names += (names.empty() ? "" : ", ") + e.effect;
+    if (!e.largest || !(e.largest_in_noise >= kScreenNearThreshold)) continue;
+    char line[256];
+    std::snprintf(line, sizeof line, "%s moved %s %.2f of its noise at the %s", e.effect.c_str(),
+                  targets[*e.largest].id.c_str(), e.largest_in_noise,
+                  e.at_balanced ? "balanced point" : "base fit");
+    near += std::string(near.empty() ? "" : ", ") + line;
+  }
+  if (names.empty()) return "";
+  std::string out = "not tried, as invisible to these tests (screen): " + names;
+  if (!near.empty()) {
+    out += "; of these, " + near +
+           ", near the threshold: data an effect raised put the base fit away from the strengths "
+           "it would need, where its mark can be larger; a request with \"screen\": false "
+           "designs it";
+  }
   return out;
 }
 

@@ -587,13 +587,10 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   }
   // A gap left unexplained (not undetermined: then the data judged nothing) may lie with an effect
   // these tests cannot see: say which were dropped.
-  std::string invisible;
-  for (const ScreenedEffect& e : report.screen.effects) {
-    if (!e.visible) invisible += (invisible.empty() ? "" : ", ") + e.effect;
-  }
+  const std::string invisible = screened_out_text(report.screen.effects, c.targets);
   if (chosen_effect < 0 && !report.verdict.undetermined && !invisible.empty() &&
       report.held_out_budgets.value_or(0) > c.decision.gap_budgets) {
-    report.verdict.reason += "; not tried, as invisible to these tests (screen): " + invisible;
+    report.verdict.reason += "; " + invisible;
   }
   report.inconsistencies = find_inconsistencies(c.targets);
   if (!report.inconsistencies.empty()) {
