@@ -227,7 +227,20 @@ TEST(Screen, AGapWithEveryEffectInvisibleNamesThem) {
   EXPECT_EQ(r.summary["candidates"].size(), 1u);
   EXPECT_TRUE(r.summary["gap"]["exceeds_budget"].get<bool>());
   const std::string reason = r.summary["verdict"]["reason"];
-  const std::string tail = "; not tried, as invisible to these tests (screen): uniform";
+  // Its mark, from the screen's fields: near the threshold (the re-fit's error reached 0.71 of the
+  // noise on a generic x86-64 build's round-off) the tail says so and how to design it anyway.
+  const json& largest = r.summary["screen"]["effects"][0]["largest"];
+  std::string tail = "; not tried, as invisible to these tests (screen): uniform";
+  if (largest["in_noise"].get<double>() >= kScreenNearThreshold) {
+    char mark[128];
+    std::snprintf(mark, sizeof mark,
+                  "; of these, uniform moved %s %.2f of its noise at the base fit",
+                  largest["id"].get<std::string>().c_str(), largest["in_noise"].get<double>());
+    tail += std::string(mark) +
+            ", near the threshold: data an effect raised put the base fit away from the strengths "
+            "it would need, where its mark can be larger; a request with \"screen\": false "
+            "designs it";
+  }
   ASSERT_GE(reason.size(), tail.size());
   EXPECT_EQ(reason.substr(reason.size() - tail.size()), tail) << reason;
   std::printf("every effect invisible: %s\n", reason.c_str());
