@@ -68,6 +68,14 @@ TEST(Screen, AMarkTheStrengthsAbsorbIsInvisibleAndOneTheyCannotIsNot) {
             "uct-fast 0.83 of its noise at the base fit, near the threshold: data an effect "
             "raised put the base fit away from the strengths it would need, where its mark can be "
             "larger; a request with \"screen\": false designs it");
+  ScreenedEffect faint_too = faint;
+  faint_too.effect = "flaws";
+  const std::string both = screened_out_text({faint, faint_too}, three_targets());
+  EXPECT_NE(both.find("of these, rate moved uct-fast 0.83 of its noise at the base fit, flaws "
+                      "moved uct-fast 0.83 of its noise at the base fit, near the threshold"),
+            std::string::npos)
+      << both;
+  EXPECT_EQ(both.substr(both.size() - 12), "designs them") << both;
   EXPECT_EQ(screened_out_text({absorbed}, three_targets()),
             "not tried, as invisible to these tests (screen): uniform");
   EXPECT_EQ(screened_out_text({marked}, three_targets()), "");

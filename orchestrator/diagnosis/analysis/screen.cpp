@@ -38,6 +38,7 @@ ScreenedEffect screen_effect(std::string effect, const RunOutcome& base, const R
 std::string screened_out_text(const std::vector<ScreenedEffect>& effects,
                               const std::vector<Target>& targets) {
   std::string names, near;
+  int near_count = 0;
   for (const ScreenedEffect& e : effects) {
     if (e.visible) continue;
     names += (names.empty() ? "" : ", ") + e.effect;
@@ -47,6 +48,7 @@ std::string screened_out_text(const std::vector<ScreenedEffect>& effects,
                   targets[*e.largest].id.c_str(), e.largest_in_noise,
                   e.at_balanced ? "balanced point" : "base fit");
     near += std::string(near.empty() ? "" : ", ") + line;
+    ++near_count;
   }
   if (names.empty()) return "";
   std::string out = "not tried, as invisible to these tests (screen): " + names;
@@ -54,7 +56,8 @@ std::string screened_out_text(const std::vector<ScreenedEffect>& effects,
     out += "; of these, " + near +
            ", near the threshold: data an effect raised put the base fit away from the strengths "
            "it would need, where its mark can be larger; a request with \"screen\": false "
-           "designs it";
+           "designs " +
+           (near_count > 1 ? "them" : "it");
   }
   return out;
 }
