@@ -293,20 +293,39 @@ TEST(Evidence, AnEffectInertAtItsFittedValueIsNeverTheVerdict) {
   // Without the check's run (an older report, a base candidate) nothing is assumed inert.
   c[1].mark_at_fit.reset();
   EXPECT_EQ(decide(rule, c, {1, 2}, 2.3, 0.177).candidate, 1);
+  // The same evidence with the base model within the rule's budgets: not named, and said why.
+  const Verdict within = decide(rule, c, {1, 2}, 0.997, 0.177);
+  EXPECT_EQ(within.candidate, -1);
+  EXPECT_NE(within.reason.find("within the 1.00 budgets of the decision rule, no gap to explain; "
+                               "the best effect, "),
+            std::string::npos)
+      << within.reason;
+  EXPECT_NE(within.reason.find(", above the threshold, but without a gap there is nothing for it "
+                               "to explain"),
+            std::string::npos)
+      << within.reason;
 }
 
-// The rule names the contender with the most evidence when it exceeds the threshold.
+// The rule names the contender with the most evidence when it exceeds the threshold, and only
+// where the base model leaves a gap to explain.
 TEST(Evidence, TheDecisionRuleNamesTheBestContenderAboveItsThreshold) {
   const DecisionRule rule;  // the default threshold
-  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence + 0.5}}), 1);
-  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence}}), -1) << "exceed, not equal";
-  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence - 0.5}}), -1);
-  EXPECT_EQ(choose_effect(rule, {}), -1);
+  const double gap = 2.0;   // held-out rms in noise budgets
+  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence + 0.5}}, gap), 1);
+  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence}}, gap), -1) << "exceed, not equal";
+  EXPECT_EQ(choose_effect(rule, {{1, rule.min_evidence - 0.5}}, gap), -1);
+  EXPECT_EQ(choose_effect(rule, {}, gap), -1);
   DecisionRule strict;
   strict.min_evidence = 5.0;
-  EXPECT_EQ(choose_effect(strict, {{1, 4.0}}), -1);
-  EXPECT_EQ(choose_effect(strict, {{1, 4.0}, {2, 6.0}}), 2);
-  EXPECT_EQ(choose_effect(strict, {{1, 6.0}, {2, 6.0}}), 1) << "ties keep the earlier";
+  EXPECT_EQ(choose_effect(strict, {{1, 4.0}}, gap), -1);
+  EXPECT_EQ(choose_effect(strict, {{1, 4.0}, {2, 6.0}}, gap), 2);
+  EXPECT_EQ(choose_effect(strict, {{1, 6.0}, {2, 6.0}}, gap), 1) << "ties keep the earlier";
+  // The base model within the rule's budgets (the coupling twin's 0.997) or without held-out
+  // residuals: nothing to explain, whatever the evidence.
+  EXPECT_EQ(choose_effect(rule, {{1, 1.41}}, 0.997), -1);
+  EXPECT_EQ(choose_effect(rule, {{1, 1.41}}, rule.gap_budgets), -1) << "exceed, not equal";
+  EXPECT_EQ(choose_effect(rule, {{1, 1.41}}, std::nullopt), -1);
+  EXPECT_EQ(choose_effect(rule, {{1, 1.41}}, 1.01), 1);
 }
 
 }  // namespace

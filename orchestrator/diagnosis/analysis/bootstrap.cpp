@@ -70,14 +70,16 @@ BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
   if (!candidates[0].fitted) return out;
   Normal normal{std::mt19937_64(seed)};
   const std::vector<double> nominal = ln_lab(targets);
+  const std::vector<double> base_spread = held_out_fit_variance(candidates[0], targets, judged);
   for (int r = 0; r < replicates; ++r) {
     std::vector<double> lab = nominal;
     for (std::size_t i = 0; i < lab.size(); ++i) {
       lab[i] += noise_scale(targets[i], judged[i]) * normal();
     }
-    const HeldOutDensity base =
-        held_out_density(replicate_residuals(candidates[0], targets, budget, lab), targets, judged,
-                         predictive_variance(candidates[0], targets, judged));
+    const std::vector<double> base_residuals =
+        replicate_residuals(candidates[0], targets, budget, lab);
+    const HeldOutDensity base = held_out_density(
+        base_residuals, targets, judged, predictive_variance(candidates[0], targets, judged));
     std::vector<Contender> contenders;
     for (int i = 1; i < int(candidates.size()); ++i) {
       const CandidateResult& c = candidates[i];
@@ -90,7 +92,9 @@ BootstrapResult bootstrap_verdicts(const DecisionRule& rule,
                            predictive_variance(c, targets, judged));
       if (const auto e = evidence_over(d, base)) contenders.push_back({i, *e});
     }
-    const int chosen = choose_effect(rule, contenders);
+    const int chosen =
+        choose_effect(rule, contenders,
+                      rms_in_budgets(base_residuals, targets, judged, Role::held_out, base_spread));
     ++out.winners[chosen < 0 ? "" : candidates[chosen].candidate.effect];
     ++out.replicates;
   }

@@ -101,7 +101,9 @@ int group(const CandidateResult& c) {
 
 }  // namespace
 
-int choose_effect(const DecisionRule& rule, const std::vector<Contender>& contenders) {
+int choose_effect(const DecisionRule& rule, const std::vector<Contender>& contenders,
+                  std::optional<double> held_out_budgets) {
+  if (!held_out_budgets || !(*held_out_budgets > rule.gap_budgets)) return -1;
   const Contender* best = nullptr;
   for (const Contender& c : contenders) {
     if (!best || c.evidence > best->evidence) best = &c;
@@ -194,7 +196,7 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
     if (eligible(candidates[i])) contenders.push_back({i, *candidates[i].evidence});
   }
   const auto base_rms = candidates[0].confirmed_rms.held_out;
-  v.candidate = choose_effect(rule, contenders);
+  v.candidate = choose_effect(rule, contenders, gap);
   for (const Contender& c : contenders) {
     if (v.best < 0 || c.evidence > *candidates[v.best].evidence) v.best = c.index;
   }
@@ -243,7 +245,11 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
   } else {
     v.reason = size + gap_text + "the best effect, " + candidates[v.best].candidate.effect +
                ", has " + evidence_text(v.best) +
-               (no_gap ? "" : ": none of the candidates explains the gap") +
+               (!no_gap ? ": none of the candidates explains the gap"
+                : *candidates[v.best].evidence > rule.min_evidence
+                    ? ", above the threshold, but without a gap there is nothing for it to "
+                      "explain"
+                    : "") +
                unfixed_note(candidates, order) + inert_note(candidates, order) +
                wider_note(candidates, order, rule.min_evidence);
   }
@@ -299,7 +305,10 @@ std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
       check.evidence[c.candidate.effect] = *e;
       contenders.push_back({i, *e});
     }
-    const int chosen = choose_effect(rule, contenders);
+    const int chosen =
+        choose_effect(rule, contenders,
+                      rms_in_budgets(base_residuals, targets, budget, Role::held_out,
+                                     held_out_fit_variance(candidates[0], targets, budget)));
     check.verdict = chosen < 0 ? "" : candidates[chosen].candidate.effect;
     out.push_back(std::move(check));
   }
