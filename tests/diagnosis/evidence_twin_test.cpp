@@ -180,21 +180,39 @@ class EffectAtTheDetectionLimit : public ::testing::TestWithParam<const char*> {
 
 TEST_P(EffectAtTheDetectionLimit, IsNamedFirst) {
   const std::string effect = GetParam();
+  const DecisionRule rule;
+  int named = 0;
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const json summary = diagnose(effect, 0.2, seed);
     const json& v = summary["verdict"];
-    EXPECT_EQ(v["effect"], effect) << "seed " << seed << "\n" << v.dump(2);
-    EXPECT_GT(v["evidence"]["value"].get<double>(), DecisionRule{}.min_evidence);
     for (const json& c : summary["candidates"]) {
       if (c["rank"] == 1) {
         EXPECT_EQ(c["effect"], effect) << "seed " << seed;
       }
     }
+    // At the limit the base model's held-out gap can fall within the rule's budgets (0.98 on a
+    // generic x86-64 build's round-off for rate): then nothing is named, and the reason says the
+    // best effect had evidence but no gap to explain.
+    const double gap = summary["gap"]["held_out_budgets"].get<double>();
+    if (gap > rule.gap_budgets) {
+      EXPECT_EQ(v["effect"], effect) << "seed " << seed << "\n" << v.dump(2);
+      EXPECT_GT(v["evidence"]["value"].get<double>(), rule.min_evidence);
+      named += v["effect"] == effect ? 1 : 0;
+    } else {
+      EXPECT_TRUE(v["effect"].is_null()) << v.dump(2);
+      EXPECT_NE(
+          v["reason"].get<std::string>().find("no gap to explain; the best effect, " + effect),
+          std::string::npos)
+          << v.dump(2);
+    }
     // interaction_range has no weaker version than its first change in FCC: hidden there.
-    std::printf("%s at s = %.3g, seed %d: %s, evidence %.2f nats, G %.2f\n", effect.c_str(),
+    std::printf("%s at s = %.3g, seed %d: %s, held-out gap %.2f budgets\n", effect.c_str(),
                 testing::hidden_s(effect, 0.2), int(seed), v["label"].get<std::string>().c_str(),
-                v["evidence"]["value"].get<double>(), v["gap_closure"].get<double>());
+                gap);
   }
+  // Rate's gaps here are 1.01, 1.03 and 1.44 budgets (1.01, 0.98, 1.40 on the generic build): at
+  // the limit, so one seed named is what holds on any round-off.
+  EXPECT_GE(named, 1) << "named where its gap is seen";
 }
 
 // The effects whose measured mark reaches a calibration and a held-out observation
