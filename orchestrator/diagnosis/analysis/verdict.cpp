@@ -101,9 +101,13 @@ int group(const CandidateResult& c) {
 
 }  // namespace
 
+bool leaves_gap(const DecisionRule& rule, std::optional<double> held_out_budgets) {
+  return held_out_budgets && *held_out_budgets > rule.gap_budgets;
+}
+
 int choose_effect(const DecisionRule& rule, const std::vector<Contender>& contenders,
                   std::optional<double> held_out_budgets) {
-  if (!held_out_budgets || !(*held_out_budgets > rule.gap_budgets)) return -1;
+  if (!leaves_gap(rule, held_out_budgets)) return -1;
   const Contender* best = nullptr;
   for (const Contender& c : contenders) {
     if (!best || c.evidence > best->evidence) best = &c;
@@ -218,7 +222,7 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
     return "evidence " + fixed(*candidates[i].evidence, 2) + " nats over the base (threshold " +
            fixed(rule.min_evidence, 2) + ")";
   };
-  const bool no_gap = !(*gap > rule.gap_budgets);
+  const bool no_gap = !leaves_gap(rule, gap);
   const std::string gap_text = no_gap ? ": within the " + fixed(rule.gap_budgets, 2) +
                                             " budgets of the decision rule, no gap to explain; "
                                       : ": a gap, but ";
@@ -276,6 +280,7 @@ std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
                                    const std::vector<double>& budget) {
   std::vector<SeedCheck> out;
   const std::vector<double> lab = ln_lab(targets);
+  const std::vector<double> base_spread = held_out_fit_variance(candidates[0], targets, budget);
   for (std::size_t j = 0; j < seeds.size(); ++j) {
     if (candidates[0].seed_ln.size() <= j) break;
     SeedCheck check;
@@ -307,8 +312,7 @@ std::vector<SeedCheck> seed_checks(const DecisionRule& rule,
     }
     const int chosen =
         choose_effect(rule, contenders,
-                      rms_in_budgets(base_residuals, targets, budget, Role::held_out,
-                                     held_out_fit_variance(candidates[0], targets, budget)));
+                      rms_in_budgets(base_residuals, targets, budget, Role::held_out, base_spread));
     check.verdict = chosen < 0 ? "" : candidates[chosen].candidate.effect;
     out.push_back(std::move(check));
   }

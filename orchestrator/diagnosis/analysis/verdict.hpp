@@ -69,11 +69,14 @@ struct Contender {
   double evidence;  // nats over the base model
 };
 
+// The base model leaves a gap to explain: its held-out rms in noise budgets (`held_out_budgets`;
+// none: no held-out residual) above rule.gap_budgets. Within them it meets the held-out data to
+// their noise, and what evidence an effect gains there is that noise's (a compression-coupling
+// twin at D/R 20 whose base left 0.997 budgets named rate at 1.41 nats).
+bool leaves_gap(const DecisionRule& rule, std::optional<double> held_out_budgets);
+
 // The contender with the most evidence if it exceeds rule.min_evidence and the base model leaves a
-// gap to explain (`held_out_budgets`, its held-out rms in noise budgets, above rule.gap_budgets);
-// otherwise -1 ("no effect needed"). Ties keep the earlier. Within the budgets the base model
-// meets the held-out data to their noise, and what evidence an effect gains there is that noise's
-// (a compression-coupling twin at D/R 20 whose base left 0.997 budgets named rate at 1.41 nats).
+// gap (leaves_gap); otherwise -1 ("no effect needed"). Ties keep the earlier.
 int choose_effect(const DecisionRule& rule, const std::vector<Contender>& contenders,
                   std::optional<double> held_out_budgets);
 

@@ -589,7 +589,7 @@ DiagnosisResult run_diagnosis(const DiagnosisCampaign& campaign, Evaluator& eval
   // these tests cannot see: say which were dropped.
   const std::string invisible = screened_out_text(report.screen.effects, c.targets);
   if (chosen_effect < 0 && !report.verdict.undetermined && !invisible.empty() &&
-      report.held_out_budgets.value_or(0) > c.decision.gap_budgets) {
+      leaves_gap(c.decision, report.held_out_budgets)) {
     report.verdict.reason += "; " + invisible;
   }
   report.inconsistencies = find_inconsistencies(c.targets);
