@@ -135,6 +135,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
   twin->add_flag("--keep-runs", twin_options.keep_runs, "keep OUT.runs/ (job dirs and logs)");
+  twin->add_option("--next-test", twin_options.next_test,
+                   "JSON file: a diagnosis report's next test (or a list), measured too as a "
+                   "calibration observation")
+      ->check(CLI::ExistingFile);
 
   std::string backup_db = "rockcal.db", backup_out, restore_from, restore_data_dir;
   auto* backup = app.add_subcommand(

@@ -24,8 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json read_template(const std::string& file) {
-  if (file.empty()) return diagnosis::demo_twin_template();
+json read_json_file(const std::string& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error("cannot read " + file);
   try {
@@ -33,6 +32,10 @@ json read_template(const std::string& file) {
   } catch (const JsonInputError& e) {
     throw std::runtime_error(file + ": not JSON (" + e.what() + ")");
   }
+}
+
+json read_template(const std::string& file) {
+  return file.empty() ? diagnosis::demo_twin_template() : read_json_file(file);
 }
 
 void write_json(const json& j, const fs::path& file) {
@@ -49,6 +52,10 @@ int run_twin(const TwinOptions& o, const std::string& argv0) {
                   {"noise", o.noise}, {"resolution", o.resolution}, {"job", read_template(o.job)}};
   if (o.value_given) request["value"] = o.value;
   if (o.truth_seed) request["truth_seed"] = *o.truth_seed;
+  if (!o.next_test.empty()) {
+    const json tests = read_json_file(o.next_test);
+    request["next_tests"] = tests.is_array() ? tests : json::array({tests});
+  }
   parse_twin_campaign(request);  // a request no twin can be made of fails before any run
   // rockcal-dem runs as an MPI singleton; Open MPI refuses root without these.
   setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);

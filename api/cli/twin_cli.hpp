@@ -21,6 +21,7 @@ struct TwinOptions {
   std::string out = "twin.json";  // .json or .csv; the truth goes to <out minus .json>.truth.json
   int parallel = 2;               // engine runs at once
   bool keep_runs = false;         // keep <out>.runs/ (job dirs and logs) after success
+  std::string next_test;          // JSON file: a report's next test, or a list of them
 };
 
 int run_twin(const TwinOptions& options, const std::string& argv0);

@@ -269,6 +269,73 @@ TEST(DiagnosisTwin, ATruthSeedFixesTheTruthAndLeavesTheNoiseToTheSeed) {
   }
 }
 
+// Focus: a next test measured by the twin (the check that a diagnosis's next test names the hidden
+// effect). It is read as the report states it, run at its own conditions with the twin's truth
+// and effect, and added as a calibration observation; the design's observations keep their
+// values, so the twin is the one without it plus that test. Bad next tests name their field.
+TEST(DiagnosisTwin, ANextTestIsMeasuredTooAsACalibrationObservation) {
+  const json slender = {
+      {"id", "menu-uct-hd3"},
+      {"test", "uct"},
+      {"observable", "peak_load"},
+      {"description", "the peak load of a slender UCT (H/D = 3)"},
+      {"conditions",
+       {{"units", "model"}, {"diameter", 8.0}, {"height", 24.0}, {"platen_velocity", 0.05}}}};
+  const TwinDesign d = make_twin_design(demo_twin_template(), formula_engine());
+  TwinRequest plain_request{"rate", 4, 11, 0.05};
+  TwinRequest request = plain_request;
+  request.next_tests = {parse_next_test(slender, "next_tests[0]")};
+  std::vector<json> jobs;
+  const Twin with = make_twin(d, request, formula_engine(&jobs));
+  const Twin plain = make_twin(d, plain_request, formula_engine());
+  ASSERT_EQ(with.dataset.observations.size(), plain.dataset.observations.size() + 1);
+  for (std::size_t i = 0; i < plain.dataset.observations.size(); ++i) {
+    EXPECT_EQ(with.dataset.observations[i].value, plain.dataset.observations[i].value);
+  }
+  const Observation& added = with.dataset.observations.back();
+  EXPECT_EQ(added.id, "menu-uct-hd3");
+  EXPECT_EQ(added.role, Role::calibration);
+  EXPECT_EQ(added.conditions.height_m, 24.0);
+  EXPECT_EQ(added.conditions.loading_rate_m_s, 0.05);
+  const json& job = jobs.back();
+  EXPECT_EQ(job["test"], "uct");
+  EXPECT_EQ(job["sample"]["height"], 24.0);
+  EXPECT_EQ(job["effects"]["rate"]["speed_factor"], 4.0);
+  EXPECT_EQ(job["bond"]["fr0"], with.truth["fr0"]);
+  const double clean = with.truth["observations"].back()["noise_free"];
+  EXPECT_EQ(clean, formula_result(job)["peak_load"].get<double>());
+  EXPECT_DOUBLE_EQ(added.uncertainty, 0.05 * added.value);
+
+  const auto refusal = [](json tests) -> std::string {
+    try {
+      parse_twin_campaign({{"kind", "twin"}, {"effect", "none"}, {"next_tests", tests}});
+    } catch (const orch::RequestError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(refusal(json::array({slender})), "(accepted)");
+  EXPECT_EQ(refusal(slender), "next_tests: must be a list of a report's next tests");
+  json lab = slender;
+  lab["conditions"]["units"] = "lab";
+  EXPECT_EQ(refusal(json::array({lab})),
+            "next_tests[0].conditions.units: must be \"model\" (a twin is in model units)");
+  json own = slender;
+  own["id"] = "uct-peak";
+  EXPECT_EQ(refusal(json::array({own})),
+            "next_tests[0].id: must be a menu test's id (menu-...), as the report names it");
+  EXPECT_EQ(refusal(json::array({slender, slender})),
+            "next_tests[1].id: duplicate id 'menu-uct-hd3' (also next_tests[0])");
+  json disc_height = slender;
+  disc_height["test"] = "btt";
+  EXPECT_EQ(refusal(json::array({disc_height})),
+            "next_tests[0].conditions.height: a btt disc has no height (give thickness)");
+  json slow = slender;
+  slow["conditions"]["platen_velocity"] = -1;
+  EXPECT_EQ(refusal(json::array({slow})).rfind("next_tests[0].conditions.platen_velocity: ", 0),
+            0u);
+}
+
 // A finer-model twin keeps the continuum at a smaller radius (radius / f, K_r / f, strengths / f^2,
 // as the budget's resolution variants do) and says where its numbers come from.
 TEST(DiagnosisTwin, AFinerModelTwinRefinesItsSpecimens) {

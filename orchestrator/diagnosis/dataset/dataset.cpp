@@ -92,20 +92,6 @@ Conditions parse_conditions(orch::JsonFields& obs, TestKind test) {
   return c;
 }
 
-Observation parse_observation(const json& j, const std::string& path) {
-  orch::JsonFields f(j, path);
-  Observation o;
-  o.id = required_string(f, "id");
-  o.test = parse_test(f);
-  o.conditions = parse_conditions(f, o.test);
-  o.observable = parse_observable(f, o.test);
-  o.value = f.required_positive("value");
-  o.uncertainty = f.required_positive("uncertainty");
-  o.role = parse_role(f);
-  f.reject_unknown();
-  return o;
-}
-
 std::vector<Observation> parse_observations(orch::JsonFields& root) {
   const json& list = root.require("observations");
   if (!list.is_array() || list.empty()) {
@@ -143,6 +129,20 @@ json conditions_json(const Observation& o) {
 }
 
 }  // namespace
+
+Observation parse_observation(const json& j, const std::string& path) {
+  orch::JsonFields f(j, path);
+  Observation o;
+  o.id = required_string(f, "id");
+  o.test = parse_test(f);
+  o.conditions = parse_conditions(f, o.test);
+  o.observable = parse_observable(f, o.test);
+  o.value = f.required_positive("value");
+  o.uncertainty = f.required_positive("uncertainty");
+  o.role = parse_role(f);
+  f.reject_unknown();
+  return o;
+}
 
 Dataset parse_dataset_json(const json& j) {
   orch::JsonFields root(j, "");

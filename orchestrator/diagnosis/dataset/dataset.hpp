@@ -64,6 +64,8 @@ struct Dataset {
 // observables, duplicate ids, a dataset without calibration observations: orch::RequestError naming
 // the field ("observations[3].uncertainty").
 Dataset parse_dataset_json(const nlohmann::json& j);
+// One observation of such a dataset, its fields named under `path` ("observations[3]").
+Observation parse_observation(const nlohmann::json& j, const std::string& path);
 Dataset parse_dataset_csv(const std::string& text);  // header row + one observation per row
 nlohmann::json to_json(const Dataset& d);
 // The CSV form; throws std::invalid_argument for text a CSV cell or comment line cannot hold

@@ -7,6 +7,7 @@
 
 #include "engine/effects/effect.hpp"
 #include "engine/units.hpp"
+#include "orchestrator/json_fields.hpp"
 #include "orchestrator/request_error.hpp"
 
 namespace rockcal::diagnosis {
@@ -81,6 +82,42 @@ std::string note(const TwinRequest& r) {
 
 }  // namespace
 
+Observation parse_next_test(const json& test, const std::string& path) {
+  if (!test.is_object()) throw orch::RequestError(path, "must be an object (a report's next test)");
+  orch::JsonFields f(test, path);
+  // The dataset's own observation, from the report's shape: model units, the platen speed
+  // named as the report names it.
+  json obs = {{"value", 1.0}, {"uncertainty", 1.0}, {"role", "calibration"}};
+  for (const char* key : {"id", "test", "observable"}) {
+    if (const json* v = f.get(key)) obs[key] = *v;
+  }
+  f.get("description");
+  if (const json* c = f.get("conditions")) {
+    if (!c->is_object()) throw orch::RequestError(f.path_of("conditions"), "must be an object");
+    orch::JsonFields cf(*c, f.path_of("conditions"));
+    const auto units = cf.string("units");
+    if (units != "model") {
+      throw orch::RequestError(cf.path_of("units"), "must be \"model\" (a twin is in model units)");
+    }
+    json& out = obs["conditions"] = json::object();
+    for (const char* key : {"diameter", "height", "thickness", "confining_pressure"}) {
+      if (const auto x = cf.positive(key)) out[key] = *x;
+    }
+    if (const auto v = cf.positive("platen_velocity")) out["loading_rate"] = *v;
+    cf.reject_unknown();
+  }
+  f.reject_unknown();
+  Observation o = parse_observation(obs, path);
+  o.value = o.uncertainty = 0.0;
+  return o;
+}
+
+std::vector<Observation> twin_observations(const TwinDesign& design, const TwinRequest& request) {
+  std::vector<Observation> all = design.observations;
+  all.insert(all.end(), request.next_tests.begin(), request.next_tests.end());
+  return all;
+}
+
 TruthBonds draw_truth_bonds(const JobSpec& model, std::uint64_t seed) {
   Stream stream(seed);
   return draw_from(model, stream);
@@ -126,6 +163,21 @@ void check_twin_request(const TwinRequest& request) {
   if (!(request.resolution >= 1.0 && request.resolution <= 3.0)) {
     throw orch::RequestError("resolution", "must be in [1, 3] (1 = the template's own)");
   }
+  // A menu test's id (test_menu.hpp) is never one of the design's.
+  for (std::size_t i = 0; i < request.next_tests.size(); ++i) {
+    const std::string field = "next_tests[" + std::to_string(i) + "].id";
+    const std::string& id = request.next_tests[i].id;
+    if (!id.starts_with("menu-")) {
+      throw orch::RequestError(field,
+                               "must be a menu test's id (menu-...), as the report names it");
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      if (request.next_tests[k].id == id) {
+        throw orch::RequestError(
+            field, "duplicate id '" + id + "' (also next_tests[" + std::to_string(k) + "])");
+      }
+    }
+  }
 }
 
 TruthBonds truth_of(const JobSpec& model, const TwinRequest& request) {
@@ -136,7 +188,7 @@ TwinJobs twin_jobs(const TwinDesign& design, const TwinRequest& request, const T
   const json effects = twin_effects(request);
   // Observations measured by the same run (the UCT's peak and its modulus) share one job.
   TwinJobs out;
-  for (const Observation& o : design.observations) {
+  for (const Observation& o : twin_observations(design, request)) {
     const json job = twin_job(design, o, truth, effects, request);
     std::size_t k = 0;
     while (k < out.jobs.size() && out.jobs[k] != job) ++k;
@@ -157,6 +209,7 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
   const TruthBonds truth = request.truth_seed ? truth_of(design.model, request) : drawn;
   const auto [jobs, job_of] = twin_jobs(design, request, truth);
   const std::vector<json> results = run(jobs);
+  const std::vector<Observation> observations = twin_observations(design, request);
 
   Twin twin;
   twin.dataset.name = "synthetic twin (seed " + std::to_string(request.seed) + ")";
@@ -166,8 +219,8 @@ Twin make_twin(const TwinDesign& design, const TwinRequest& request, const RunJo
   twin.dataset.source =
       "rockcal twin, engine " + results.front().value("engine_version", std::string("?"));
   json truth_observations = json::array();
-  for (std::size_t i = 0; i < design.observations.size(); ++i) {
-    Observation o = design.observations[i];
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    Observation o = observations[i];
     const json& result = results[job_of[i]];
     const double clean = measured(result, o);
     o.value = clean * std::exp(request.noise * stream.normal());

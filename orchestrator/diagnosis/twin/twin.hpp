@@ -27,7 +27,17 @@ struct TwinRequest {
   // packings and lab noise only, so a matrix of them asks the model for the same design runs
   // (the local design's lattice) and spends its runs on what the twins differ in.
   std::optional<std::uint64_t> truth_seed = std::nullopt;
+  // Tests measured besides the design's, as calibration observations (model units, conditions
+  // stated, value 0): a diagnosis's next test, so that a twin with it shows whether the hidden
+  // effect is named once that test is in the calibration set. Their noise is drawn after the
+  // design's observations', so the design's values are the twin's without them.
+  std::vector<Observation> next_tests = {};
 };
+
+// A next test as a diagnosis report states it (`next_test.leading.test`: id, test, observable,
+// model-unit conditions; a description and other report fields are ignored), as a planned
+// calibration observation. Throws orch::RequestError naming the field under `path`.
+Observation parse_next_test(const nlohmann::json& test, const std::string& path);
 
 // The twin's specimens are drawn with their own packing seed (template seed + kTwinSeedOffset +
 // request seed), so its effect's random draws (heterogeneity, flaws, a random packing) are
@@ -47,8 +57,11 @@ TruthBonds truth_of(const JobSpec& model, const TwinRequest& request);
 
 // Throws orch::RequestError for a request no twin can be made of, naming the field: an unknown
 // "effect" or a "value" outside its range, a "noise" that is not positive, a "resolution" outside
-// [1, 3].
+// [1, 3], a next test whose id is no menu test's or is repeated ("next_tests[i].id").
 void check_twin_request(const TwinRequest& request);
+
+// What a twin measures: the design's observations, then the request's next tests.
+std::vector<Observation> twin_observations(const TwinDesign& design, const TwinRequest& request);
 
 // Throws orch::RequestError ("value") for an effect value that leaves the template's model as it
 // is: one short of where the effect's change begins for it (first_change_of: interaction_range

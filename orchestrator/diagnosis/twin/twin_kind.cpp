@@ -33,6 +33,15 @@ TwinCampaign parse_twin_campaign(const json& request) {
     c.twin.truth_seed = std::uint64_t(*t);
   c.twin.noise = f.number("noise").value_or(c.twin.noise);
   c.twin.resolution = f.number("resolution").value_or(c.twin.resolution);
+  if (const json* tests = f.get("next_tests")) {
+    if (!tests->is_array()) {
+      throw orch::RequestError("next_tests", "must be a list of a report's next tests");
+    }
+    for (std::size_t i = 0; i < tests->size(); ++i) {
+      c.twin.next_tests.push_back(
+          parse_next_test((*tests)[i], "next_tests[" + std::to_string(i) + "]"));
+    }
+  }
   const json* job = f.get("job");
   c.job_template = job ? *job : demo_twin_template();
   f.reject_unknown();
