@@ -11,6 +11,7 @@
 #include <set>
 
 #include "api/cli/diagnosis_text.hpp"
+#include "orchestrator/diagnosis/analysis/budget.hpp"
 #include "orchestrator/diagnosis/analysis/next_test.hpp"
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
@@ -115,6 +116,25 @@ TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
   EXPECT_GT(m.discrimination[0], m.discrimination[1]);
   EXPECT_EQ(*m.best, 1u);
   EXPECT_TRUE(m.visible);
+}
+
+// Focus: a mark is what a test would still show once it joins the calibration. Two calibration
+// observations see only the first strength (they pin it) and do not move with the effect; menu
+// test 0 follows the second strength, which nothing pins, so a re-fit with it takes its 0.3 up
+// whole; test 1 follows the first, so the re-fit shares it with the two calibration observations
+// of equal weight (dz = 0.3 / 3) and 0.2 is left; test 2 follows neither and keeps all of it.
+TEST(NextTest, AMarkIsWhatTheTestShowsOnceItJoinsTheCalibration) {
+  const std::vector<double> change{0.0, 0.0, 0.3, 0.3, 0.3};
+  const std::vector<std::array<double, 2>> jacobian{{1, 0}, {1, 0}, {0, 1}, {1, 0}, {0, 0}};
+  const std::vector<double> weight{1 / (0.02 * 0.02), 1 / (0.02 * 0.02), 0, 0, 0};
+  const std::vector<TestNoise> noise(3, TestNoise{0.01, "x", 0.02, "x"});
+  const std::vector<double> marks = joined_marks(change, jacobian, weight, 2, noise);
+  ASSERT_EQ(marks.size(), 3u);
+  EXPECT_NEAR(marks[0], 0.0, 1e-12);
+  EXPECT_NEAR(marks[1], 0.2, 1e-12);
+  EXPECT_NEAR(marks[2], 0.3, 1e-12);
+  // Re-fitted to the calibration alone, test 0 would keep 0.3: the overstatement this replaces.
+  EXPECT_NEAR(change_after_refit(change, jacobian, weight)[2], 0.3, 1e-12);
 }
 
 // "next_test": false runs no batch and says so.
@@ -239,7 +259,7 @@ INSTANTIATE_TEST_SUITE_P(
         // every mark there.
         HiddenTwin{"interaction_range", {"uct-modulus", "tri-low", "btt-fast"}, "menu-uct-modulus"},
         HiddenTwin{
-            "compression_coupling", {"uct-modulus", "tri-low", "btt-fast"}, "menu-tri-0.1ucs"},
+            "compression_coupling", {"uct-modulus", "tri-low", "btt-fast"}, "menu-tri-0.6ucs"},
         // Without the fast disc, rate moves only the fast UCT, which is held out.
         HiddenTwin{"rate", {"btt-fast"}, "menu-btt-fast"}),
     [](const auto& info) { return std::string(info.param.effect); });

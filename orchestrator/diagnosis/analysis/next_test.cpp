@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "orchestrator/diagnosis/analysis/budget.hpp"
+#include "orchestrator/diagnosis/analysis/gap.hpp"
+
 namespace rockcal::diagnosis {
 
 double TestNoise::total() const {
@@ -57,6 +60,20 @@ Separation separate(std::string a, std::string b, const std::vector<double>& mar
     }
   }
   return s;
+}
+
+std::vector<double> joined_marks(const std::vector<double>& change,
+                                 const std::vector<std::array<double, 2>>& jacobian,
+                                 const std::vector<double>& weight, std::size_t n,
+                                 const std::vector<TestNoise>& noise) {
+  std::vector<double> out;
+  for (std::size_t m = 0; m < noise.size(); ++m) {
+    std::vector<double> joined = weight;
+    const double scale = std::max(noise[m].sigma, kMinNoiseScale);
+    joined[n + m] = 1.0 / (scale * scale);
+    out.push_back(change_after_refit(change, jacobian, joined)[n + m]);
+  }
+  return out;
 }
 
 std::size_t run_of(const NextTest& next, const std::string& effect) {

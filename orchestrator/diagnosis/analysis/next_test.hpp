@@ -2,15 +2,20 @@
 // and which one would make an effect visible that the calibration observations cannot identify.
 //
 // Each effect runs at its strong value (s = 1) at the base model's fit, as the screen does, on the
-// dataset's and the menu's conditions; its ln change from the base model's run there, less the
-// strengths' linear re-fit to the calibration observations (change_after_refit), is its mark on
-// each test. The expected discrimination of a test between hypotheses A and B (an effect, or the
-// base model with a mark of 0) is |mark_A - mark_B| / sqrt(budget^2 + sigma^2): how many noise
-// units apart the two would put its lab value. A test the dataset does not have has no measured
-// budget: it borrows the largest budget and lab uncertainty of the dataset's observations of the
-// same test and observable (else of the same test, else of any), and says which.
+// dataset's and the menu's conditions. Its mark on a menu test is its ln change from the base
+// model's run there left after the strengths' linear re-fit (change_after_refit) to the calibration
+// observations and that test: what the test would still show once it joins the calibration. (A
+// re-fit to the calibration alone overstates it for a test whose change the strengths can take up
+// where the calibration pins them loosely: the engine's compression-coupling twin, whose slender
+// UCT, named so, moved the fit and then showed nothing; docs/diagnosis-measurements.md.) The
+// expected discrimination of a test between hypotheses A and B (an effect, or the base model with a
+// mark of 0) is |mark_A - mark_B| / sqrt(budget^2 + sigma^2): how many noise units apart the two
+// would put its lab value. A test the dataset does not have has no measured budget: it borrows the
+// largest budget and lab uncertainty of the dataset's observations of the same test and observable
+// (else of the same test, else of any), and says which.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,6 +69,14 @@ struct NextTest {
   std::vector<Separation> invisible;      // effects the calibration cannot identify, vs base
   int model_points = 0;
 };
+
+// An effect's marks on the menu tests (joined_marks[m]: as above, with menu test m, index n + m of
+// `change`, weighted as a calibration observation of lab uncertainty noise[m].sigma). change,
+// jacobian and weight span the dataset's n targets (weight 0 but for calibration) and the menu's.
+std::vector<double> joined_marks(const std::vector<double>& change,
+                                 const std::vector<std::array<double, 2>>& jacobian,
+                                 const std::vector<double>& weight, std::size_t n,
+                                 const std::vector<TestNoise>& noise);
 
 // The run of a hypothesis in NextTest::runs: the base model's at the fit for "", else the effect's.
 std::size_t run_of(const NextTest& next, const std::string& effect);

@@ -84,11 +84,9 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
     return out;
   }
   const std::vector<double>& budget = r.budget.per_target;
-  std::vector<double> all_budget = budget;
   for (MenuTest& m : out.menu) {
     out.noise.push_back(borrowed_noise(m.target, c.targets, budget));
     m.target.sigma = out.noise.back().sigma;
-    all_budget.push_back(out.noise.back().budget);
   }
   const std::vector<Target> all = with_menu(c.targets, out.menu);
 
@@ -160,11 +158,11 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
           : at_fit;
   for (std::size_t e = 0; e < out.effects.size(); ++e) {
     const StrengthResponse& response = balanced[e] ? at_balanced : at_fit;
-    const ScreenedEffect mark =
-        screen_effect(out.effects[e], outcomes[balanced[e] ? balanced_base : 0],
-                      outcomes[run_of(out, out.effects[e])], response.jacobian[0], response.weight,
-                      all, all_budget);
-    out.mark.emplace_back(mark.change.begin() + long(n), mark.change.end());
+    const std::vector<double> base = ln_values(outcomes[balanced[e] ? balanced_base : 0]);
+    const std::vector<double> strong = ln_values(outcomes[run_of(out, out.effects[e])]);
+    std::vector<double> change(base.size());
+    for (std::size_t i = 0; i < base.size(); ++i) change[i] = strong[i] - base[i];
+    out.mark.push_back(joined_marks(change, response.jacobian[0], response.weight, n, out.noise));
   }
   if (a > 0) {
     out.leading =
