@@ -6,7 +6,8 @@ lab test that would show it. The check: diagnose the twin ("before"), take the t
 names for the hidden effect (`next_test.invisible` for that effect, else `next_test.leading` when
 it separates that effect), make the same twin with that test measured too as a calibration
 observation (`rockcal twin --next-test`), and diagnose it ("after"). The check passes when the
-after verdict names the hidden effect.
+after verdict names the hidden effect. A test named without showing the effect (`visible` false:
+the report says no menu test shows it) is run all the same, to check that forecast.
 
 --drop ID first removes observation ID from the twin (a dataset without a test the design has),
 so the check can be made on an effect the full design identifies: "before" is the twin less ID;
@@ -54,15 +55,17 @@ def diagnose(rockcal, url, request, dataset_file, name, work):
 
 
 def test_for(summary, effect):
-    """The test the report names for `effect`, its discrimination and where it was found."""
+    """The test the report names for `effect`: the test, its discrimination, whether it shows the
+    effect beyond budget + lab uncertainty (else it is only the best of tests that do not), and
+    where it was found."""
     nt = summary.get("next_test") or {}
     for x in nt.get("invisible") or []:
         if x.get("effect") == effect and x.get("test"):
-            return x["test"], x.get("discrimination"), "invisible"
+            return x["test"], x.get("discrimination"), x.get("visible"), "invisible"
     lead = nt.get("leading") or {}
     if effect in (lead.get("separates") or []) and lead.get("test"):
-        return lead["test"], lead.get("discrimination"), "leading"
-    return None, None, None
+        return lead["test"], lead.get("discrimination"), lead.get("visible"), "leading"
+    return None, None, None, None
 
 
 def as_test(observation):
@@ -123,10 +126,10 @@ def main():
         before, summary = diagnose(rockcal, url, request, before_file,
                                    f"next-test check, before: {name}" +
                                    (f" less {a.drop}" if a.drop else ""), work)
-        test, discrimination, found = test_for(summary, effect)
+        test, discrimination, visible, found = test_for(summary, effect)
         row = {"twin": name, "hidden": effect, "value": truth.get("value"), "seed": truth["seed"],
                "dropped": a.drop, "before": before, "test": test,
-               "discrimination": discrimination, "found_in": found,
+               "discrimination": discrimination, "visible": visible, "found_in": found,
                "request": os.path.basename(a.request)}
         print(f"{name}: before {before['verdict']} ({before['label']}); next test "
               f"{test and test['id']} ({discrimination})", flush=True)
