@@ -126,9 +126,11 @@ TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
 TEST(NextTest, AMarkIsWhatTheTestShowsOnceItJoinsTheCalibration) {
   const std::vector<double> change{0.0, 0.0, 0.3, 0.3, 0.3};
   const std::vector<std::array<double, 2>> jacobian{{1, 0}, {1, 0}, {0, 1}, {1, 0}, {0, 0}};
-  const std::vector<double> weight{1 / (0.02 * 0.02), 1 / (0.02 * 0.02), 0, 0, 0};
-  const std::vector<TestNoise> noise(3, TestNoise{0.01, "x", 0.02, "x"});
-  const std::vector<double> marks = joined_marks(change, jacobian, weight, 2, noise);
+  std::vector<Target> targets(5);
+  for (Target& t : targets) t.sigma = 0.02;
+  for (std::size_t i = 2; i < 5; ++i) targets[i].role = Role::held_out;  // the menu's, not judged
+  const std::vector<double> weight{refit_weight(targets[0]), refit_weight(targets[1]), 0, 0, 0};
+  const std::vector<double> marks = joined_marks(change, jacobian, weight, targets, 2);
   ASSERT_EQ(marks.size(), 3u);
   EXPECT_NEAR(marks[0], 0.0, 1e-12);
   EXPECT_NEAR(marks[1], 0.2, 1e-12);

@@ -78,14 +78,16 @@ std::vector<std::vector<double>> budget_points(const std::vector<double>& z, int
   return out;
 }
 
+double refit_weight(const Target& target) {
+  const double scale = std::max(noise_scale(target, 0.0), kMinNoiseScale);
+  return 1.0 / (scale * scale);
+}
+
 StrengthResponse strength_response(const SurfaceSet& base, const std::vector<Target>& targets,
                                    const std::vector<std::vector<double>>& points) {
   StrengthResponse r;
-  for (const Target& t : targets) {
-    // The calibration objective's weights without a budget: the budget is what is being measured.
-    const double scale = std::max(noise_scale(t, 0.0), kMinNoiseScale);
-    r.weight.push_back(t.role == Role::calibration ? 1.0 / (scale * scale) : 0.0);
-  }
+  for (const Target& t : targets)
+    r.weight.push_back(t.role == Role::calibration ? refit_weight(t) : 0.0);
   for (const std::vector<double>& at : points) {
     const std::vector<std::vector<double>> g = surface_gradients(base, at);
     std::vector<std::array<double, 2>> jacobian(targets.size());

@@ -84,6 +84,10 @@ struct StrengthResponse {
   std::vector<double> weight;                                // [target]
 };
 
+// A target's weight in the strengths' re-fit as a calibration observation: 1 / sigma^2 (the lab
+// uncertainty alone: the budget is what is being measured), sigma at least kMinNoiseScale.
+double refit_weight(const Target& target);
+
 // The base model's StrengthResponse at each unit-cube point, from its surfaces (central
 // differences, one-sided at a face of the cube), with the targets' calibration weights.
 StrengthResponse strength_response(const SurfaceSet& base, const std::vector<Target>& targets,

@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "orchestrator/diagnosis/analysis/budget.hpp"
-#include "orchestrator/diagnosis/analysis/gap.hpp"
 
 namespace rockcal::diagnosis {
 
@@ -64,14 +63,13 @@ Separation separate(std::string a, std::string b, const std::vector<double>& mar
 
 std::vector<double> joined_marks(const std::vector<double>& change,
                                  const std::vector<std::array<double, 2>>& jacobian,
-                                 const std::vector<double>& weight, std::size_t n,
-                                 const std::vector<TestNoise>& noise) {
+                                 const std::vector<double>& weight,
+                                 const std::vector<Target>& targets, std::size_t n) {
   std::vector<double> out;
-  for (std::size_t m = 0; m < noise.size(); ++m) {
+  for (std::size_t k = n; k < targets.size(); ++k) {
     std::vector<double> joined = weight;
-    const double scale = std::max(noise[m].sigma, kMinNoiseScale);
-    joined[n + m] = 1.0 / (scale * scale);
-    out.push_back(change_after_refit(change, jacobian, joined)[n + m]);
+    joined[k] = refit_weight(targets[k]);
+    out.push_back(change_after_refit(change, jacobian, joined)[k]);
   }
   return out;
 }

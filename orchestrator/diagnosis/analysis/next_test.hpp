@@ -70,13 +70,13 @@ struct NextTest {
   int model_points = 0;
 };
 
-// An effect's marks on the menu tests (joined_marks[m]: as above, with menu test m, index n + m of
-// `change`, weighted as a calibration observation of lab uncertainty noise[m].sigma). change,
-// jacobian and weight span the dataset's n targets (weight 0 but for calibration) and the menu's.
+// An effect's marks on the menu tests (joined_marks[m]: as above, with menu test m, targets[n + m],
+// weighted as a calibration observation, refit_weight). change, jacobian, weight and targets span
+// the dataset's n targets (weight 0 but for calibration) and then the menu's.
 std::vector<double> joined_marks(const std::vector<double>& change,
                                  const std::vector<std::array<double, 2>>& jacobian,
-                                 const std::vector<double>& weight, std::size_t n,
-                                 const std::vector<TestNoise>& noise);
+                                 const std::vector<double>& weight,
+                                 const std::vector<Target>& targets, std::size_t n);
 
 // The run of a hypothesis in NextTest::runs: the base model's at the fit for "", else the effect's.
 std::size_t run_of(const NextTest& next, const std::string& effect);

@@ -247,15 +247,15 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
                unfixed_note(candidates, order) + inert +
                wider_note(candidates, order, rule.min_evidence);
   } else {
+    std::string why_not;
+    if (!no_gap) {
+      why_not = ": none of the candidates explains the gap";
+    } else if (*candidates[v.best].evidence > rule.min_evidence) {
+      why_not = ", above the threshold, but without a gap there is nothing for it to explain";
+    }
     v.reason = size + gap_text + "the best effect, " + candidates[v.best].candidate.effect +
-               ", has " + evidence_text(v.best) +
-               (!no_gap ? ": none of the candidates explains the gap"
-                : *candidates[v.best].evidence > rule.min_evidence
-                    ? ", above the threshold, but without a gap there is nothing for it to "
-                      "explain"
-                    : "") +
-               unfixed_note(candidates, order) + inert_note(candidates, order) +
-               wider_note(candidates, order, rule.min_evidence);
+               ", has " + evidence_text(v.best) + why_not + unfixed_note(candidates, order) +
+               inert_note(candidates, order) + wider_note(candidates, order, rule.min_evidence);
   }
   return v;
 }

@@ -162,7 +162,7 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
     const std::vector<double> strong = ln_values(outcomes[run_of(out, out.effects[e])]);
     std::vector<double> change(base.size());
     for (std::size_t i = 0; i < base.size(); ++i) change[i] = strong[i] - base[i];
-    out.mark.push_back(joined_marks(change, response.jacobian[0], response.weight, n, out.noise));
+    out.mark.push_back(joined_marks(change, response.jacobian[0], response.weight, all, n));
   }
   if (a > 0) {
     out.leading =
