@@ -74,10 +74,11 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   // the confirmed fit) and the screen's 3 points per effect at each of its two points and the
   // base's at the second, 3 confirmed candidates x (3 refinement runs + 4 seeds) and the base
   // model at each confirmed effect's strengths; and the next test's base at its fit and two steps
-  // (and at the screen's balanced point) and both effects on the dataset's 4 runs and the menu's 9
-  // more (squat and slender UCT, two discs, a fast UCT and disc, three triaxials; the UCT's modulus
-  // and peak strain are read off the dataset's UCT run).
-  constexpr int kNextTest = (2 * 3 + 2) * (4 + 9);
+  // (and at the screen's balanced point), both effects and the base at its fit under the budget's 6
+  // variants (4 seeds, half speed, 1.25x) on the dataset's 4 runs and the menu's 9 more (squat and
+  // slender UCT, two discs, a fast UCT and disc, three triaxials; the UCT's modulus and peak strain
+  // are read off the dataset's UCT run).
+  constexpr int kNextTest = (2 * 3 + 2 + 6) * (4 + 9);
   constexpr int kScreen = 1 + 2 * 3 * 2;
   EXPECT_EQ(planned_jobs(c), (9 + 2 * 18 + 2 * 5 * 7 + kScreen + 3 * 7 + 2) * 4u + kNextTest);
   // The progress model's budget names them by phase.
@@ -97,7 +98,8 @@ TEST(DiagnosisRequest, GoodRequestResolves) {
   two["budget"] = {{"resolution", {1.25, 1.5}}};
   const DiagnosisCampaign c2 = parse_diagnosis_campaign(two);
   EXPECT_EQ(c2.budget.resolutions, (std::vector<double>{1.25, 1.5}));
-  EXPECT_EQ(planned_jobs(c2), (9 + 2 * 18 + 2 * 5 * 8 + kScreen + 3 * 7 + 2) * 4u + kNextTest);
+  EXPECT_EQ(planned_jobs(c2),
+            (9 + 2 * 18 + 2 * 5 * 8 + kScreen + 3 * 7 + 2) * 4u + kNextTest + (4 + 9));
   EXPECT_EQ(budget_runs_per_point(c2.budget), 8u);  // reference, 4 seeds, speed, 2 resolutions
   // The local design: the 3 x 3 base grid, its star and its moves, 4 points per effect (both
   // continuous at neutral) and as many per move of its design; the step is read.
@@ -429,14 +431,15 @@ TEST(DiagnosisRequest, ExampleRequestParses) {
   // own 25 x 5), twice 5 points x 10 budget runs (reference, 4 seeds, half speed, 4
   // resolutions), the screen's 3 points for each of 10 effects at two points and the base's at the
   // second, every confirmed: 8 x (3 + 4) and the base model at each of the 7 confirmed effects'
-  // strengths; the next test's base at its fit and two steps (and at the balanced point) and the
-  // 10 effects on the 7 runs and the menu's 8 more (its fast UCT is the dataset's).
+  // strengths; the next test's base at its fit and two steps (and at the balanced point), the 10
+  // effects and the base under the 9 budget variants on the 7 runs and the menu's 8 more (its
+  // fast UCT is the dataset's).
   EXPECT_EQ(c.grid.fr0, 5);
   EXPECT_EQ(c.grid.s, 5);
   EXPECT_EQ(c.budget.resolutions, (std::vector<double>{1.125, 1.25, 1.375, 1.5}));
   EXPECT_EQ(planned_jobs(c),
             (25 + 7 * 100 + 3 * 125 + 2 * 5 * 10 + 1 + 2 * 3 * 10 + 8 * 7 + 7) * 7u +
-                (2 * 3 + 10) * (7 + 8));
+                (2 * 3 + 10 + 9) * (7 + 8));
 }
 
 TEST(DiagnosisRuns, ARunWithoutAPeakHasNoValueAtAll) {

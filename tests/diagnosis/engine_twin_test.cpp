@@ -122,20 +122,35 @@ TEST_F(EngineTwinDiagnosis, HiddenHeterogeneityThroughTheService) {
   }
   const std::string html = report_html(s);
   EXPECT_NE(html.find("<svg"), std::string::npos);
-  // The next test on the real engine: the menu's tests the twin design lacks, each with the noise
-  // it borrows from an observation of the same test; the runs behind it are the base at its fit,
-  // a step along each strength and each effect that needs a mark.
+  // The next test on the real engine: the menu's tests the twin design lacks, each with its
+  // budget measured at the base fit by the budget's packing seed (another packing of a small
+  // specimen scatters: never 0), or, where that run gave the test no value (a disc of half the
+  // thickness, 2 particles through), borrowed from an observation of the dataset; its lab
+  // uncertainty borrowed so always. The runs behind it are the base at its fit, a step along each
+  // strength, each effect that needs a mark and the budget's variants.
   const json& next = s["next_test"];
   ASSERT_TRUE(next["enabled"].get<bool>()) << next.dump(2);
   ASSERT_FALSE(next["menu"].empty());
+  auto an_observation = [&](const json& id) {
+    for (const json& o : s["observations"]) {
+      if (o["id"] == id) return true;
+    }
+    return false;
+  };
+  int measured = 0;
   for (const json& m : next["menu"]) {
-    // Borrowed from one of the dataset's observations (their ids name the test first).
-    const std::string from = m["noise"]["budget_from"].get<std::string>();
-    bool an_observation = false;
-    for (const json& o : s["observations"]) an_observation |= o["id"] == from;
-    EXPECT_TRUE(an_observation) << m.dump();
+    const json& noise = m["noise"];
+    if (noise["measured"].get<bool>()) {
+      ++measured;
+      EXPECT_GT(noise["budget"].get<double>(), 0.0) << m.dump();
+      EXPECT_EQ(noise["measured_by"], json::array({"seed 2"})) << m.dump();
+    } else {
+      EXPECT_TRUE(an_observation(noise["budget_from"])) << m.dump();
+    }
+    EXPECT_TRUE(an_observation(noise["lab_uncertainty_from"])) << m.dump();
     EXPECT_EQ(m["conditions"]["units"], "model") << m.dump();
   }
+  EXPECT_GT(measured, 0) << next["menu"].dump();
   EXPECT_GE(next["model_points"].get<int>(), 3);
   EXPECT_NE(html.find("<h2>Next test</h2>"), std::string::npos);
   std::printf("next test: %s\n", next["reason"].get<std::string>().c_str());

@@ -92,7 +92,7 @@ TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
   const std::vector<Target> no_disc{targets[0], targets[3]};
   EXPECT_EQ(borrowed_noise(disc, no_disc, {0.01, 0.03}).budget_from, "tri-low");
   // Two tests; A moves the first by 0.3 and B by 0.1 in ln, the second by 0.02 and -0.02.
-  const std::vector<TestNoise> noise{{0.03, "x", 0.04, "x"}, {0.01, "y", 0.02, "y"}};
+  const std::vector<TestNoise> noise{{0.03, "x", 0.04, "x", {}}, {0.01, "y", 0.02, "y", {}}};
   const Separation s = separate("A", "B", {0.3, 0.02}, {0.1, -0.02}, noise);
   ASSERT_TRUE(s.best);
   EXPECT_EQ(*s.best, 0u);
@@ -110,12 +110,32 @@ TEST(NextTest, NoiseIsBorrowedFromTheSameTestAndDiscriminationIsInNoiseUnits) {
   // The most discriminating test (0.99 apart in noise 0.5 + 0.5: 1.40 units, under its bar of 1)
   // gives way to one that clears its bar (0.27 in noise 0.2: 1.35 units), so that "no test on the
   // menu shows it" is said only when none does.
-  const std::vector<TestNoise> mixed{{0.5, "x", 0.5, "x"}, {0.2, "y", 0.0, "y"}};
+  const std::vector<TestNoise> mixed{{0.5, "x", 0.5, "x", {}}, {0.2, "y", 0.0, "y", {}}};
   const Separation m = separate("D", "", {0.99, 0.27}, {}, mixed);
   ASSERT_TRUE(m.best);
   EXPECT_GT(m.discrimination[0], m.discrimination[1]);
   EXPECT_EQ(*m.best, 1u);
   EXPECT_TRUE(m.visible);
+}
+
+// Focus: a menu test's budget is measured where the budget's variants gave it a value, and
+// borrowed (with the observation named) only where none did.
+TEST(NextTest, AMenuTestsBudgetIsMeasuredWhereTheVariantsGaveItAValue) {
+  std::vector<TestNoise> noise{{0.04, "tri-high", 0.02, "tri-low", {}},
+                               {0.05, "uct-peak", 0.02, "uct-peak", {}}};
+  Budget measured;
+  measured.variants = {{"seed 2", {2, 1.0, 1.0}, "seed"}, {"seed 3", {3, 1.0, 1.0}, "seed"}};
+  // Two dataset targets, then the two menu tests; no variant gave the second menu test a value.
+  measured.per_target = {0.01, 0.02, 0.013, 0.02};
+  measured.measured = {true, true, true, false};
+  use_measured_budgets(noise, measured, 2);
+  EXPECT_DOUBLE_EQ(noise[0].budget, 0.013);
+  EXPECT_EQ(noise[0].budget_from, "");
+  EXPECT_EQ(noise[0].measured_by, (std::vector<std::string>{"seed 2", "seed 3"}));
+  EXPECT_EQ(noise[0].sigma_from, "tri-low");  // a lab uncertainty no run can measure
+  EXPECT_DOUBLE_EQ(noise[1].budget, 0.05);
+  EXPECT_EQ(noise[1].budget_from, "uct-peak");
+  EXPECT_TRUE(noise[1].measured_by.empty());
 }
 
 // Focus: a mark is what a test would still show once it joins the calibration. Two calibration
@@ -216,6 +236,21 @@ TEST_P(NextTestTwin, NamesTheTestAndThenTheEffect) {
   ASSERT_EQ(next["runs"].size(), next["model_points"].get<std::size_t>());
   EXPECT_TRUE(next["runs"][0]["effect"].is_null());
   EXPECT_EQ(next["runs"][0]["fr0"], next["point"]["fr0"]);
+  // Each menu test's budget is measured there by the budget's variants (the twin's: its packing
+  // seeds), the last runs of the batch; not borrowed from an observation of the dataset.
+  const std::vector<BudgetVariant> variants =
+      budget_variants(c.budget, c.sample_seed, c.dataset.origin);
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    const json& run = next["runs"][next["runs"].size() - variants.size() + k];
+    EXPECT_TRUE(run["effect"].is_null());
+    EXPECT_EQ(run["fr0"], next["point"]["fr0"]);
+  }
+  for (const json& m : next["menu"]) {
+    EXPECT_TRUE(m["noise"]["measured"].get<bool>()) << m.dump();
+    EXPECT_TRUE(m["noise"]["budget_from"].is_null()) << m.dump();
+    EXPECT_EQ(m["noise"]["measured_by"].size(), variants.size()) << m.dump();
+    EXPECT_GT(m["noise"]["budget"].get<double>(), 0.0) << m.dump();  // the engine's 0.5% scatter
+  }
   // The user reads it in the CLI's text and on the page: the effect beside its test (or the leading
   // pair's sentence, when that pair is the effect against the base model on the same test).
   const std::string reason = next["reason"];

@@ -534,8 +534,9 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   // effect (15), the 32 grid points of each effect the screen kept (all but uniform), 5 x 5 budget
   // points at the first fit and again at the confirmed one if it moved; per confirmed candidate
   // (3) 1 to 3 refinement runs and 2 seed runs, and per confirmed effect (2) the base model at its
-  // strengths (its mark at the fit); the next test's base at its fit and two steps, and
-  // the leading pair (rate and the runner-up) and uniform (screened out) at s = 1.
+  // strengths (its mark at the fit); the next test's base at its fit and two steps, the leading
+  // pair (rate and the runner-up) and uniform (screened out) at s = 1, and the base at its fit
+  // under the budget's 4 variants (2 seeds, half speed, 1.25x: the menu's budgets).
   DiagnosisCampaign c = twin_campaign("rate", 0.7);
   SyntheticModel model(c.targets);
   const DiagnosisResult report = run_diagnosis(c, model);
@@ -550,7 +551,7 @@ TEST(Diagnosis, DeterministicAndCheapToReplay) {
   // Here the confirmed fit moved off the first fit, so the budget ran twice and the one judged is
   // the one measured around the confirmed fit.
   EXPECT_NE(report.budget_point.fr0_n, report.weight_budget_point.fr0_n);
-  EXPECT_EQ(model.runs, 16 + 3 * 5 + 4 * 32 + 2 * 5 * 5 + refinement_runs + 3 * 2 + 2 + 3 + 3);
+  EXPECT_EQ(model.runs, 16 + 3 * 5 + 4 * 32 + 2 * 5 * 5 + refinement_runs + 3 * 2 + 2 + 3 + 3 + 4);
   EXPECT_EQ(report.budget_point.fr0_n, report.candidates[0].point.fr0_n);
   EXPECT_EQ(report.budget_point.fs0_n, report.candidates[0].point.fs0_n);
 }

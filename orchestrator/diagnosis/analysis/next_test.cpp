@@ -37,6 +37,16 @@ TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
   return n;
 }
 
+void use_measured_budgets(std::vector<TestNoise>& noise, const Budget& measured, std::size_t n) {
+  for (std::size_t m = 0; m < noise.size(); ++m) {
+    if (n + m >= measured.measured.size() || !measured.measured[n + m]) continue;
+    noise[m].budget = measured.per_target[n + m];
+    noise[m].budget_from.clear();
+    noise[m].measured_by.clear();
+    for (const BudgetVariant& v : measured.variants) noise[m].measured_by.push_back(v.name);
+  }
+}
+
 Separation separate(std::string a, std::string b, const std::vector<double>& mark_a,
                     const std::vector<double>& mark_b, const std::vector<TestNoise>& noise) {
   Separation s;

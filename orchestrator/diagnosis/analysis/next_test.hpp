@@ -10,9 +10,11 @@
 // UCT, named so, moved the fit and then showed nothing; docs/diagnosis-measurements.md.) The
 // expected discrimination of a test between hypotheses A and B (an effect, or the base model with a
 // mark of 0) is |mark_A - mark_B| / sqrt(budget^2 + sigma^2): how many noise units apart the two
-// would put its lab value. A test the dataset does not have has no measured budget: it borrows the
-// largest budget and lab uncertainty of the dataset's observations of the same test and observable
-// (else of the same test, else of any), and says which.
+// would put its lab value. A test the dataset does not have has no budget from the dataset's: its
+// budget is measured at the base fit by the budget's variants (next_test_runs.hpp), and where they
+// gave no value it borrows the largest budget of the dataset's observations of the same test and
+// observable (else of the same test, else of any), and says which; its lab uncertainty, which no
+// run can measure, is borrowed so always.
 #pragma once
 
 #include <array>
@@ -20,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "orchestrator/diagnosis/analysis/budget.hpp"
 #include "orchestrator/diagnosis/analysis/evaluator.hpp"
 #include "orchestrator/diagnosis/analysis/test_menu.hpp"
 
@@ -27,13 +30,17 @@ namespace rockcal::diagnosis {
 
 struct TestNoise {
   double budget = 0.0;      // numerical, in ln
-  std::string budget_from;  // the observation it is borrowed from
+  std::string budget_from;  // the observation it is borrowed from ("" when measured)
   double sigma = 0.0;       // lab uncertainty, relative
   std::string sigma_from;
-  double total() const;  // sqrt(budget^2 + sigma^2)
+  std::vector<std::string> measured_by;  // the budget variants that measured it at the base fit
+  double total() const;                  // sqrt(budget^2 + sigma^2)
 };
 TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
                          const std::vector<double>& budget);
+// The budget measured at the base fit on the dataset's n targets and then the menu's: each menu
+// test it measured takes that budget in place of the borrowed one.
+void use_measured_budgets(std::vector<TestNoise>& noise, const Budget& measured, std::size_t n);
 
 // Two hypotheses on every menu test. `a` and `b` are effect names ("" = the base model).
 struct Separation {
@@ -60,7 +67,8 @@ struct NextTest {
   std::vector<TestNoise> noise;  // per menu test
   // The runs behind it: the base model at the fit and at a step along each strength (the menu
   // tests' strength response), then each effect at s = 1 (at the screen's balanced point for one
-  // seen only there, then the base's three runs there); ln[run][menu test].
+  // seen only there, then the base's three runs there), then the base at the fit under each budget
+  // variant (the menu's budgets); ln[run][menu test].
   std::vector<RunRequest> runs;
   std::vector<std::vector<double>> ln;
   std::vector<std::string> effects;       // the effects with a mark

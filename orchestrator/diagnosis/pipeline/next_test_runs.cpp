@@ -72,7 +72,9 @@ int next_test_model_points(const DiagnosisCampaign& campaign) {
   if (campaign.candidates.empty()) return 0;  // nothing to tell apart
   // The base's runs at the fit, and at the screen's balanced point for effects seen only there.
   const std::size_t base = campaign.screen ? 2 * kNextTestBaseRuns : kNextTestBaseRuns;
-  return int(base + campaign.candidates.size());
+  const std::size_t variants =
+      budget_variants(campaign.budget, campaign.sample_seed, campaign.dataset.origin).size();
+  return int(base + campaign.candidates.size() + variants);
 }
 
 NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Evaluator& evaluator) {
@@ -126,9 +128,15 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
   }
   const std::size_t balanced_base = out.runs.size();
   std::array<double, 2> balanced_step{};
-  if (std::find(balanced.begin(), balanced.end(), true) != balanced.end()) {
+  const bool any_balanced = std::find(balanced.begin(), balanced.end(), true) != balanced.end();
+  if (any_balanced) {
     balanced_step = add_base_runs(c, r.screen.balanced_z, nominal, out.runs);
   }
+  // The menu's budgets: the base at the fit under each of the budget's variants.
+  const std::vector<BudgetVariant> variants =
+      budget_variants(c.budget, c.sample_seed, c.dataset.origin);
+  const std::size_t variants_first = out.runs.size();
+  for (const BudgetVariant& v : variants) out.runs.push_back({out.point, v.numerics});
   const std::vector<RunOutcome> outcomes = evaluator.run_on(out.runs, all);
   out.model_points = int(out.runs.size());
   const std::size_t n = c.targets.size();
@@ -153,9 +161,9 @@ NextTest run_next_test(const DiagnosisCampaign& c, const DiagnosisResult& r, Eva
   };
   const StrengthResponse at_fit = response_at(0, z, step);
   const StrengthResponse at_balanced =
-      balanced_base < out.runs.size()
-          ? response_at(balanced_base, r.screen.balanced_z, balanced_step)
-          : at_fit;
+      any_balanced ? response_at(balanced_base, r.screen.balanced_z, balanced_step) : at_fit;
+  const std::vector<RunOutcome> changed(outcomes.begin() + long(variants_first), outcomes.end());
+  use_measured_budgets(out.noise, numerical_budget(variants, {outcomes[0]}, {changed}, &at_fit), n);
   for (std::size_t e = 0; e < out.effects.size(); ++e) {
     const StrengthResponse& response = balanced[e] ? at_balanced : at_fit;
     const std::vector<double> base = ln_values(outcomes[balanced[e] ? balanced_base : 0]);

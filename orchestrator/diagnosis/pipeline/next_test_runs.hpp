@@ -4,7 +4,10 @@
 // at s = 1, on the dataset's and the menu's conditions. The effects that need one: the two leading
 // hypotheses' (the verdict and the runner-up; with no verdict the runner-up and the base model),
 // and every effect the calibration observations cannot identify (screened out, or not
-// identifiable). Identical runs are the job cache's: the base at the fit is the confirmed run.
+// identifiable). Then the base at the fit under each of the budget's variants (other packing
+// seeds; for lab data also half the speed and a finer resolution, re-fitted as the budget's is):
+// each menu test's numerical budget, measured rather than borrowed. Identical runs are the job
+// cache's: the base at the fit is the confirmed run.
 #pragma once
 
 #include "orchestrator/diagnosis/analysis/next_test.hpp"
@@ -18,7 +21,8 @@ namespace rockcal::diagnosis {
 NextTest run_next_test(const DiagnosisCampaign& campaign, const DiagnosisResult& report,
                        Evaluator& evaluator);
 
-// Model points of the batch at most (the base's three, every effect; none without effects), for
+// Model points of the batch at most (the base's three, every effect, the budget's variants; none
+// without effects), for
 // the job plan.
 int next_test_model_points(const DiagnosisCampaign& campaign);
 

@@ -50,9 +50,23 @@ std::string conditions_text(const json& c) {
 }
 
 json noise_json(const TestNoise& n) {
-  return {{"budget", n.budget},         {"budget_from", n.budget_from},
-          {"lab_uncertainty", n.sigma}, {"lab_uncertainty_from", n.sigma_from},
-          {"noise", n.total()},         {"measured", false}};
+  return {{"budget", n.budget},
+          {"budget_from", n.measured_by.empty() ? json(n.budget_from) : json(nullptr)},
+          {"measured", !n.measured_by.empty()},
+          {"measured_by", n.measured_by},
+          {"lab_uncertainty", n.sigma},
+          {"lab_uncertainty_from", n.sigma_from},
+          {"noise", n.total()}};
+}
+
+// Where a test's budget comes from: "measured at the fit (N variants)" or "borrowed from ID".
+std::string budget_source(const json& noise) {
+  if (noise["measured"].get<bool>()) {
+    const std::size_t k = noise["measured_by"].size();
+    return "measured at the fit over " + std::to_string(k) +
+           (k == 1 ? " budget variant" : " budget variants");
+  }
+  return "borrowed from " + noise["budget_from"].get<std::string>();
 }
 
 // The run of one hypothesis behind a test: its model point and its value there.
@@ -109,7 +123,7 @@ std::string pair_sentence(const json& s) {
   const json& n = s["noise"];
   std::snprintf(line, sizeof line,
                 "%s (%s) would separate %s from %s by %.2f noise units (their marks %+.3f and "
-                "%+.3f in ln; noise %.3f: budget %.3f borrowed from %s, lab uncertainty %.3f from "
+                "%+.3f in ln; noise %.3f: budget %.3f %s, lab uncertainty %.3f from "
                 "%s)",
                 s["test"]["description"].get<std::string>().c_str(),
                 conditions_text(s["test"]["conditions"]).c_str(),
@@ -117,8 +131,8 @@ std::string pair_sentence(const json& s) {
                 s["separates"][1].get<std::string>().c_str(), s["discrimination"].get<double>(),
                 s["runs"][0]["mark"].is_number() ? s["runs"][0]["mark"].get<double>() : NAN,
                 s["runs"][1]["mark"].is_number() ? s["runs"][1]["mark"].get<double>() : NAN,
-                n["noise"].get<double>(), n["budget"].get<double>(),
-                n["budget_from"].get<std::string>().c_str(), n["lab_uncertainty"].get<double>(),
+                n["noise"].get<double>(), n["budget"].get<double>(), budget_source(n).c_str(),
+                n["lab_uncertainty"].get<double>(),
                 n["lab_uncertainty_from"].get<std::string>().c_str());
   return line;
 }

@@ -260,7 +260,7 @@ std::string history_plot(const json& s) {
   return "<h2>Calibration history</h2>\n" + legend_html(chart.series) + svg_lines(chart);
 }
 
-// The next test's sentence, and per menu test its borrowed noise and how far apart it would put
+// The next test's sentence, and per menu test its noise and how far apart it would put
 // the leading pair and each effect the calibration cannot identify (noise units).
 std::string next_test_section(const json& s) {
   const json& n = at(s, "next_test");
@@ -278,8 +278,10 @@ std::string next_test_section(const json& s) {
   for (const json& m : at(n, "menu")) {
     const json& noise = at(m, "noise");
     out += "<tr><td>" + show(at(m, "description")) + "</td><td>" +
-           show(at(noise, "noise"), "%.3f") + " (" + show(at(noise, "budget_from")) + ", " +
-           show(at(noise, "lab_uncertainty_from")) + ")</td>";
+           show(at(noise, "noise"), "%.3f") + " (" +
+           (at(noise, "measured") == true ? std::string("measured")
+                                          : "from " + show(at(noise, "budget_from"))) +
+           ", from " + show(at(noise, "lab_uncertainty_from")) + ")</td>";
     const std::string id = at(m, "id").is_string() ? m["id"].get<std::string>() : "";
     for (const json* c : columns) {
       out += "<td>" + show(at(at(*c, "by_test"), id.c_str()), "%.2f") + "</td>";
