@@ -16,6 +16,7 @@
 #include "orchestrator/diagnosis/diagnosis_kind.hpp"
 #include "orchestrator/diagnosis/pipeline/driver.hpp"
 #include "orchestrator/diagnosis/pipeline/grid.hpp"
+#include "orchestrator/diagnosis/report/next_test_json.hpp"
 #include "orchestrator/diagnosis/report/report.hpp"
 #include "synthetic_model.hpp"
 
@@ -136,6 +137,35 @@ TEST(NextTest, AMenuTestsBudgetIsMeasuredWhereTheVariantsGaveItAValue) {
   EXPECT_DOUBLE_EQ(noise[1].budget, 0.05);
   EXPECT_EQ(noise[1].budget_from, "uct-peak");
   EXPECT_TRUE(noise[1].measured_by.empty());
+}
+
+// Focus: the sentence never reads as a test to run when even the best test leaves the two
+// hypotheses within one noise (budget + lab uncertainty) of each other.
+TEST(NextTest, ABestTestBelowTheBarIsSaidNotToTellThemApart) {
+  const DiagnosisCampaign c = testing::registry_twin_campaign("none", 0.0);
+  NextTest next;
+  next.enabled = true;
+  next.menu = {test_menu(c.targets).front()};
+  next.noise = {{0.05, "uct-peak", 0.02, "uct-peak", {}}};
+  next.effects = {"rate"};
+  next.runs.resize(kNextTestBaseRuns + 1);
+  next.ln.assign(kNextTestBaseRuns + 1, std::vector<double>{std::log(10.0)});
+  auto separation = [&](double mark) {
+    next.mark = {{mark}};
+    next.leading = separate("rate", "", next.mark[0], {}, next.noise);
+    return next_test_json(next, c)["reason"].get<std::string>();
+  };
+  const std::string below = separation(0.03);  // under 0.05 + 0.02
+  EXPECT_NE(below.find("would separate rate from the base model by 0.56 noise units"),
+            std::string::npos)
+      << below;
+  EXPECT_NE(below.find("; their marks part by less than budget + lab uncertainty, so no test on "
+                       "the menu tells them apart."),
+            std::string::npos)
+      << below;
+  const std::string above = separation(0.3);
+  EXPECT_NE(above.find("by 5.57 noise units"), std::string::npos) << above;
+  EXPECT_EQ(above.find("tells them apart"), std::string::npos) << above;
 }
 
 // Focus: a mark is what a test would still show once it joins the calibration. Two calibration

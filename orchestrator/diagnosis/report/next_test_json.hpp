@@ -1,7 +1,8 @@
-// The report's "next_test" block (analysis/next_test.hpp): the menu with each test's borrowed
-// noise, the test that best separates the two leading hypotheses and each effect the calibration
-// cannot identify, with their conditions in the dataset's units, their expected discrimination in
-// noise units and the runs behind them, and the sentence the CLI and the page print.
+// The report's "next_test" block (analysis/next_test.hpp): the menu with each test's noise
+// (budget measured or borrowed), the test that best separates the two leading hypotheses and each
+// effect the calibration cannot identify, with their conditions in the dataset's units, their
+// expected discrimination in noise units and the runs behind them, and the sentence the CLI and the
+// page print.
 #pragma once
 
 #include <string>
