@@ -265,6 +265,39 @@ TEST(Evidence, AnEffectNoCloserToTheHeldOutDataThanTheBaseIsNeverTheVerdict) {
   EXPECT_EQ(v.reason.find("is not the explanation"), std::string::npos) << v.reason;
 }
 
+// Focus: a named effect whose fit lies on the search box says so: with its parameter at the end
+// of its range (a rate twin hidden at twice the candidate's strong value, named at it) the effect
+// may be stronger than the range reaches, and its figures are the bound's.
+TEST(Evidence, ANamedEffectFittedOnTheBoxSaysSo) {
+  std::vector<CandidateResult> c = {candidate("", true, {0.0, 0.2, 0.0, 0.0}),
+                                    candidate("rate", true, {0.0, 0.1, 0.0, 0.0})};
+  c[0].confirmed_rms.held_out = 0.2;
+  c[1].confirmed_rms.held_out = 0.1;
+  c[1].evidence = 2.36;
+  c[1].g_confirmed = 0.5;
+  c[1].candidate.param = "speed_factor";
+  c[1].candidate.value_at = [](double s) { return std::pow(8.0, s); };
+  c[1].calibration.z = {0.4, 0.5, 0.3};
+  const DecisionRule rule;
+  Verdict v = decide(rule, c, {1}, 2.8, 0.061);
+  ASSERT_EQ(v.candidate, 1) << v.reason;
+  EXPECT_EQ(v.reason.find("search box"), std::string::npos) << v.reason;
+  c[1].calibration.z = {0.4, 0.5, 1.0};
+  v = decide(rule, c, {1}, 2.8, 0.061);
+  ASSERT_EQ(v.candidate, 1) << v.reason;
+  EXPECT_NE(v.reason.find("; its fit lies on the search box (s upper): speed_factor 8.000 is the "
+                          "end of the range tried, and the effect may be stronger than that, so "
+                          "its figures are the bound's, not an optimum's; the base model's"),
+            std::string::npos)
+      << v.reason;
+  c[1].calibration.z = {0.0, 0.5, 0.3};
+  v = decide(rule, c, {1}, 2.8, 0.061);
+  EXPECT_NE(v.reason.find("; its fit lies on the search box (fr0 lower), so its figures are the "
+                          "bound's, not an optimum's"),
+            std::string::npos)
+      << v.reason;
+}
+
 TEST(Evidence, AnEffectInertAtItsFittedValueIsNeverTheVerdict) {
   std::vector<CandidateResult> c = {candidate("", true, {0.0, 0.2, 0.0, 0.0}),
                                     candidate("interaction_range", true, {0.0, 0.05, 0.0, 0.0}),

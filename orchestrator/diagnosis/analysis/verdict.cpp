@@ -71,6 +71,22 @@ std::string inert_note(const std::vector<CandidateResult>& candidates,
       });
 }
 
+// The named effect's fit on the search box: there the fit is the bound's, not an optimum, and with
+// its parameter at the end of its range the effect may be stronger than the range reaches (a rate
+// twin at twice the candidate's strong value is named at it).
+std::string bound_note(const CandidateResult& c) {
+  const std::vector<std::string> on = on_bounds(c.calibration.z);
+  if (on.empty()) return "";
+  std::string where;
+  for (const std::string& b : on) where += (where.empty() ? "" : ", ") + b;
+  std::string note = "; its fit lies on the search box (" + where + ")";
+  if (std::find(on.begin(), on.end(), "s upper") != on.end() && c.candidate.value_at) {
+    note += ": " + c.candidate.param + " " + fixed(c.candidate.value_at(1.0), 3) +
+            " is the end of the range tried, and the effect may be stronger than that";
+  }
+  return note + ", so its figures are the bound's, not an optimum's";
+}
+
 // The effects that would need a calibration observation to be judged: they move held-out ones
 // only (identifiability.hpp).
 std::string unfixed_note(const std::vector<CandidateResult>& candidates,
@@ -234,7 +250,7 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
                   " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
                   fixed(c.confirmed_rms.held_out.value_or(0)) + ")";
     }
-    v.reason += "; the base model's held-out residuals are " + fixed(*gap, 2) +
+    v.reason += bound_note(c) + "; the base model's held-out residuals are " + fixed(*gap, 2) +
                 " budgets (combined budget " + fixed(combined_held_out) + ")";
   } else if (contenders.empty()) {
     const std::string inert = inert_note(candidates, order);
