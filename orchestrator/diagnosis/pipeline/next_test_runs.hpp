@@ -21,9 +21,8 @@ namespace rockcal::diagnosis {
 NextTest run_next_test(const DiagnosisCampaign& campaign, const DiagnosisResult& report,
                        Evaluator& evaluator);
 
-// Model points of the batch at most (the base's three, every effect, the budget's variants; none
-// without effects), for
-// the job plan.
+// Model points of the batch at most, for the job plan: the base's three, every effect and the
+// budget's variants; none without effects.
 int next_test_model_points(const DiagnosisCampaign& campaign);
 
 }  // namespace rockcal::diagnosis
