@@ -186,6 +186,34 @@ TEST(HonestVerdict, ABoundThatDoesNotHoldTheFitLetsTheVerdictStand) {
   EXPECT_TRUE(held.verdict.bound->holds);
 }
 
+// Focus: a bound the data barely depend on. Re-fitted beyond the box the base model's calibration
+// miss would fall by no more than kBoundGainBudgets (a rate twin's fit runs to F_r0's bound where
+// shear sets every peak): the bound's value is arbitrary but does not limit the fit, so the verdict
+// stands, the note saying so; a larger gain and the bound holds it: undetermined.
+TEST(HonestVerdict, ABoundTheDataBarelyDependOnDoesNotHoldTheFit) {
+  Evidence e = two_observations_on_a_bound("uct", "fr0 upper", 0.03, "rate");
+  e.base_calibration_refitted = 1.2;  // from 1.34 noise budgets (0.03 in ln, noise 0.0224)
+  const Judged j = tempered(e, 1, "rate: evidence 7.19 nats", "medium");
+  EXPECT_FALSE(j.verdict.undetermined);
+  EXPECT_EQ(j.verdict.candidate, 1);
+  EXPECT_NE(j.verdict.reason.find(
+                "rate: evidence 7.19 nats; the base model's fit lies on the search box (fr0 "
+                "upper), but the bound does not hold it: re-fitted beyond it linearly on its "
+                "sensitivity there, its calibration miss of 1.3 noise budgets would be 1.2 (0.14 "
+                "less, within 0.25): the data barely depend on that strength there, so its value "
+                "is the bound's but the fit is not limited by it"),
+            std::string::npos)
+      << j.verdict.reason;
+  ASSERT_TRUE(j.verdict.bound);
+  EXPECT_FALSE(j.verdict.bound->holds);
+  e.base_calibration_refitted = 1.0;  // 0.34 less: the bound holds the fit
+  Judged held;
+  held.verdict.candidate = 1;
+  temper_verdict(DecisionRule{}, e, held.verdict, held.confidence);
+  EXPECT_TRUE(held.verdict.undetermined);
+  EXPECT_TRUE(held.verdict.bound->holds);
+}
+
 // No effect named beside a calibration miss beyond the budget: labelled "unexplained miss", never
 // "no effect needed", low, the miss added. A named effect whose model still misses: at most
 // medium, labelled by the effect. Within the budget: "no effect needed", the rule's level stands.

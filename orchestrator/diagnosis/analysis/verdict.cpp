@@ -377,7 +377,10 @@ void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Con
     bound.on = e.base_on_bounds;
     bound.calibration = e.base.calibration;
     bound.refitted = e.base_calibration_refitted;
-    bound.holds = !(bound.refitted && *bound.refitted > kCalibrationFitBudgets);
+    const bool unfit = bound.refitted && *bound.refitted > kCalibrationFitBudgets;
+    const bool indifferent = bound.refitted && bound.calibration &&
+                             *bound.calibration - *bound.refitted <= kBoundGainBudgets;
+    bound.holds = !unfit && !indifferent;
     const std::string beyond =
         "re-fitted beyond it linearly on its sensitivity there, its calibration miss of " +
         (bound.calibration ? fixed(*bound.calibration, 1) : std::string("?")) +
@@ -386,10 +389,17 @@ void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Con
       causes.push_back("the base model's fit lies on the search box (" + where +
                        "): its strengths are the bounds', not the data's (widen the bounds" +
                        (bound.refitted ? ": " + beyond : std::string()) + ")");
-    } else {
+    } else if (unfit) {
       bound_note = "; the base model's fit lies on the search box (" + where +
                    "), but the bound does not hold it: " + beyond +
                    ", beyond what a fitting model may leave, so no strengths explain its miss";
+    } else {
+      bound_note = "; the base model's fit lies on the search box (" + where +
+                   "), but the bound does not hold it: " + beyond + " (" +
+                   fixed(*bound.calibration - *bound.refitted, 2) + " less, within " +
+                   fixed(kBoundGainBudgets, 2) +
+                   "): the data barely depend on that strength there, so its value is the "
+                   "bound's but the fit is not limited by it";
     }
   }
   if (!causes.empty()) {

@@ -87,6 +87,12 @@ int choose_effect(const DecisionRule& rule, const std::vector<Contender>& conten
 // residuals many noise levels wide. Generous on purpose: one odd calibration value (a lab
 // modulus off by 15%) leaves the right effect at about 3 budgets, and it must stay eligible.
 inline constexpr double kCalibrationFitBudgets = 4.0;
+
+// A base fit on the search box is held by the bound only if moving past it would lower its
+// calibration miss by more than this (rms, noise budgets): a smaller gain is within the noise of
+// the miss itself, the data barely depending on the bounded strength there (a rate twin's fit runs
+// to F_r0's bound where shear governs every peak), so the bound's value is arbitrary, not limiting.
+inline constexpr double kBoundGainBudgets = 0.25;
 void mark_calibration_fits(std::vector<CandidateResult>& candidates, double combined_calibration);
 
 // Every fitted candidate's held-out density from its real runs if confirmed, else from its
