@@ -126,13 +126,16 @@ TEST(NextTest, AMenuTestsBudgetIsMeasuredWhereTheVariantsGaveItAValue) {
                                {0.05, "uct-peak", 0.02, "uct-peak", {}}};
   Budget measured;
   measured.variants = {{"seed 2", {2, 1.0, 1.0}, "seed"}, {"seed 3", {3, 1.0, 1.0}, "seed"}};
-  // Two dataset targets, then the two menu tests; no variant gave the second menu test a value.
+  // Two dataset targets, then the two menu tests; seed 3 gave the first menu test no value, and
+  // no variant gave the second one any.
+  const double nan = std::nan("");
+  measured.change = {{0.01, 0.02, 0.013, nan}, {0.01, 0.02, nan, nan}};
   measured.per_target = {0.01, 0.02, 0.013, 0.02};
   measured.measured = {true, true, true, false};
   use_measured_budgets(noise, measured, 2);
   EXPECT_DOUBLE_EQ(noise[0].budget, 0.013);
   EXPECT_EQ(noise[0].budget_from, "");
-  EXPECT_EQ(noise[0].measured_by, (std::vector<std::string>{"seed 2", "seed 3"}));
+  EXPECT_EQ(noise[0].measured_by, std::vector<std::string>{"seed 2"});
   EXPECT_EQ(noise[0].sigma_from, "tri-low");  // a lab uncertainty no run can measure
   EXPECT_DOUBLE_EQ(noise[1].budget, 0.05);
   EXPECT_EQ(noise[1].budget_from, "uct-peak");

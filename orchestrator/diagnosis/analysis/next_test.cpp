@@ -43,7 +43,10 @@ void use_measured_budgets(std::vector<TestNoise>& noise, const Budget& measured,
     noise[m].budget = measured.per_target[n + m];
     noise[m].budget_from.clear();
     noise[m].measured_by.clear();
-    for (const BudgetVariant& v : measured.variants) noise[m].measured_by.push_back(v.name);
+    for (std::size_t v = 0; v < measured.variants.size(); ++v) {
+      if (std::isfinite(measured.change[v][n + m]))
+        noise[m].measured_by.push_back(measured.variants[v].name);
+    }
   }
 }
 

@@ -39,7 +39,8 @@ struct TestNoise {
 TestNoise borrowed_noise(const Target& test, const std::vector<Target>& targets,
                          const std::vector<double>& budget);
 // The budget measured at the base fit on the dataset's n targets and then the menu's: each menu
-// test it measured takes that budget in place of the borrowed one.
+// test it measured takes that budget in place of the borrowed one, with the variants that gave it
+// a value.
 void use_measured_budgets(std::vector<TestNoise>& noise, const Budget& measured, std::size_t n);
 
 // Two hypotheses on every menu test. `a` and `b` are effect names ("" = the base model).

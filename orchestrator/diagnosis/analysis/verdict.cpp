@@ -74,7 +74,7 @@ std::string inert_note(const std::vector<CandidateResult>& candidates,
 // The named effect's fit on the search box: there the fit is the bound's, not an optimum, and with
 // its parameter at the end of its range the effect may be stronger than the range reaches (a rate
 // twin at twice the candidate's strong value is named at it).
-std::string bound_note(const CandidateResult& c) {
+std::string fit_on_box_note(const CandidateResult& c) {
   const std::vector<std::string> on = on_bounds(c.calibration.z);
   if (on.empty()) return "";
   std::string where;
@@ -250,7 +250,7 @@ Verdict decide(const DecisionRule& rule, const std::vector<CandidateResult>& can
                   " of the held-out gap (held-out rms " + fixed(*base_rms) + " -> " +
                   fixed(c.confirmed_rms.held_out.value_or(0)) + ")";
     }
-    v.reason += bound_note(c) + "; the base model's held-out residuals are " + fixed(*gap, 2) +
+    v.reason += fit_on_box_note(c) + "; the base model's held-out residuals are " + fixed(*gap, 2) +
                 " budgets (combined budget " + fixed(combined_held_out) + ")";
   } else if (contenders.empty()) {
     const std::string inert = inert_note(candidates, order);
