@@ -129,8 +129,11 @@ def main():
         base_request.setdefault("decision", {})["min_evidence"] = a.min_evidence
     # The twins are made on the request's template, so that a larger template (--request with
     # another "job") gets twins of its own resolution.
+    # A "bond" in the request's job is the twins' template bond (their truths are drawn around it);
+    # the diagnosis sets its own, so the request is sent without one.
     template = os.path.join(work, "template.json")
     json.dump(base_request["job"], open(template, "w"), indent=1)
+    base_request["job"] = {k: v for k, v in base_request["job"].items() if k != "bond"}
     request_name = os.path.basename(a.request)
 
     def key_of(r):
