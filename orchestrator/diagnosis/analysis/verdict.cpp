@@ -71,15 +71,20 @@ std::string inert_note(const std::vector<CandidateResult>& candidates,
       });
 }
 
+// The bounds a fit lies on (on_bounds), as a list in a sentence: "fr0 upper, s upper".
+std::string bounds_text(const std::vector<std::string>& on) {
+  std::string out;
+  for (const std::string& b : on) out += (out.empty() ? "" : ", ") + b;
+  return out;
+}
+
 // The named effect's fit on the search box: there the fit is the bound's, not an optimum, and with
 // its parameter at the end of its range the effect may be stronger than the range reaches (a rate
 // twin at twice the candidate's strong value is named at it).
 std::string fit_on_box_note(const CandidateResult& c) {
   const std::vector<std::string> on = on_bounds(c.calibration.z);
   if (on.empty()) return "";
-  std::string where;
-  for (const std::string& b : on) where += (where.empty() ? "" : ", ") + b;
-  std::string note = "; its fit lies on the search box (" + where + ")";
+  std::string note = "; its fit lies on the search box (" + bounds_text(on) + ")";
   if (std::find(on.begin(), on.end(), "s upper") != on.end() && c.candidate.value_at) {
     note += ": " + c.candidate.param + " " + fixed(c.candidate.value_at(1.0), 3) +
             " is the end of the range tried, and the effect may be stronger than that";
@@ -371,8 +376,7 @@ void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Con
   }
   std::string bound_note;
   if (!e.base_on_bounds.empty()) {
-    std::string where;
-    for (const std::string& b : e.base_on_bounds) where += (where.empty() ? "" : ", ") + b;
+    const std::string where = bounds_text(e.base_on_bounds);
     Verdict::Bound& bound = v.bound.emplace();
     bound.on = e.base_on_bounds;
     bound.calibration = e.base.calibration;
@@ -389,17 +393,15 @@ void temper_verdict(const DecisionRule& rule, const Evidence& e, Verdict& v, Con
       causes.push_back("the base model's fit lies on the search box (" + where +
                        "): its strengths are the bounds', not the data's (widen the bounds" +
                        (bound.refitted ? ": " + beyond : std::string()) + ")");
-    } else if (unfit) {
-      bound_note = "; the base model's fit lies on the search box (" + where +
-                   "), but the bound does not hold it: " + beyond +
-                   ", beyond what a fitting model may leave, so no strengths explain its miss";
     } else {
       bound_note = "; the base model's fit lies on the search box (" + where +
-                   "), but the bound does not hold it: " + beyond + " (" +
-                   fixed(*bound.calibration - *bound.refitted, 2) + " less, within " +
-                   fixed(kBoundGainBudgets, 2) +
-                   "): the data barely depend on that strength there, so its value is the "
-                   "bound's but the fit is not limited by it";
+                   "), but the bound does not hold it: " + beyond +
+                   (unfit ? ", beyond what a fitting model may leave, so no strengths explain "
+                            "its miss"
+                          : " (" + fixed(*bound.calibration - *bound.refitted, 2) +
+                                " less, within " + fixed(kBoundGainBudgets, 2) +
+                                "): the data barely depend on that strength there, so its value "
+                                "is the bound's but the fit is not limited by it");
     }
   }
   if (!causes.empty()) {
